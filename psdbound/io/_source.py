@@ -1,0 +1,76 @@
+"""Turn a file name into the plain text of a RINEX/SP3 file.
+
+Handles plain text, gzip/Z/bz2/zip (via :mod:`hatanaka`'s detection) and
+Hatanaka compact RINEX (``.crx``, ``.??d``, compressed or not).
+"""
+
+from __future__ import annotations
+
+import gzip
+import os
+from pathlib import Path
+
+from psdbound.errors import InputError
+
+__all__ = ["read_bytes"]
+
+_GZIP_MAGIC = b"\x1f\x8b"
+_Z_MAGIC = b"\x1f\x9d"
+_BZ2_MAGIC = b"BZh"
+_ZIP_MAGIC = b"PK\x03\x04"
+
+
+def read_bytes(path: str | os.PathLike[str]) -> bytes:
+    """Return the decompressed text of a RINEX or SP3 file as bytes.
+
+    Parameters
+    ----------
+    path : str or path-like
+        Plain, gzip/Z/bz2/zip-compressed, or Hatanaka-compressed file.
+
+    Returns
+    -------
+    bytes
+        The plain file content (``\\r\\n`` normalised to ``\\n``).
+
+    Raises
+    ------
+    InputError
+        If the file is missing, empty, not decompressable, or a corrupted
+        Hatanaka stream.
+    """
+    p = Path(path)
+    if not p.is_file():
+        raise InputError("file not found", path=p)
+    raw = p.read_bytes()
+    if not raw:
+        raise InputError("file is empty (0 bytes); expected a RINEX or SP3 file", path=p)
+    try:
+        if raw[:2] == _GZIP_MAGIC:
+            raw = gzip.decompress(raw)
+        elif raw[:2] == _Z_MAGIC or raw[:3] == _BZ2_MAGIC or raw[:4] == _ZIP_MAGIC:
+            import hatanaka
+
+            raw = hatanaka.decompress(raw)
+    except (OSError, EOFError, ValueError) as exc:
+        raise InputError(f"cannot decompress: {exc}", path=p) from exc
+    if not raw.strip():
+        raise InputError("file is empty after decompression", path=p)
+    if b"COMPACT RINEX" in raw[:200]:
+        raw = _crx_to_rnx(raw, p)
+    if b"\r" in raw[:4096]:
+        raw = raw.replace(b"\r\n", b"\n")
+    return raw
+
+
+def _crx_to_rnx(raw: bytes, p: Path) -> bytes:
+    import hatanaka
+
+    try:
+        return hatanaka.crx2rnx(raw)
+    except Exception as exc:  # hatanaka raises HatanakaException / ValueError
+        msg = str(exc).strip().splitlines()
+        detail = msg[0] if msg else type(exc).__name__
+        raise InputError(
+            f"corrupted Hatanaka (compact RINEX) stream: {detail}", path=p
+        ) from exc

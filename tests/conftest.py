@@ -1,0 +1,32 @@
+"""Shared fixtures: the real station files in ../shared/data/rinex."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+_REPO = Path(__file__).resolve().parents[1]
+SHARED_RINEX = Path(
+    os.environ.get("PSDBOUND_SHARED_DATA", _REPO.parent / "shared" / "data")
+) / "rinex"
+
+
+def shared_file(name: str) -> Path:
+    """Path of a file in ../shared/data/rinex; skip the test when absent."""
+    p = SHARED_RINEX / name
+    if not p.is_file():
+        pytest.skip(f"real data not available: {p} (../shared/data is absent)")
+    return p
+
+
+ESBC_OBS = "ESBC00DNK_R_20201770000_01D_30S_MO.crx.gz"
+ESBC_NAV = "ESBC00DNK_R_20201770000_01D_MN.rnx.gz"
+ESBC_SP3 = "GRG0MGXFIN_20201770000_01D_15M_ORB.SP3.gz"
+NYA1_OBS = "NYA100NOR_S_20241240000_01D_30S_MO.crx.gz"
+NYA1_NAV = "NYA100NOR_S_20241240000_01D_GN.rnx.gz"
+GRAS_OBS = "GRAS00FRA_R_20223151700_15M_01S_MO.crx.gz"
+UPC1_OBS = "UPC10770.10o.gz"
+UPC2_OBS = "UPC20770.10o.gz"
+UPC_NAV = "brdc0770.10n.gz"
