@@ -64,10 +64,19 @@ def read_bytes(path: str | os.PathLike[str]) -> bytes:
 
 
 def _crx_to_rnx(raw: bytes, p: Path) -> bytes:
+    import warnings
+
     import hatanaka
 
     try:
-        return hatanaka.crx2rnx(raw)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            out = hatanaka.crx2rnx(raw)
+        # crx2rnx reports damaged epochs as warnings and skips them: a silent data loss
+        problems = [str(w.message) for w in caught if "crx2rnx" in str(w.message)]
+        if problems:
+            raise ValueError(problems[0])
+        return out
     except Exception as exc:  # hatanaka raises HatanakaException / ValueError
         msg = str(exc).strip().splitlines()
         detail = msg[0] if msg else type(exc).__name__

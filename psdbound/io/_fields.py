@@ -1,0 +1,106 @@
+"""Vectorised parsing of RINEX observation fields (F14.3 + LLI + SSI).
+
+A RINEX observation field is 16 characters: the value in Fortran ``F14.3``
+(decimal point in column 11), the loss-of-lock indicator and the signal
+strength indicator, each one digit or blank. Parsing millions of fields with
+``float()`` is the bottleneck of every pure-Python reader; here the digits
+of a whole block are combined with one matrix product. The result is exactly
+what ``float(text)`` gives: the integer ``value * 1000`` is formed exactly in
+float64 (fewer than 16 significant digits) and one correctly rounded
+division by 1000 yields the double nearest to the decimal number.
+
+Fields that are not in the strict ``F14.3`` layout (a misplaced point, an
+exponent) fall back to ``float()`` one by one if they are right-justified;
+text that is no number, or a left-justified fragment (a line cut short), is
+reported with its row and field index.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+FIELD_WIDTH = 16
+VALUE_WIDTH = 14
+_POINT = 10  # 0-based position of the decimal point in F14.3
+
+# weight of each character position in the integer value*1000
+_WEIGHTS = np.zeros(VALUE_WIDTH, dtype=np.float64)
+_WEIGHTS[:_POINT] = 10.0 ** np.arange(_POINT + 2, 2, -1)
+_WEIGHTS[_POINT + 1 :] = 10.0 ** np.arange(2, -1, -1)
+
+_SPACE, _MINUS, _DOT, _ZERO = 32, 45, 46, 48
+
+# look-up tables indexed by character code
+_DIGIT = np.zeros(256, dtype=np.float64)
+_DIGIT[_ZERO : _ZERO + 10] = np.arange(10)
+_MINUS_CODE, _DOT_CODE, _OTHER = 1 << 5, 1 << 9, 1 << 14
+_CLASS = np.full(256, float(_OTHER))
+_CLASS[_ZERO : _ZERO + 10] = 0.0
+_CLASS[_SPACE] = 1.0
+_CLASS[_MINUS] = float(_MINUS_CODE)
+_CLASS[_DOT] = float(_DOT_CODE)
+_ONES = np.ones(VALUE_WIDTH)
+_INDICATOR = np.full(256, -1, dtype=np.int8)
+_INDICATOR[_ZERO : _ZERO + 10] = np.arange(10, dtype=np.int8)
+
+
+class FieldError(ValueError):
+    """A field that is not a number; ``row`` and ``field`` locate it."""
+
+    def __init__(self, row: int, field: int, text: str) -> None:
+        self.row, self.field, self.text = row, field, text
+        super().__init__(f"field {field + 1} is not a number: {text!r}")
+
+
+def parse_fields(
+    chars: NDArray[np.uint8],
+) -> tuple[NDArray[np.float64], NDArray[np.int8], NDArray[np.int8]]:
+    """Parse a block of observation fields.
+
+    Parameters
+    ----------
+    chars : ndarray of uint8, shape (n_rows, n_fields, 16)
+        Space-padded characters.
+
+    Returns
+    -------
+    values : ndarray of float64, shape (n_rows, n_fields)
+        NaN where the value is blank.
+    lli, ssi : ndarray of int8, shape (n_rows, n_fields)
+        The indicator digits; -1 where blank.
+    """
+    val = chars[:, :, :VALUE_WIDTH]
+    scaled = _DIGIT[val] @ _WEIGHTS
+    # class code sum: spaces count in bits 0-4, minus signs 5-8, points 9-13
+    code = (_CLASS[val] @ _ONES).astype(np.int32)
+    empty = code == VALUE_WIDTH
+    values = scaled / 1000.0
+    np.negative(values, out=values, where=(code & 0x1E0) != 0)
+    values[empty] = np.nan
+    ok = (code < _OTHER) & ((code & 0x3E00) == _DOT_CODE) & (code & 0x1E0 <= _MINUS_CODE)
+    ok &= val[:, :, _POINT] == _DOT
+    bad = ~ok & ~empty
+    if bad.any():
+        for r, f in zip(*np.nonzero(bad), strict=True):
+            text = val[r, f].tobytes().decode("ascii", "replace")
+            try:
+                if text[-1] == " ":  # F14.3 is right-justified: a cut or shifted field
+                    raise ValueError(text)
+                values[r, f] = float(text.replace("D", "E").replace("d", "e"))
+            except ValueError:
+                raise FieldError(int(r), int(f), text.strip()) from None
+    lli = _INDICATOR[chars[:, :, VALUE_WIDTH]]
+    ssi = _INDICATOR[chars[:, :, VALUE_WIDTH + 1]]
+    return values, lli, ssi
+
+
+def pad_lines(lines: list[bytes], width: int) -> NDArray[np.uint8]:
+    """Stack byte lines into a space-padded (n_lines, width) uint8 array.
+
+    Lines longer than ``width`` are cut to ``width``.
+    """
+    if not lines:
+        return np.zeros((0, width), dtype=np.uint8)
+    buf = b"".join([ln[:width].ljust(width) for ln in lines])
+    return np.frombuffer(buf, dtype=np.uint8).reshape(len(lines), width)

@@ -1,0 +1,348 @@
+"""Continuous carrier-phase tracking arcs.
+
+An arc is a stretch of epochs over which one satellite is tracked on both
+signals of a pair with no gap, no loss of lock and no cycle slip, so that
+its carrier-phase ambiguities are constant. Arcs are broken
+
+* on a gap longer than ``gap_factor`` (1.5) sampling intervals;
+* on an epoch flagged by the receiver: loss-of-lock indicator bit 0 on either
+  signal, or RINEX epoch flag 1 (power failure);
+* on a cycle slip detected from the data: a jump of the geometry-free phase
+  ``L_a - L_b`` (metres) between consecutive epochs that departs from the
+  local (running-median) rate by more than ``slip_threshold_m``;
+* where the satellite is below the elevation mask (when an orbit is given).
+
+Stretches shorter than ``min_length_s`` are dropped and counted.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.ndimage import median_filter
+
+from psdbound.errors import InputError, NoDataError
+from psdbound.io.obs import Observations
+
+__all__ = ["Arc", "ArcSet", "find_arcs", "DEFAULT_SIGNALS"]
+
+#: Default signal pair per system for dual-frequency work.
+DEFAULT_SIGNALS: dict[str, tuple[str, str]] = {
+    "G": ("L1C", "L2W"),
+    "E": ("L1C", "L5Q"),
+    "J": ("L1C", "L2L"),
+    "C": ("L2I", "L7I"),
+}
+
+_SLIP_WINDOW = 11  # samples in the running median of the geometry-free rate
+
+
+@dataclass(frozen=True)
+class Arc:
+    """One continuous tracking arc of a satellite on a pair of signals.
+
+    Attributes
+    ----------
+    sat : str
+        Satellite, e.g. ``"G05"``.
+    signals : tuple of str
+        The two observation codes, e.g. ``("L1C", "L2W")``.
+    arc_id : int
+        Index of the arc within its :class:`ArcSet`.
+    epoch_index : ndarray of int
+        Indices of the arc's epochs in the source :class:`Observations`.
+    t_gps_s : ndarray of float64
+        Epochs, GPS seconds.
+    phase_m : ndarray of float64, shape (n, 2)
+        Carrier phases of the two signals in metres (ambiguities included).
+    elevation_deg, azimuth_deg : ndarray of float64 or None
+        Satellite elevation and azimuth seen from the receiver, degrees
+        (None when no orbit was given).
+    start_reason : str
+        Why the arc starts where it does (``"first epoch"``, ``"gap"``,
+        ``"loss of lock"``, ``"cycle slip"``, ``"power failure"``,
+        ``"elevation mask"``).
+    """
+
+    sat: str
+    signals: tuple[str, str]
+    arc_id: int
+    epoch_index: NDArray[np.intp]
+    t_gps_s: NDArray[np.float64]
+    phase_m: NDArray[np.float64]
+    elevation_deg: NDArray[np.float64] | None
+    azimuth_deg: NDArray[np.float64] | None
+    start_reason: str
+
+    @property
+    def n(self) -> int:
+        """Number of epochs."""
+        return int(self.t_gps_s.size)
+
+    @property
+    def duration_s(self) -> float:
+        """Time from first to last epoch, seconds."""
+        return float(self.t_gps_s[-1] - self.t_gps_s[0])
+
+    @property
+    def geometry_free_m(self) -> NDArray[np.float64]:
+        """Phase difference ``L_a - L_b`` in metres."""
+        return self.phase_m[:, 0] - self.phase_m[:, 1]
+
+
+@dataclass(frozen=True)
+class ArcSet:
+    """The arcs of one observation file, system and signal pair.
+
+    Attributes
+    ----------
+    path : str
+        Source observation file.
+    system : str
+        Satellite system letter.
+    signals : tuple of str
+        Signal pair.
+    interval_s : float
+        Sampling interval, seconds.
+    min_length_s : float
+        Arcs shorter than this were dropped.
+    arcs : tuple of Arc
+        The kept arcs, ordered by satellite then time.
+    breaks : collections.Counter
+        Number of arc breaks per reason (over all satellites).
+    dropped : collections.Counter
+        Number of stretches dropped per reason (``"shorter than minimum"``).
+    dropped_s : float
+        Total duration of the dropped stretches, seconds.
+    """
+
+    path: str
+    system: str
+    signals: tuple[str, str]
+    interval_s: float
+    min_length_s: float
+    arcs: tuple[Arc, ...]
+    breaks: Counter = field(default_factory=Counter)
+    dropped: Counter = field(default_factory=Counter)
+    dropped_s: float = 0.0
+
+    def __len__(self) -> int:
+        return len(self.arcs)
+
+    def __iter__(self) -> Iterator[Arc]:
+        return iter(self.arcs)
+
+    def __getitem__(self, i: int) -> Arc:
+        return self.arcs[i]
+
+    @property
+    def total_duration_s(self) -> float:
+        """Sum of the kept arcs' durations, seconds."""
+        return float(sum(a.duration_s for a in self.arcs))
+
+    def summary(self) -> str:
+        """A short text description: counts, durations and break reasons."""
+        lines = [
+            f"{self.system} {self.signals[0]}-{self.signals[1]}: {len(self.arcs)} arcs "
+            f">= {self.min_length_s / 60:g} min, {self.total_duration_s / 3600:.2f} h in total "
+            f"(interval {self.interval_s:g} s)",
+            "  breaks: " + (", ".join(f"{k} {v}" for k, v in sorted(self.breaks.items())) or "none"),
+            f"  dropped: {sum(self.dropped.values())} short stretches "
+            f"({self.dropped_s / 3600:.2f} h)",
+        ]
+        return "\n".join(lines)
+
+
+def _slips(gf_m: NDArray[np.float64], threshold_m: float) -> NDArray[np.bool_]:
+    """Boolean per epoch: a slip between the previous epoch and this one."""
+    out = np.zeros(gf_m.size, dtype=bool)
+    if gf_m.size < 3:
+        return out
+    d = np.diff(gf_m)
+    ref = median_filter(d, size=min(_SLIP_WINDOW, d.size | 1), mode="nearest")
+    out[1:] = np.abs(d - ref) > threshold_m
+    return out
+
+
+def find_arcs(
+    obs: Observations,
+    signals: Sequence[str] | None = None,
+    *,
+    system: str = "G",
+    orbit: object | None = None,
+    receiver_xyz_m: NDArray[np.float64] | None = None,
+    min_length_s: float = 1800.0,
+    gap_factor: float = 1.5,
+    slip_threshold_m: float = 0.04,
+    elevation_mask_deg: float = 0.0,
+    satellites: Sequence[str] | None = None,
+) -> ArcSet:
+    """Split observations into continuous dual-signal tracking arcs.
+
+    Parameters
+    ----------
+    obs : Observations
+        Observations from :func:`psdbound.io.read_obs`.
+    signals : sequence of two str, optional
+        Phase codes of the pair, e.g. ``("L1C", "L2W")``; RINEX 2 files
+        accept their own codes or the RINEX 3 equivalents. Defaults to
+        :data:`DEFAULT_SIGNALS` for the system.
+    system : str, default "G"
+        Satellite system letter.
+    orbit : OrbitSource, optional
+        Navigation or precise orbit (anything with ``positions_ecef_m``);
+        when given, arcs carry elevation and azimuth.
+    receiver_xyz_m : ndarray of shape (3,), optional
+        Receiver ECEF position in metres; defaults to the header's
+        approximate position.
+    min_length_s : float, default 1800
+        Minimum arc duration in seconds (30 min).
+    gap_factor : float, default 1.5
+        A gap longer than ``gap_factor`` sampling intervals breaks an arc.
+    slip_threshold_m : float, default 0.04
+        Geometry-free jump, in metres, beyond the local rate that counts as a
+        cycle slip. The smallest common GPS L1/L2 slip (one cycle on both)
+        moves ``L1 - L2`` by 0.054 m.
+    elevation_mask_deg : float, default 0
+        Epochs below this elevation are excluded (needs ``orbit``).
+    satellites : sequence of str, optional
+        Restrict to these satellites.
+
+    Returns
+    -------
+    ArcSet
+        The arcs, with break and drop statistics.
+
+    Raises
+    ------
+    InputError
+        Unknown signals, a missing second signal, or no receiver position
+        when an orbit is given.
+    """
+    if signals is None:
+        if system not in DEFAULT_SIGNALS:
+            raise InputError(f"no default signal pair for system {system!r}; give signals")
+        signals = DEFAULT_SIGNALS[system]
+    if len(signals) != 2:
+        raise InputError(f"expected a pair of phase signals, got {tuple(signals)}")
+    code_a, code_b = (obs.resolve_code(system, s) for s in signals)
+    if not (code_a.startswith("L") and code_b.startswith("L")):
+        raise InputError(f"arcs need carrier-phase codes (L..), got {code_a} and {code_b}")
+    block = obs.blocks[system]
+    interval_s = obs.interval_s
+    if orbit is not None:
+        if receiver_xyz_m is None:
+            receiver_xyz_m = obs.header.approx_position_m
+        if receiver_xyz_m is None:
+            raise InputError(
+                "no receiver position: the header has no APPROX POSITION XYZ; "
+                "give receiver_xyz_m",
+                path=obs.path,
+            )
+        from psdbound.io.geometry import satellite_azel
+
+    sats = block.sats if satellites is None else [s for s in block.sats if s in satellites]
+    ka, kb = block.codes.index(code_a), block.codes.index(code_b)
+    t_all = obs.t_gps_s
+    power_fail = obs.epoch_flag == 1
+    breaks: Counter = Counter()
+    dropped: Counter = Counter()
+    dropped_s = 0.0
+    arcs: list[Arc] = []
+    for sat in sats:
+        i = block.sats.index(sat)
+        la = obs.phase_m(sat, code_a)
+        lb = obs.phase_m(sat, code_b)
+        ok = np.isfinite(la) & np.isfinite(lb)
+        idx = np.flatnonzero(ok)
+        if idx.size < 2:
+            continue
+        t = t_all[idx]
+        reason = np.full(idx.size, "", dtype=object)
+        reason[0] = "first epoch"
+        lli_a = block.lli[idx, i, ka]
+        lli_b = block.lli[idx, i, kb]
+        lost = ((lli_a > 0) & (lli_a & 1 > 0)) | ((lli_b > 0) & (lli_b & 1 > 0))
+        gap = np.zeros(idx.size, dtype=bool)
+        gap[1:] = np.diff(t) > gap_factor * interval_s
+        el = az = None
+        if orbit is not None:
+            az, el = satellite_azel(orbit, sat, t, np.asarray(receiver_xyz_m, dtype=float))
+            low = ~(el >= elevation_mask_deg)  # NaN (no orbit) counts as below the mask
+        else:
+            low = np.zeros(idx.size, dtype=bool)
+        # assign reasons in increasing priority; a later assignment wins
+        reason[power_fail[idx]] = "power failure"
+        reason[lost] = "loss of lock"
+        reason[gap] = "gap"
+        reason[0] = "first epoch"
+        starts = (reason != "") | np.r_[True, low[:-1] & ~low[1:]]
+        reason[np.r_[False, low[:-1] & ~low[1:]] & (reason == "")] = "elevation mask"
+        # cycle slips, tested inside each stretch delimited so far
+        gf = la[idx] - lb[idx]
+        seg_id = np.cumsum(starts)
+        for s in np.unique(seg_id):
+            m = np.flatnonzero((seg_id == s) & ~low)
+            if m.size < 3:
+                continue
+            slip = _slips(gf[m], slip_threshold_m)
+            reason[m[slip]] = "cycle slip"
+        keep = ~low
+        starts = (reason != "") & keep
+        starts |= keep & np.r_[True, ~keep[:-1]]
+        bounds = np.flatnonzero(starts)
+        for b0, b1 in zip(bounds, np.r_[bounds[1:], idx.size], strict=True):
+            seg = np.arange(b0, b1)
+            seg = seg[keep[seg]]
+            r = reason[b0] or "elevation mask"
+            if b0 > 0:
+                breaks[r] += 1
+            if seg.size < 2 or t[seg[-1]] - t[seg[0]] < min_length_s:
+                if seg.size:
+                    dropped["shorter than minimum"] += 1
+                    dropped_s += float(t[seg[-1]] - t[seg[0]])
+                continue
+            arcs.append(
+                Arc(
+                    sat=sat,
+                    signals=(code_a, code_b),
+                    arc_id=len(arcs),
+                    epoch_index=idx[seg],
+                    t_gps_s=t[seg],
+                    phase_m=np.column_stack([la[idx[seg]], lb[idx[seg]]]),
+                    elevation_deg=None if el is None else el[seg],
+                    azimuth_deg=None if az is None else az[seg],
+                    start_reason=r,
+                )
+            )
+    result = ArcSet(
+        path=obs.path,
+        system=system,
+        signals=(code_a, code_b),
+        interval_s=interval_s,
+        min_length_s=min_length_s,
+        arcs=tuple(arcs),
+        breaks=breaks,
+        dropped=dropped,
+        dropped_s=dropped_s,
+    )
+    return result
+
+
+def require_arcs(arcs: ArcSet) -> ArcSet:
+    """Return ``arcs`` or raise :class:`NoDataError` when it holds none.
+
+    The message says how many stretches were too short and the minimum.
+    """
+    if len(arcs):
+        return arcs
+    raise NoDataError(
+        f"no arc long enough: {sum(arcs.dropped.values())} tracking stretches of "
+        f"{arcs.system} {arcs.signals[0]}-{arcs.signals[1]} are all shorter than the "
+        f"minimum of {arcs.min_length_s / 60:g} min",
+        path=arcs.path,
+    )

@@ -1,0 +1,293 @@
+"""Reading RINEX observation files into :class:`Observations`.
+
+One front function, :func:`read_obs`, dispatches on the RINEX version found in
+the header (2.1x or 3.0x) and accepts plain, gzip/Z/bz2/zip and Hatanaka
+(compact RINEX) files.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from psdbound.errors import InputError, NoDataError
+from psdbound.io._body import parse_v2, parse_v3
+from psdbound.io._header import ObsHeader
+from psdbound.io._header import parse_header as _parse_header
+from psdbound.io._source import read_bytes
+from psdbound.io.signals import RINEX2_TO_RINEX3, wavelength_m
+from psdbound.io.timescales import gps_s_to_datetime64
+
+__all__ = ["Observations", "ObsHeader", "SystemBlock", "read_obs"]
+
+_SYSTEM_NAMES = {
+    "G": "GPS",
+    "E": "Galileo",
+    "R": "GLONASS",
+    "C": "BeiDou",
+    "J": "QZSS",
+    "S": "SBAS",
+    "I": "NavIC",
+}
+
+
+@dataclass(frozen=True)
+class SystemBlock:
+    """All observations of one satellite system.
+
+    Attributes
+    ----------
+    system : str
+        System letter (``G``, ``E``, ...).
+    sats : tuple of str
+        Satellites, e.g. ``("G01", "G02")``; axis 1 of the arrays.
+    codes : tuple of str
+        Observation codes as written in the file (``L1C``; RINEX 2 ``L1``);
+        axis 2 of the arrays.
+    values : ndarray of float64, shape (n_epoch, n_sat, n_code)
+        Observations in RINEX units (phase in cycles, code in metres, SNR in
+        dB-Hz, Doppler in Hz). NaN where the field is blank or the satellite
+        is not in the epoch; receiver-written zeros are kept as zeros.
+    lli : ndarray of int8, same shape
+        Loss-of-lock indicator digit (bit 0 = lost lock); -1 where blank.
+    ssi : ndarray of int8, same shape
+        Signal strength indicator digit; -1 where blank.
+    """
+
+    system: str
+    sats: tuple[str, ...]
+    codes: tuple[str, ...]
+    values: NDArray[np.float64]
+    lli: NDArray[np.int8]
+    ssi: NDArray[np.int8]
+
+
+@dataclass(frozen=True)
+class Observations:
+    """Observations of one RINEX observation file.
+
+    Attributes
+    ----------
+    path : str
+        The file read.
+    header : ObsHeader
+        Header information (station, receiver, approximate position...).
+    t_gps_s : ndarray of float64, shape (n_epoch,)
+        Epochs in GPS seconds since 1980-01-06 (GPS time scale), whatever
+        the file's time system.
+    epoch_flag : ndarray of int8, shape (n_epoch,)
+        RINEX epoch flag (0 OK, 1 power failure since the previous epoch).
+    blocks : mapping of str to SystemBlock
+        Observations per satellite system.
+    """
+
+    path: str
+    header: ObsHeader
+    t_gps_s: NDArray[np.float64]
+    epoch_flag: NDArray[np.int8]
+    blocks: Mapping[str, SystemBlock]
+
+    @property
+    def systems(self) -> tuple[str, ...]:
+        """System letters present, in file order."""
+        return tuple(self.blocks)
+
+    @property
+    def satellites(self) -> tuple[str, ...]:
+        """All satellites with at least one epoch, sorted."""
+        return tuple(sorted(s for b in self.blocks.values() for s in b.sats))
+
+    @property
+    def times(self) -> NDArray[np.datetime64]:
+        """Epochs as GPS-time calendar labels (``datetime64[ns]``, not UTC)."""
+        return gps_s_to_datetime64(self.t_gps_s)
+
+    @property
+    def interval_s(self) -> float:
+        """Sampling interval in seconds: the header value, else the median step."""
+        if self.header.interval_s:
+            return float(self.header.interval_s)
+        if self.t_gps_s.size < 2:
+            raise NoDataError("fewer than two epochs: sampling interval unknown", path=self.path)
+        return float(np.median(np.diff(self.t_gps_s)))
+
+    def codes(self, system: str) -> tuple[str, ...]:
+        """Observation codes read for a system."""
+        return self._block(system).codes
+
+    def resolve_code(self, system: str, code: str) -> str:
+        """Return the code as stored in the file for a requested signal.
+
+        RINEX 3 names (``L1C``, ``L2W``) are accepted for RINEX 2 files and
+        mapped with :data:`psdbound.io.signals.RINEX2_TO_RINEX3`.
+
+        Raises
+        ------
+        InputError
+            If the signal is not in the file, listing the codes that are.
+        """
+        block = self._block(system)
+        if code in block.codes:
+            return code
+        for v2, v3 in RINEX2_TO_RINEX3.items():
+            if v3 == code and v2 in block.codes:
+                return v2
+        raise InputError(
+            f"signal {code!r} is not in the file for {_SYSTEM_NAMES.get(system, system)}; "
+            f"available: {' '.join(block.codes)}",
+            path=self.path,
+        )
+
+    def get(self, sat: str, code: str) -> NDArray[np.float64]:
+        """Observation series of one satellite and code (NaN where absent)."""
+        block, i, k = self._locate(sat, code)
+        return block.values[:, i, k]
+
+    def lli(self, sat: str, code: str) -> NDArray[np.int8]:
+        """Loss-of-lock indicator series (-1 where blank)."""
+        block, i, k = self._locate(sat, code)
+        return block.lli[:, i, k]
+
+    def phase_m(self, sat: str, code: str) -> NDArray[np.float64]:
+        """Carrier phase of a satellite in metres (cycles times wavelength).
+
+        Receiver-written zero phases are returned as NaN (not tracked).
+        """
+        if not self.resolve_code(sat[0], code).startswith("L"):
+            raise InputError(f"{code!r} is not a carrier-phase code", path=self.path)
+        cycles = self.get(sat, code)
+        lam = wavelength_m(sat, RINEX2_TO_RINEX3.get(code, code), self.header.glonass_channels)
+        out = cycles * lam
+        out[cycles == 0.0] = np.nan
+        return out
+
+    def summary(self) -> str:
+        """A short multi-line text description of the file content."""
+        h = self.header
+        span = (self.t_gps_s[-1] - self.t_gps_s[0]) if self.t_gps_s.size else 0.0
+        out = [
+            f"{Path(self.path).name}: RINEX {h.version:.2f}, station {h.marker_name or '?'}, "
+            f"receiver {h.receiver_type or '?'}",
+            f"  epochs: {self.t_gps_s.size}, span {span / 3600:.2f} h, interval "
+            f"{self.interval_s:g} s, first {self.times[0] if self.t_gps_s.size else '-'} GPST",
+        ]
+        for sys_, b in self.blocks.items():
+            out.append(
+                f"  {_SYSTEM_NAMES.get(sys_, sys_)} ({sys_}): {len(b.sats)} satellites; "
+                f"codes {' '.join(b.codes)}"
+            )
+        return "\n".join(out)
+
+    def _block(self, system: str) -> SystemBlock:
+        try:
+            return self.blocks[system]
+        except KeyError:
+            raise NoDataError(
+                f"no {_SYSTEM_NAMES.get(system, system)} ({system}) observations in the file; "
+                f"systems present: {' '.join(self.blocks) or 'none'}",
+                path=self.path,
+            ) from None
+
+    def _locate(self, sat: str, code: str) -> tuple[SystemBlock, int, int]:
+        block = self._block(sat[0])
+        code = self.resolve_code(sat[0], code)
+        try:
+            i = block.sats.index(sat)
+        except ValueError:
+            raise NoDataError(f"satellite {sat} has no observations", path=self.path) from None
+        return block, i, block.codes.index(code)
+
+
+def read_obs(
+    path: str | os.PathLike[str],
+    *,
+    systems: str | Iterable[str] | None = None,
+    codes: Iterable[str] | None = None,
+) -> Observations:
+    """Read a RINEX 2.1x or 3.0x observation file.
+
+    Parameters
+    ----------
+    path : str or path-like
+        Observation file: plain, gzip/Z/bz2/zip, or Hatanaka (``.crx``,
+        ``.??d``, possibly compressed).
+    systems : str or iterable of str, optional
+        System letters to keep (``"GE"`` or ``["G", "E"]``); all by default.
+        Each requested system must have observations in the file.
+    codes : iterable of str, optional
+        Observation codes to keep (``["L1C", "L2W"]``; for RINEX 2 files the
+        RINEX 2 codes or their RINEX 3 equivalents). All by default. Each
+        requested code must exist for at least one requested system.
+
+    Returns
+    -------
+    Observations
+        Epochs in GPS seconds, observations per system with loss-of-lock and
+        signal-strength indicators for every signal.
+
+    Raises
+    ------
+    InputError
+        For a missing, empty, truncated or corrupted file, a file that is not
+        a RINEX observation file, an unknown code, or a requested system with
+        no epochs.
+
+    Examples
+    --------
+    >>> obs = read_obs("ESBC00DNK_R_20201770000_01D_30S_MO.crx.gz",
+    ...                systems="GE")  # doctest: +SKIP
+    >>> obs.phase_m("G05", "L1C")  # doctest: +SKIP
+    """
+    p = Path(path)
+    text = read_bytes(p)
+    header, start = _parse_header(text, p)
+    want_sys = None if systems is None else set(systems)
+    if want_sys is not None:
+        unknown = want_sys - set(_SYSTEM_NAMES)
+        if unknown:
+            raise InputError(
+                f"unknown satellite system {''.join(sorted(unknown))!r}; expected letters "
+                f"from {''.join(_SYSTEM_NAMES)}",
+                path=p,
+            )
+    want_codes = None
+    if codes is not None:
+        want_codes = set()
+        for c in codes:
+            found = False
+            for s, types in header.obs_types.items():
+                if want_sys is not None and s not in want_sys:
+                    continue
+                if c in types:
+                    want_codes.add(c)
+                    found = True
+                elif header.version < 3 and RINEX2_TO_RINEX3.get(c) is None:
+                    alias = [v2 for v2, v3 in RINEX2_TO_RINEX3.items() if v3 == c and v2 in types]
+                    if alias:
+                        want_codes.add(alias[0])
+                        found = True
+            if not found:
+                avail = sorted({t for s, ts in header.obs_types.items() for t in ts
+                                if want_sys is None or s in want_sys})
+                raise InputError(
+                    f"observation code {c!r} is not in the header; available: {' '.join(avail)}",
+                    path=p,
+                )
+    parse = parse_v3 if header.version >= 3 else parse_v2
+    t, flags, raw = parse(text[start:], header, p, want_sys, want_codes)
+    if t.size == 0:
+        raise NoDataError("no observation epochs after the header", path=p)
+    if want_sys is not None:
+        missing = sorted(want_sys - set(raw))
+        if missing:
+            names = ", ".join(f"{_SYSTEM_NAMES[s]} ({s})" for s in missing)
+            raise NoDataError(f"no epochs with {names} observations in the file", path=p)
+    blocks = {
+        s: SystemBlock(b.system, b.sats, b.codes, b.values, b.lli, b.ssi) for s, b in raw.items()
+    }
+    return Observations(str(p), header, t, flags, blocks)

@@ -1,0 +1,60 @@
+"""Small synthetic RINEX files for tests that must run without ../shared/data."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from psdbound.io._header import ObsHeader
+from psdbound.io.obs import Observations, SystemBlock
+from psdbound.io.timescales import calendar_to_gps_s
+from psdbound.io.write import write_obs_v3
+
+
+def small_observations(n_epoch: int = 40, interval_s: float = 30.0, seed: int = 1) -> Observations:
+    """Two GPS satellites, L1C/L2W/C1C/S1C, 30 s, with a loss-of-lock flag and a gap."""
+    rng = np.random.default_rng(seed)
+    t0 = float(calendar_to_gps_s(2020, 6, 25, 0, 0, 0.0))
+    t = t0 + interval_s * np.arange(n_epoch)
+    sats = ("G05", "G12")
+    codes = ("C1C", "L1C", "L2W", "S1C")
+    v = np.empty((n_epoch, 2, 4))
+    v[:, :, 0] = 2.2e7 + rng.normal(0, 1, (n_epoch, 2)).cumsum(axis=0)
+    v[:, :, 1] = v[:, :, 0] / 0.19029367 + 1000.0
+    v[:, :, 2] = v[:, :, 0] / 0.24421021 - 500.0
+    v[:, :, 3] = 45.0
+    v = np.round(v, 3)
+    v[10:13, 1, :] = np.nan  # G12 missing for three epochs
+    lli = np.where(np.isfinite(v), 0, -1).astype(np.int8)
+    lli[:, :, 0] = -1
+    lli[:, :, 3] = -1
+    lli[20, 0, 1] = 1  # loss of lock on G05 L1C
+    ssi = np.where(np.isfinite(v), 7, -1).astype(np.int8)
+    ssi[:, :, 3] = -1
+    header = ObsHeader(
+        version=3.04,
+        file_system="G",
+        marker_name="TEST",
+        receiver_type="SYNTH",
+        antenna_type="NONE",
+        approx_position_m=np.array([3582105.291, 532589.7313, 5232754.8054]),
+        antenna_delta_hen_m=np.zeros(3),
+        interval_s=interval_s,
+        time_system="GPS",
+        obs_types={"G": codes},
+    )
+    block = SystemBlock("G", sats, codes, v, lli, ssi)
+    return Observations("synthetic", header, t, np.zeros(n_epoch, np.int8), {"G": block})
+
+
+def write_small(path: Path, **kwargs) -> Path:
+    """Write :func:`small_observations` as RINEX 3 to ``path``."""
+    return write_obs_v3(path, small_observations(**kwargs))
+
+
+NAV3_TEXT = """\
+     3.04           N: GNSS NAV DATA    G: GPS              RINEX VERSION / TYPE
+test                                                        PGM / RUN BY / DATE
+                                                            END OF HEADER
+"""
