@@ -8,9 +8,9 @@ from pathlib import Path
 import pytest
 
 _REPO = Path(__file__).resolve().parents[1]
-SHARED_RINEX = Path(
-    os.environ.get("PSDBOUND_SHARED_DATA", _REPO.parent / "shared" / "data")
-) / "rinex"
+SHARED_RINEX = (
+    Path(os.environ.get("PSDBOUND_SHARED_DATA", _REPO.parent / "shared" / "data")) / "rinex"
+)
 
 
 def shared_file(name: str) -> Path:

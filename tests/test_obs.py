@@ -103,8 +103,11 @@ def test_truncated_inside_a_number(tmp_path):
 def test_navigation_file_given_as_observations(tmp_path):
     p = tmp_path / "brdc.rnx"
     p.write_text(NAV3_TEXT)
-    with pytest.raises(InputError, match=r"brdc\.rnx, line 1: this is a navigation file.*"
-                       "expected an observation file"):
+    with pytest.raises(
+        InputError,
+        match=r"brdc\.rnx, line 1: this is a navigation file.*"
+        "expected an observation file",
+    ):
         read_obs(p)
 
 
@@ -120,8 +123,11 @@ def test_unknown_signal(tmp_path):
     with pytest.raises(InputError, match=r"a\.rnx: observation code 'L9Z' is not in the header"):
         read_obs(p, codes=["L9Z"])
     obs = read_obs(p)
-    with pytest.raises(InputError, match=r"signal 'L5Q' is not in the file for GPS; "
-                       "available: C1C L1C L2W S1C"):
+    with pytest.raises(
+        InputError,
+        match=r"signal 'L5Q' is not in the file for GPS; "
+        "available: C1C L1C L2W S1C",
+    ):
         obs.phase_m("G05", "L5Q")
 
 
@@ -185,8 +191,14 @@ def test_real_files(name, version, n_epoch, interval, systems):
 def test_nya1_loss_of_lock_on_every_signal():
     """NYA1 (Trimble) carries LLI flags; L5 and Galileo E5/E6 keep theirs."""
     obs = read_obs(shared_file(NYA1_OBS), systems="GE")
-    for sys_, code in [("G", "L1C"), ("G", "L2W"), ("G", "L5X"), ("E", "L5X"), ("E", "L6X"),
-                       ("E", "L7X")]:
+    for sys_, code in [
+        ("G", "L1C"),
+        ("G", "L2W"),
+        ("G", "L5X"),
+        ("E", "L5X"),
+        ("E", "L6X"),
+        ("E", "L7X"),
+    ]:
         b = obs.blocks[sys_]
         k = b.codes.index(code)
         lost = (b.lli[:, :, k] > 0) & (b.lli[:, :, k] & 1 > 0)

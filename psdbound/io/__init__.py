@@ -1,7 +1,39 @@
-"""Reading and geometry: RINEX observations, orbits, satellite geometry, arcs."""
+"""Reading and geometry: RINEX observations, orbits, satellite geometry, arcs.
+
+Public surface:
+
+* :func:`read_obs` -> :class:`Observations` (RINEX 2.1x/3.0x observation files)
+* :func:`read_orbit` -> :class:`Navigation` or :class:`PreciseOrbit`
+  (also :func:`read_nav`, :func:`read_sp3`)
+* :func:`satellite_azel`, :func:`azimuth_elevation`, :func:`ecef_to_geodetic`
+* :func:`find_arcs` -> :class:`ArcSet` of :class:`Arc`
+"""
 
 from __future__ import annotations
 
+from psdbound.io.arcs import DEFAULT_SIGNALS, Arc, ArcSet, find_arcs, require_arcs
+from psdbound.io.geometry import azimuth_elevation, ecef_to_geodetic, satellite_azel
+from psdbound.io.nav import Navigation, read_nav
 from psdbound.io.obs import Observations, ObsHeader, SystemBlock, read_obs
+from psdbound.io.orbits import read_orbit
+from psdbound.io.sp3 import PreciseOrbit, read_sp3
 
-__all__ = ["Observations", "ObsHeader", "SystemBlock", "read_obs"]
+__all__ = [
+    "Arc",
+    "ArcSet",
+    "DEFAULT_SIGNALS",
+    "Navigation",
+    "ObsHeader",
+    "Observations",
+    "PreciseOrbit",
+    "SystemBlock",
+    "azimuth_elevation",
+    "ecef_to_geodetic",
+    "find_arcs",
+    "read_nav",
+    "read_obs",
+    "read_orbit",
+    "read_sp3",
+    "require_arcs",
+    "satellite_azel",
+]

@@ -152,8 +152,14 @@ def parse_v3(
             continue  # event records (2-5) and cycle-slip records (6) carry no observations
         try:
             times.append(
-                (int(ln[2:6]), int(ln[7:9]), int(ln[10:12]), int(ln[13:15]), int(ln[16:18]),
-                 float(ln[18:29]))
+                (
+                    int(ln[2:6]),
+                    int(ln[7:9]),
+                    int(ln[10:12]),
+                    int(ln[13:15]),
+                    int(ln[16:18]),
+                    float(ln[18:29]),
+                )
             )
         except ValueError:
             raise InputError(
@@ -170,7 +176,10 @@ def parse_v3(
                 continue
             if sys_ not in records:
                 records[sys_], sat_lines[sys_], epoch_of_line[sys_], sat_of_line[sys_] = (
-                    [], [], [], []
+                    [],
+                    [],
+                    [],
+                    [],
                 )
             records[sys_].append(rec)
             sat_lines[sys_].append(j)
@@ -178,8 +187,15 @@ def parse_v3(
             sat_of_line[sys_].append(rec[:3].decode("ascii", "replace").replace(" ", "0"))
     t = _epoch_times(times, header)
     blocks = _build_blocks(
-        sat_lines, epoch_of_line, records, sat_of_line, header, path, len(flags),
-        codes_wanted, 3,
+        sat_lines,
+        epoch_of_line,
+        records,
+        sat_of_line,
+        header,
+        path,
+        len(flags),
+        codes_wanted,
+        3,
     )
     return t, np.asarray(flags, dtype=np.int8), blocks
 
@@ -237,8 +253,14 @@ def parse_v2(
             )
         try:
             times.append(
-                (int(ln[1:3]), int(ln[4:6]), int(ln[7:9]), int(ln[10:12]), int(ln[13:15]),
-                 float(ln[15:26]))
+                (
+                    int(ln[1:3]),
+                    int(ln[4:6]),
+                    int(ln[7:9]),
+                    int(ln[10:12]),
+                    int(ln[13:15]),
+                    float(ln[15:26]),
+                )
             )
         except ValueError:
             raise InputError(
@@ -256,7 +278,10 @@ def parse_v2(
             rec = b"".join(lines[j + r][:80].ljust(80) for r in range(per_sat))
             if sys_ not in records:
                 records[sys_], sat_lines[sys_], epoch_of_line[sys_], sat_of_line[sys_] = (
-                    [], [], [], []
+                    [],
+                    [],
+                    [],
+                    [],
                 )
             records[sys_].append(rec)
             sat_lines[sys_].append(j)
@@ -265,7 +290,14 @@ def parse_v2(
         i = first_obs + nsat * per_sat
     t = _epoch_times(times, header)
     blocks = _build_blocks(
-        sat_lines, epoch_of_line, records, sat_of_line, header, path, len(flags),
-        codes_wanted, 0,
+        sat_lines,
+        epoch_of_line,
+        records,
+        sat_of_line,
+        header,
+        path,
+        len(flags),
+        codes_wanted,
+        0,
     )
     return t, np.asarray(flags, dtype=np.int8), blocks

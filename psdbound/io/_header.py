@@ -157,7 +157,9 @@ def parse_header(text: bytes, path: Path) -> tuple[ObsHeader, int]:
                 for k in range(0, len(parts) - 1, 2):
                     glo[parts[k]] = int(parts[k + 1])
         except ValueError as exc:
-            raise InputError(f"cannot parse header record {label!r}: {exc}", path=path, line=i)
+            raise InputError(
+                f"cannot parse header record {label!r}: {exc}", path=path, line=i
+            ) from None
 
     if version < 3:
         if not v2_types:

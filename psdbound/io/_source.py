@@ -80,6 +80,4 @@ def _crx_to_rnx(raw: bytes, p: Path) -> bytes:
     except Exception as exc:  # hatanaka raises HatanakaException / ValueError
         msg = str(exc).strip().splitlines()
         detail = msg[0] if msg else type(exc).__name__
-        raise InputError(
-            f"corrupted Hatanaka (compact RINEX) stream: {detail}", path=p
-        ) from exc
+        raise InputError(f"corrupted Hatanaka (compact RINEX) stream: {detail}", path=p) from exc

@@ -145,12 +145,13 @@ class ArcSet:
         return float(sum(a.duration_s for a in self.arcs))
 
     def summary(self) -> str:
-        """A short text description: counts, durations and break reasons."""
+        """Describe the arcs in a few lines: counts, durations and break reasons."""
         lines = [
             f"{self.system} {self.signals[0]}-{self.signals[1]}: {len(self.arcs)} arcs "
             f">= {self.min_length_s / 60:g} min, {self.total_duration_s / 3600:.2f} h in total "
             f"(interval {self.interval_s:g} s)",
-            "  breaks: " + (", ".join(f"{k} {v}" for k, v in sorted(self.breaks.items())) or "none"),
+            "  breaks: "
+            + (", ".join(f"{k} {v}" for k, v in sorted(self.breaks.items())) or "none"),
             f"  dropped: {sum(self.dropped.values())} short stretches "
             f"({self.dropped_s / 3600:.2f} h)",
         ]
@@ -239,8 +240,7 @@ def find_arcs(
             receiver_xyz_m = obs.header.approx_position_m
         if receiver_xyz_m is None:
             raise InputError(
-                "no receiver position: the header has no APPROX POSITION XYZ; "
-                "give receiver_xyz_m",
+                "no receiver position: the header has no APPROX POSITION XYZ; give receiver_xyz_m",
                 path=obs.path,
             )
         from psdbound.io.geometry import satellite_azel

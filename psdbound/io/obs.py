@@ -167,7 +167,7 @@ class Observations:
         return out
 
     def summary(self) -> str:
-        """A short multi-line text description of the file content."""
+        """Describe the file content in a few lines of text."""
         h = self.header
         span = (self.t_gps_s[-1] - self.t_gps_s[0]) if self.t_gps_s.size else 0.0
         out = [
@@ -272,8 +272,14 @@ def read_obs(
                         want_codes.add(alias[0])
                         found = True
             if not found:
-                avail = sorted({t for s, ts in header.obs_types.items() for t in ts
-                                if want_sys is None or s in want_sys})
+                avail = sorted(
+                    {
+                        t
+                        for s, ts in header.obs_types.items()
+                        for t in ts
+                        if want_sys is None or s in want_sys
+                    }
+                )
                 raise InputError(
                     f"observation code {c!r} is not in the header; available: {' '.join(avail)}",
                     path=p,

@@ -102,6 +102,4 @@ def utc_to_gps_s(t_utc_label_gps_s: ArrayLike) -> NDArray[np.float64]:
 
 def gps_week_sow_to_gps_s(week: ArrayLike, sow: ArrayLike) -> NDArray[np.float64]:
     """Convert a (continuous) GPS week number and seconds of week to GPS seconds."""
-    return np.asarray(week, dtype=np.float64) * SECONDS_PER_WEEK + np.asarray(
-        sow, dtype=np.float64
-    )
+    return np.asarray(week, dtype=np.float64) * SECONDS_PER_WEEK + np.asarray(sow, dtype=np.float64)

@@ -40,8 +40,10 @@ def format_obs_v3(obs: Observations, *, program: str = "psdbound") -> str:
     h = obs.header
     systems = list(obs.blocks)
     out = [
-        _hdr(f"{3.04:9.2f}{'':11s}{'O':<20s}{'M' if len(systems) > 1 else systems[0]:<20s}",
-             "RINEX VERSION / TYPE"),
+        _hdr(
+            f"{3.04:9.2f}{'':11s}{'O':<20s}{'M' if len(systems) > 1 else systems[0]:<20s}",
+            "RINEX VERSION / TYPE",
+        ),
         _hdr(f"{program:<20.20s}{'':20s}{'':20s}", "PGM / RUN BY / DATE"),
         _hdr(h.marker_name or "UNKNOWN", "MARKER NAME"),
         _hdr(f"{'':20s}{h.receiver_type:<20.20s}", "REC # / TYPE / VERS"),
@@ -64,8 +66,10 @@ def format_obs_v3(obs: Observations, *, program: str = "psdbound") -> str:
     y, mo, d = first[:4], first[5:7], first[8:10]
     hh, mi, ss = first[11:13], first[14:16], first[17:]
     out.append(
-        _hdr(f"{y:>6s}{int(mo):6d}{int(d):6d}{int(hh):6d}{int(mi):6d}{float(ss):13.7f}     GPS",
-             "TIME OF FIRST OBS")
+        _hdr(
+            f"{y:>6s}{int(mo):6d}{int(d):6d}{int(hh):6d}{int(mi):6d}{float(ss):13.7f}     GPS",
+            "TIME OF FIRST OBS",
+        )
     )
     out.append(_hdr("", "END OF HEADER"))
 

@@ -1,0 +1,414 @@
+"""Reader for SP3-c and SP3-d precise orbit files.
+
+Only the position (``P``) records are used; velocity (``V``) and correlation
+(``EP``/``EV``) records are ignored. Positions are converted from km to m,
+clocks from microseconds to seconds. Missing values (position 0.000000 or
+999999.999999 in any coordinate, clock 999999.999999) become NaN.
+
+The epochs are converted to GPS seconds according to the ``%c`` time-system
+field: GPS, GAL and QZS labels are used directly, TAI labels minus 19 s, BDT
+labels plus 14 s, UTC labels through the leap-second table and GLO (UTC + 3 h)
+likewise. A blank or ``ccc`` field (an unfilled SP3-c template) is taken as
+GPS, the SP3 default.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from psdbound.errors import InputError
+from psdbound.io._source import read_bytes
+from psdbound.io.timescales import calendar_to_gps_s, utc_to_gps_s
+
+__all__ = ["PreciseOrbit", "read_sp3", "INTERPOLATION_NODES"]
+
+#: Number of consecutive epochs used by the Lagrange interpolation.
+INTERPOLATION_NODES = 11
+_MISSING_KM = 999999.0
+_MISSING_CLOCK_US = 999999.0
+_TIME_SYSTEMS = ("GPS", "GAL", "QZS", "TAI", "BDT", "UTC", "GLO")
+# a window is refused when one of its node spacings exceeds this times the
+# nominal spacing (a data gap inside the window)
+_GAP_FACTOR = 1.5
+
+
+@dataclass(frozen=True, eq=False)
+class PreciseOrbit:
+    """Satellite positions and clocks from an SP3 file.
+
+    Attributes
+    ----------
+    path : pathlib.Path
+        The file read.
+    t_gps_s : ndarray of float64, shape (n_epoch,)
+        Epochs, GPS seconds.
+    sats : tuple of str
+        Satellite ids in header order, e.g. ``('G01', 'E05')``.
+    xyz_m : ndarray of float64, shape (n_epoch, n_sat, 3)
+        ECEF positions in metres (NaN where missing).
+    clock_s : ndarray of float64, shape (n_epoch, n_sat)
+        Satellite clock offsets in seconds (NaN where missing).
+    time_system : str
+        Time system of the file's epoch labels (``'GPS'``, ``'GAL'``,
+        ``'UTC'``, ...).
+
+    """
+
+    path: Path
+    t_gps_s: NDArray[np.float64]
+    sats: tuple[str, ...]
+    xyz_m: NDArray[np.float64]
+    clock_s: NDArray[np.float64]
+    time_system: str
+
+    @property
+    def satellites(self) -> tuple[str, ...]:
+        """Sorted ids of the satellites listed in the file."""
+        return tuple(sorted(self.sats))
+
+    def positions_ecef_m(self, sat: str, t_gps_s: ArrayLike) -> NDArray[np.float64]:
+        """Interpolated ECEF positions of one satellite.
+
+        A Lagrange polynomial through :data:`INTERPOLATION_NODES` (11)
+        consecutive epochs, centred on each time where the data allow (the
+        window is shifted inwards near the ends of the file), evaluated with
+        :func:`scipy.interpolate.barycentric_interpolate`.
+
+        Parameters
+        ----------
+        sat : str
+            Satellite id such as ``'G05'``.
+        t_gps_s : array_like of float
+            Times, GPS seconds (scalar or 1-D).
+
+        Returns
+        -------
+        ndarray of float64, shape (n, 3)
+            ECEF coordinates in metres (Earth-fixed frame at each time). NaN
+            rows outside the span of the file's epochs, where a node of the
+            window is missing or the window spans a data gap, and for a
+            satellite not in the file.
+
+        """
+        t = np.atleast_1d(np.asarray(t_gps_s, dtype=np.float64))
+        out = np.full((t.shape[0], 3), np.nan)
+        try:
+            j = self.sats.index(sat)
+        except ValueError:
+            return out
+        nodes = self.t_gps_s
+        n_ep = nodes.shape[0]
+        n_nodes = min(INTERPOLATION_NODES, n_ep)
+        if n_nodes < 2:
+            return out
+        inside = (t >= nodes[0]) & (t <= nodes[-1])
+        if not np.any(inside):
+            return out
+        steps = np.diff(nodes)
+        nominal = float(np.median(steps))
+        ti = t[inside]
+        # interval k holds t in [nodes[k], nodes[k+1]); centre the window on it
+        k = np.clip(np.searchsorted(nodes, ti, side="right") - 1, 0, n_ep - 2)
+        start = np.clip(k - (n_nodes // 2 - 1), 0, n_ep - n_nodes)
+        out[inside] = _lagrange(nodes, self.xyz_m[:, j, :], ti, start, n_nodes, nominal)
+        return out
+
+
+def _lagrange(
+    nodes: NDArray[np.float64],
+    pos: NDArray[np.float64],
+    ti: NDArray[np.float64],
+    start: NDArray[np.intp],
+    n_nodes: int,
+    nominal: float,
+) -> NDArray[np.float64]:
+    """Evaluate the window polynomials; windows starting at ``start`` per time.
+
+    Node times are scaled to units of the nominal step around the window's
+    middle node. For windows with the regular pattern (nearly all) the
+    Lagrange basis values at each time come from one
+    :class:`scipy.interpolate.BarycentricInterpolator` of the identity matrix
+    and are applied to each time's window; irregular windows are evaluated
+    one by one with :func:`scipy.interpolate.barycentric_interpolate`.
+    """
+    from scipy.interpolate import BarycentricInterpolator, barycentric_interpolate
+
+    res = np.full((ti.shape[0], 3), np.nan)
+    wins, inv = np.unique(start, return_inverse=True)
+    take = wins[:, None] + np.arange(n_nodes)  # (n_win, n_nodes)
+    xw = nodes[take]
+    yw = pos[take]  # (n_win, n_nodes, 3)
+    mid = n_nodes // 2
+    centre = xw[:, mid]
+    pattern = (xw - centre[:, None]) / nominal
+    usable = np.isfinite(yw).all(axis=(1, 2)) & np.all(
+        np.diff(xw, axis=1) <= _GAP_FACTOR * nominal, axis=1
+    )
+    ref = np.arange(n_nodes, dtype=np.float64) - mid
+    regular = usable & np.all(np.abs(pattern - ref) < 1e-9, axis=1)
+    s = (ti - centre[inv]) / nominal
+    ids = np.flatnonzero(regular[inv])
+    if ids.size:
+        # Lagrange basis values L_j(s) of the regular pattern: the interpolant
+        # of the identity matrix; the position is then sum_j L_j(s) y_j.
+        basis = BarycentricInterpolator(ref, np.eye(n_nodes))(s[ids])  # (n, n_nodes)
+        res[ids] = np.einsum("nj,njk->nk", basis, yw[inv[ids]])
+    for w in np.flatnonzero(usable & ~regular):
+        sel = inv == w
+        res[sel] = barycentric_interpolate(pattern[w], yw[w], s[sel], axis=0)
+    return res
+
+
+def _fail(path: Path, message: str, line: int | None = None) -> InputError:
+    return InputError(message, path=path, line=line)
+
+
+def _float(path: Path, text: str, lineno: int, c0: int, c1: int, what: str) -> float:
+    s = text[c0:c1]
+    try:
+        return float(s)
+    except ValueError:
+        if not s.strip():
+            raise _fail(
+                path, f"{what} (columns {c0 + 1}-{c1}) is blank; expected a number", lineno
+            ) from None
+        raise _fail(
+            path,
+            f"cannot parse number {s.strip()!r} in columns {c0 + 1}-{c1} ({what})",
+            lineno,
+        ) from None
+
+
+def _epoch_fields(path: Path, line: str, lineno: int) -> tuple[int, int, int, int, int, float]:
+    try:
+        return (
+            int(line[3:7]),
+            int(line[8:10]),
+            int(line[11:13]),
+            int(line[14:16]),
+            int(line[17:19]),
+            float(line[20:31]),
+        )
+    except ValueError:
+        raise _fail(
+            path,
+            f"cannot read the epoch {line.rstrip()!r}; expected '*  yyyy mm dd hh mm ss.ssssssss'",
+            lineno,
+        ) from None
+
+
+def read_sp3(path: str | os.PathLike[str]) -> PreciseOrbit:
+    """Read an SP3-c or SP3-d precise orbit file.
+
+    Parameters
+    ----------
+    path : str or path-like
+        SP3 file, plain or compressed (gzip, Z, bz2, zip).
+
+    Returns
+    -------
+    PreciseOrbit
+        Epochs (GPS seconds), satellite list, positions (m) and clocks (s).
+
+    Raises
+    ------
+    InputError
+        If the file is not SP3-c/d, has an unknown time system, a malformed
+        line or number, or is truncated (fewer epochs than the header
+        announces, or an incomplete last epoch). The message names the file
+        and the 1-based line.
+
+    """
+    p = Path(path)
+    lines = read_bytes(p).decode("latin-1").split("\n")
+    if lines and not lines[-1]:
+        lines.pop()  # the newline ending the last line does not start a new one
+    first = lines[0]
+    if first[:1] != "#" or first[1:2] not in ("a", "b", "c", "d"):
+        what = "a RINEX file" if first[60:80].strip() == "RINEX VERSION / TYPE" else "not SP3"
+        raise _fail(
+            p,
+            f"not an SP3 file ({what}): line 1 starts with {first[:3]!r}; expected an SP3-c "
+            "or SP3-d header starting with '#c' or '#d'",
+            1,
+        )
+    version = first[1]
+    if version not in ("c", "d"):
+        raise _fail(p, f"SP3-{version} is not supported; expected SP3-c or SP3-d ('#c' / '#d')", 1)
+    if first[2:3] not in ("P", "V"):
+        raise _fail(
+            p,
+            f"line 1 column 3 is {first[2:3]!r}; expected the position/velocity flag 'P' or 'V'",
+            1,
+        )
+    try:
+        n_epochs_header = int(first[32:39])
+    except ValueError:
+        raise _fail(
+            p, f"cannot read the number of epochs {first[32:39]!r} in columns 33-39", 1
+        ) from None
+
+    # ---- header
+    n_sat: int | None = None
+    sat_ids: list[str] = []
+    time_system: str | None = None
+    i = 1
+    n = len(lines)
+    while i < n and not lines[i].startswith("*"):
+        line = lines[i]
+        if line.startswith("+ "):
+            if n_sat is None:
+                try:
+                    n_sat = int(line[1:6])
+                except ValueError:
+                    raise _fail(
+                        p,
+                        f"cannot read the number of satellites {line[1:6].strip()!r} in "
+                        "columns 2-6",
+                        i + 1,
+                    ) from None
+            body = line[9:60]
+            sat_ids.extend(body[c : c + 3] for c in range(0, len(body), 3))
+        elif line.startswith("%c") and time_system is None:
+            time_system = line[9:12].strip()
+        elif line.startswith("EOF"):
+            break
+        i += 1
+    if i >= n or not lines[i].startswith("*"):
+        raise _fail(
+            p,
+            "truncated SP3 file: no epoch line ('*  yyyy ...') after the header",
+            i + 1 if i < n else n,
+        )
+    if n_sat is None:
+        raise _fail(p, "no satellite list ('+' lines) in the SP3 header", i + 1)
+    sats = [s.replace(" ", "0") for s in sat_ids if s.strip() and s.strip() != "0"][:n_sat]
+    if len(sats) != n_sat:
+        raise _fail(
+            p,
+            f"the header announces {n_sat} satellites but its '+' lines list {len(sats)}",
+            2,
+        )
+    if time_system in (None, "", "ccc"):
+        time_system = "GPS"
+    if time_system not in _TIME_SYSTEMS:
+        raise _fail(
+            p,
+            f"unknown time system {time_system!r} in the '%c' line; expected one of "
+            + ", ".join(_TIME_SYSTEMS),
+        )
+
+    # ---- data
+    col = {s: k for k, s in enumerate(sats)}
+    epochs: list[tuple[int, int, int, int, int, float]] = []
+    xyz = np.full((max(n_epochs_header, 1), n_sat, 3), np.nan)
+    clk = np.full((max(n_epochs_header, 1), n_sat), np.nan)
+    seen = 0  # P records in the current epoch
+    saw_eof = False
+    last_epoch_line = i
+    while i < n:
+        line = lines[i]
+        c = line[:1]
+        if c == "*":
+            if epochs and seen < n_sat:
+                raise _fail(
+                    p,
+                    f"incomplete epoch: {seen} of {n_sat} position records before the next "
+                    "epoch line",
+                    i + 1,
+                )
+            epochs.append(_epoch_fields(p, line, i + 1))
+            last_epoch_line = i
+            seen = 0
+            e = len(epochs) - 1
+            if e >= xyz.shape[0]:
+                xyz = np.concatenate([xyz, np.full_like(xyz, np.nan)])
+                clk = np.concatenate([clk, np.full_like(clk, np.nan)])
+        elif c == "P":
+            if not epochs:
+                raise _fail(p, "position record before the first epoch line", i + 1)
+            sat = line[1:4].replace(" ", "0")
+            k = col.get(sat)
+            if k is None:
+                raise _fail(p, f"satellite {sat} is not in the header's satellite list", i + 1)
+            v = [
+                _float(p, line, i + 1, 4 + 14 * q, 18 + 14 * q, f"{ax} of {sat}")
+                for q, ax in enumerate(("x", "y", "z"))
+            ]
+            if not any(abs(x) >= _MISSING_KM for x in v) and not all(x == 0.0 for x in v):
+                xyz[e, k] = np.multiply(v, 1000.0)
+            if line[46:60].strip():
+                ck = _float(p, line, i + 1, 46, 60, f"clock of {sat}")
+                if abs(ck) < _MISSING_CLOCK_US:
+                    clk[e, k] = ck * 1e-6
+            seen += 1
+        elif line.startswith("EOF"):
+            saw_eof = True
+            break
+        elif c in ("V", "E", "/", "%", "+", "#") or not line.strip():
+            pass
+        else:
+            raise _fail(
+                p,
+                f"unexpected line {line[:20]!r}; expected an epoch ('*'), position ('P'), "
+                "velocity ('V') or 'EOF' line",
+                i + 1,
+            )
+        i += 1
+
+    n_ep = len(epochs)
+    end_line = i + 1 if saw_eof else n  # the EOF line, or the last line of the file
+    if seen < n_sat and n_ep:
+        raise _fail(
+            p,
+            f"truncated SP3 file: the last epoch (line {last_epoch_line + 1}) has {seen} of "
+            f"{n_sat} position records" + ("" if saw_eof else " and there is no EOF line"),
+            end_line,
+        )
+    if n_ep < n_epochs_header:
+        raise _fail(
+            p,
+            f"truncated SP3 file: the header announces {n_epochs_header} epochs but the file "
+            f"holds {n_ep}" + ("" if saw_eof else " and ends without the EOF line"),
+            end_line,
+        )
+    ep = np.asarray(epochs, dtype=np.float64)
+    labels = calendar_to_gps_s(
+        ep[:, 0].astype(np.int64),
+        ep[:, 1].astype(np.int64),
+        ep[:, 2].astype(np.int64),
+        ep[:, 3].astype(np.int64),
+        ep[:, 4].astype(np.int64),
+        ep[:, 5],
+    )
+    t = _labels_to_gps_s(labels, time_system)
+    if np.any(np.diff(t) <= 0):
+        bad = int(np.flatnonzero(np.diff(t) <= 0)[0]) + 1
+        raise _fail(
+            p, f"epoch {bad + 1} is not later than the previous epoch; expected increasing epochs"
+        )
+    return PreciseOrbit(
+        path=p,
+        t_gps_s=t,
+        sats=tuple(sats),
+        xyz_m=xyz[:n_ep],
+        clock_s=clk[:n_ep],
+        time_system=time_system,
+    )
+
+
+def _labels_to_gps_s(labels: NDArray[np.float64], time_system: str) -> NDArray[np.float64]:
+    if time_system in ("GPS", "GAL", "QZS"):
+        return labels
+    if time_system == "TAI":
+        return labels - 19.0
+    if time_system == "BDT":
+        return labels + 14.0
+    if time_system == "GLO":
+        return utc_to_gps_s(labels - 3 * 3600.0)
+    return utc_to_gps_s(labels)
