@@ -9,7 +9,9 @@ its carrier-phase ambiguities are constant. Arcs are broken
   signal, or RINEX epoch flag 1 (power failure);
 * on a cycle slip detected from the data: a jump of the geometry-free phase
   ``L_a - L_b`` (metres) between consecutive epochs that departs from the
-  local (running-median) rate by more than ``slip_threshold_m``;
+  local (running-median) rate by more than ``slip_threshold_m``. This test
+  is blind to slip pairs that hardly move ``L_a - L_b`` (GPS L1/L2: 5 and 4
+  cycles move it by 2.5 cm, 9 and 7 by 3 mm); such steps stay in the arc;
 * where the satellite is below the elevation mask (when an orbit is given).
 
 Stretches shorter than ``min_length_s`` are dropped and counted.
@@ -164,7 +166,7 @@ def _slips(gf_m: NDArray[np.float64], threshold_m: float) -> NDArray[np.bool_]:
     if gf_m.size < 3:
         return out
     d = np.diff(gf_m)
-    ref = median_filter(d, size=min(_SLIP_WINDOW, d.size | 1), mode="nearest")
+    ref = median_filter(d, size=min(_SLIP_WINDOW, d.size | 1), mode="mirror")
     out[1:] = np.abs(d - ref) > threshold_m
     return out
 
