@@ -8,6 +8,7 @@ import numpy as np
 
 from psdbound.io._header import ObsHeader
 from psdbound.io.obs import Observations, SystemBlock
+from psdbound.io.signals import wavelength_m
 from psdbound.io.timescales import calendar_to_gps_s
 from psdbound.io.write import write_obs_v3
 
@@ -58,3 +59,33 @@ NAV3_TEXT = """\
 test                                                        PGM / RUN BY / DATE
                                                             END OF HEADER
 """
+
+
+LAM1 = wavelength_m("G01", "L1C")
+LAM2 = wavelength_m("G01", "L2W")
+
+
+def make_obs(l1_m, l2_m, lli1=None, interval_s=30.0, t=None, flags=None):
+    """One GPS satellite G07 with given phases in metres (NaN = not tracked)."""
+    n = len(l1_m)
+    if t is None:
+        t = 1.277e9 + interval_s * np.arange(n)
+    v = np.stack([np.asarray(l1_m) / LAM1, np.asarray(l2_m) / LAM2], axis=1)[:, None, :]
+    lli = np.where(np.isfinite(v), 0, -1).astype(np.int8)
+    if lli1 is not None:
+        lli[:, 0, 0] = lli1
+    header = ObsHeader(
+        version=3.04,
+        file_system="G",
+        marker_name="T",
+        receiver_type="",
+        antenna_type="",
+        approx_position_m=None,
+        antenna_delta_hen_m=np.zeros(3),
+        interval_s=interval_s,
+        time_system="GPS",
+        obs_types={"G": ("L1C", "L2W")},
+    )
+    block = SystemBlock("G", ("G07",), ("L1C", "L2W"), v, lli, lli.copy())
+    f = np.zeros(n, np.int8) if flags is None else np.asarray(flags, np.int8)
+    return Observations("mem", header, np.asarray(t, float), f, {"G": block})

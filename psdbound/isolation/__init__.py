@@ -1,7 +1,27 @@
-"""Multipath isolation: dual-frequency (DF) and dual-antenna (DA) pipelines."""
+"""Multipath isolation: dual-frequency (DF) and dual-antenna (DA) pipelines.
+
+Public surface:
+
+* :func:`isolate_dual_frequency` (arcs -> :class:`MultipathSeries`, method.md 1.1)
+* :func:`isolate_dual_antenna` (two observation files -> :class:`MultipathSeries`, 1.2)
+* :class:`HighPass` (zero-phase high-pass designs and edge handling)
+* :func:`filter_safety_check` (Lomb-Scargle power removed below/above f_c)
+"""
 
 from __future__ import annotations
 
+from psdbound.isolation.dual_frequency import DF_SCALING, isolate_dual_frequency
+from psdbound.isolation.filters import FILTER_KINDS, HighPass
+from psdbound.isolation.safety import SafetyCheck, filter_safety_check
 from psdbound.isolation.series import ArcView, MultipathSeries
 
-__all__ = ["ArcView", "MultipathSeries"]
+__all__ = [
+    "ArcView",
+    "DF_SCALING",
+    "FILTER_KINDS",
+    "HighPass",
+    "MultipathSeries",
+    "SafetyCheck",
+    "filter_safety_check",
+    "isolate_dual_frequency",
+]
