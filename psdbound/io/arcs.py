@@ -294,6 +294,8 @@ def find_arcs(
             slip = _slips(gf[m], slip_threshold_m)
             reason[m[slip]] = "cycle slip"
         keep = ~low
+        if not keep.any():
+            continue  # never above the mask: no arc
         starts = (reason != "") & keep
         starts |= keep & np.r_[True, ~keep[:-1]]
         bounds = np.flatnonzero(starts)

@@ -23,6 +23,7 @@ __all__ = [
     "enu_rotation",
     "azimuth_elevation",
     "satellite_azel",
+    "signal_path",
 ]
 
 #: WGS84 semi-major axis, m.
@@ -221,15 +222,53 @@ def satellite_azel(
         Elevation, degrees. Both are NaN where the orbit gives no position.
 
     """
+    rx = np.asarray(receiver_xyz_m, dtype=np.float64)
+    _, _, sv = signal_path(orbit, sat, t_rx_gps_s, rx)
+    return azimuth_elevation(rx, sv)
+
+
+def signal_path(
+    orbit: OrbitSource,
+    sat: str,
+    t_rx_gps_s: ArrayLike,
+    receiver_xyz_m: ArrayLike,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Geometric range, travel time and transmit position of a satellite signal.
+
+    Same light-time iteration and Earth-rotation correction as
+    :func:`satellite_azel`.
+
+    Parameters
+    ----------
+    orbit : OrbitSource
+        Object with ``positions_ecef_m(sat, t_gps_s)``.
+    sat : str
+        Satellite id such as ``'G05'``.
+    t_rx_gps_s : array_like of float
+        True reception times, GPS seconds (scalar or 1-D).
+    receiver_xyz_m : array_like of float, shape (3,)
+        Receiver ECEF position, m.
+
+    Returns
+    -------
+    range_m : ndarray, shape (n,)
+        Geometric range, metres.
+    travel_s : ndarray, shape (n,)
+        Signal travel time, seconds.
+    sat_xyz_m : ndarray, shape (n, 3)
+        Satellite position at transmission in the Earth-fixed frame at
+        reception, metres. All NaN where the orbit gives no position.
+    """
     t_rx = np.atleast_1d(np.asarray(t_rx_gps_s, dtype=np.float64))
     rx = np.asarray(receiver_xyz_m, dtype=np.float64)
     tau = np.zeros_like(t_rx)
     sv = np.full((t_rx.shape[0], 3), np.nan)
+    rho = np.full(t_rx.shape[0], np.nan)
     for _ in range(_LIGHT_TIME_ITERATIONS):
         sv = _rotate_z(orbit.positions_ecef_m(sat, t_rx - tau), OMEGA_E_RAD_S * tau)
-        tau = np.linalg.norm(sv - rx, axis=-1) / SPEED_OF_LIGHT_M_S
-        tau = np.where(np.isfinite(tau), tau, 0.0)
-    return azimuth_elevation(rx, sv)
+        rho = np.linalg.norm(sv - rx, axis=-1)
+        tau = np.where(np.isfinite(rho), rho / SPEED_OF_LIGHT_M_S, 0.0)
+    return rho, tau, sv
 
 
 def _rotate_z(xyz: NDArray[np.float64], angle_rad: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -10,6 +10,7 @@ Public surface:
 
 from __future__ import annotations
 
+from psdbound.isolation.dual_antenna import DA_SCALING, isolate_dual_antenna
 from psdbound.isolation.dual_frequency import DF_SCALING, isolate_dual_frequency
 from psdbound.isolation.filters import FILTER_KINDS, HighPass
 from psdbound.isolation.safety import SafetyCheck, filter_safety_check
@@ -17,11 +18,13 @@ from psdbound.isolation.series import ArcView, MultipathSeries
 
 __all__ = [
     "ArcView",
+    "DA_SCALING",
     "DF_SCALING",
     "FILTER_KINDS",
     "HighPass",
     "MultipathSeries",
     "SafetyCheck",
     "filter_safety_check",
+    "isolate_dual_antenna",
     "isolate_dual_frequency",
 ]

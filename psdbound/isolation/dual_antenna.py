@@ -1,0 +1,648 @@
+"""Dual-antenna (DA) isolation: between-receiver, between-satellite double differences.
+
+Two receivers on a short baseline track the same signal. For satellite ``s``
+and receiver ``k`` the carrier phase in metres is::
+
+    phi_k^s = rho_k^s + c dt_k - c dT^s + lambda N_k^s + m_k^s + e_k^s
+
+(``rho`` the geometric range at the true receive time, ``dt_k`` the receiver
+clock, ``dT^s`` the satellite clock, ``N`` the ambiguity, ``m`` multipath,
+``e`` noise; ionosphere and troposphere are common to both antennas of a short
+baseline and cancel). The single difference across receivers,
+``SD^s = phi_1^s - phi_2^s - (rho_1^s - rho_2^s)``, cancels the satellite
+clock; the double difference with a reference satellite ``r``,
+``DD^{s,r} = SD^s - SD^r``, cancels the receiver clocks. What is left is the
+ambiguity (constant over an arc, removed with the arc's mean) and four
+independent per-signal multipath terms, hence the scaling by 1/2.
+
+Receiver clocks and the geometric term
+--------------------------------------
+Although ``c dt_k`` cancels in the double difference, ``rho_k`` must be
+evaluated at the *true* receive time ``t - dt_k``: receiver clocks can be off
+by milliseconds, and a range rate of 800 m/s turns 1 ms into 0.8 m, different
+for every satellite. Each receiver's clock offset is estimated per epoch as
+the median over satellites of ``(P - rho + c dT) / c`` with ``P`` a
+pseudorange of the same band (else C1/C1C, else P1/C1W, else any code), ``rho``
+computed at the nominal epoch, ``dT`` the broadcast satellite clock when the
+orbit source gives one. The estimate is good to about 1e-7 s (ionosphere,
+troposphere, code multipath), far better than needed: only the
+*between-receiver* difference of the clock errors matters, and 1e-7 s times a
+range-rate difference of 1 km/s is 0.1 mm. Without satellite clocks (SP3
+orbits) the estimate is biased by the median satellite clock (below 1 ms),
+nearly the same for both receivers, so the bias cancels to first order.
+
+Antenna positions
+-----------------
+Positions come from the RINEX headers (``APPROX POSITION XYZ`` plus the
+``ANTENNA: DELTA H/E/N`` eccentricity rotated to ECEF) or are given by the
+user (taken as the antenna positions as they are). The double difference is
+only as good as the baseline: an error ``db`` in the baseline vector leaves
+``db . (u^s - u^r)`` (unit line-of-sight vectors) in the result, i.e. up to
+about ``|db|``. Antenna phase-centre offsets and variations are not modelled;
+they cancel for identical, identically oriented antennas.
+
+Short-baseline DA partly cancels multipath common to both antennas (e.g. from
+distant reflectors); the result can under-represent multipath, which is why
+the dual-frequency method is preferred. ``meta["note"]`` says so.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from psdbound.errors import InputError, NoDataError
+from psdbound.io.arcs import ArcSet, find_arcs
+from psdbound.io.geometry import (
+    SPEED_OF_LIGHT_M_S,
+    OrbitSource,
+    azimuth_elevation,
+    ecef_to_geodetic,
+    enu_rotation,
+    signal_path,
+)
+from psdbound.io.obs import Observations
+from psdbound.io.signals import RINEX2_TO_RINEX3, wavelength_m
+from psdbound.io.timescales import gps_s_to_datetime64
+from psdbound.isolation.series import MultipathSeries
+
+__all__ = ["isolate_dual_antenna"]
+
+#: Two epochs of the two files are the same epoch when closer than this, s.
+EPOCH_TOLERANCE_S = 1e-3
+#: Scaling of the double difference to one signal (four independent terms).
+DA_SCALING = 0.5
+#: A double-difference jump between consecutive epochs larger than this
+#: fraction of the wavelength is an undetected cycle slip: the arc is split.
+DD_JUMP_FRACTION = 0.4
+_MIN_ANTENNA_SEPARATION_M = 1e-3
+_NOTE = (
+    "short-baseline dual-antenna double differences partly cancel multipath that is "
+    "common to both antennas; the dual-frequency method is preferred"
+)
+_CLOCK_NOTE = (
+    "receiver clock offset per epoch = median over satellites of (P - rho + c*dT)/c "
+    "(P pseudorange, rho geometric range at the nominal epoch, dT broadcast satellite "
+    "clock); geometric ranges evaluated at the clock-corrected receive time"
+)
+
+
+@dataclass
+class _SDArc:
+    """A single-difference arc on the common epoch axis."""
+
+    sat: str
+    ci: NDArray[np.intp]  # indices into the common epochs, increasing
+    sd_m: NDArray[np.float64]
+    el_deg: NDArray[np.float64]
+
+
+def isolate_dual_antenna(
+    obs1: Observations,
+    obs2: Observations,
+    orbit: OrbitSource,
+    *,
+    signal: str = "L1C",
+    slip_signal: str | None = "L2W",
+    system: str = "G",
+    receiver1_xyz_m: ArrayLike | None = None,
+    receiver2_xyz_m: ArrayLike | None = None,
+    min_length_s: float = 600.0,
+    elevation_mask_deg: float = 10.0,
+    max_baseline_m: float = 20000.0,
+) -> MultipathSeries:
+    """Isolate carrier-phase multipath with double differences of two antennas.
+
+    Parameters
+    ----------
+    obs1, obs2 : Observations
+        Observations of the two receivers (:func:`psdbound.io.read_obs`), of
+        the same period, sampled on common epochs (matched to 1 ms).
+    orbit : OrbitSource
+        Satellite orbits (:func:`psdbound.io.read_orbit`); its
+        ``satellite_clock_s`` is used for the receiver-clock estimate when
+        present.
+    signal : str, default "L1C"
+        Carrier-phase signal to difference (RINEX 3 code; RINEX 2 files also
+        accept their own codes, e.g. ``"L1"``).
+    slip_signal : str or None, default "L2W"
+        Second phase signal of each receiver used only to find cycle slips
+        (geometry-free test, see :func:`psdbound.io.find_arcs`). With None,
+        arcs are broken on gaps, loss-of-lock flags and power failures only
+        (plus the double-difference jump test below).
+    system : str, default "G"
+        Satellite system letter.
+    receiver1_xyz_m, receiver2_xyz_m : array_like of shape (3,), optional
+        Antenna ECEF positions, metres. Default: the header's
+        ``APPROX POSITION XYZ`` plus ``ANTENNA: DELTA H/E/N``.
+    min_length_s : float, default 600
+        Minimum duration of a tracking arc and of a double-difference arc,
+        seconds; shorter double-difference arcs are dropped and counted.
+    elevation_mask_deg : float, default 10
+        Epochs with a satellite below this elevation (degrees) are excluded.
+    max_baseline_m : float, default 20000
+        Longest accepted distance between the antennas, metres: beyond it the
+        ionosphere and troposphere no longer cancel.
+
+    Returns
+    -------
+    MultipathSeries
+        ``method="DA"``, ``scaling=0.5``, ``signals=(signal,)``; one arc per
+        satellite pair and reference period, named ``"G05-G12"`` (satellite
+        minus reference), with the arc mean removed (ambiguity) and values in
+        metres scaled by 1/2; ``elevation_deg`` is the lower elevation of the
+        pair. ``meta`` holds the files, markers, baseline length, positions
+        and their source, reference periods, receiver-clock estimate, counts
+        of dropped arcs and the elevation mask.
+
+    Raises
+    ------
+    InputError
+        The same file twice or identical positions, files with no common
+        epochs (e.g. different days), stations more than ``max_baseline_m``
+        apart, no common satellites, a signal or system missing from a file,
+        no pseudorange for the clock estimate, or no antenna position.
+    NoDataError
+        No double-difference arc of at least ``min_length_s``.
+
+    Notes
+    -----
+    Reference satellite: the highest satellite with a single-difference arc
+    at the first epoch; it is kept until its single-difference arc ends, then
+    the highest satellite with a single-difference arc at the next epoch
+    becomes the reference, and so on. A double-difference arc is the
+    intersection of a satellite's single-difference arc, the reference's
+    single-difference arc and the reference period; it is split where it
+    jumps by more than 0.4 wavelength between epochs (a slip the per-receiver
+    tests missed).
+
+    Examples
+    --------
+    >>> from psdbound.io import read_obs, read_orbit
+    >>> da = isolate_dual_antenna(read_obs("UPC10770.10o.gz"),
+    ...                           read_obs("UPC20770.10o.gz"),
+    ...                           read_orbit("brdc0770.10n.gz"))  # doctest: +SKIP
+    >>> print(da.summary())  # doctest: +SKIP
+    """
+    files = f"{obs1.path} and {obs2.path}"
+    _check_not_same(obs1, obs2, files)
+    pos1, src1 = _antenna_position(obs1, receiver1_xyz_m, "receiver1_xyz_m")
+    pos2, src2 = _antenna_position(obs2, receiver2_xyz_m, "receiver2_xyz_m")
+    baseline_m = float(np.linalg.norm(pos1 - pos2))
+    if baseline_m < _MIN_ANTENNA_SEPARATION_M:
+        raise InputError(
+            f"identical antenna positions for {files} ({src1}, {src2}): "
+            "the same station twice? dual-antenna isolation needs two antennas"
+        )
+    if not baseline_m <= max_baseline_m:
+        raise InputError(
+            f"not a short baseline: {files} are {baseline_m / 1e3:.3f} km apart "
+            f"(max_baseline_m = {max_baseline_m:g} m)"
+        )
+    for obs in (obs1, obs2):
+        if system not in obs.blocks:
+            raise InputError(
+                f"no {system} observations in {obs.path} (systems: {' '.join(obs.blocks)}); "
+                f"dual-antenna inputs {files}"
+            )
+    code1, code2 = _resolve_pair(obs1, obs2, system, signal, "signal")
+    if not code1.startswith("L"):
+        raise InputError(f"signal {signal!r} is not a carrier phase (L..) in {files}")
+    slip1 = slip2 = None
+    if slip_signal is not None:
+        slip1, slip2 = _resolve_pair(obs1, obs2, system, slip_signal, "slip_signal")
+    i1, i2 = _match_epochs(obs1, obs2, files)
+    t1c, t2c = obs1.t_gps_s[i1], obs2.t_gps_s[i2]
+    n_common = int(i1.size)
+
+    sats = _common_satellites(obs1, obs2, system, code1, code2, i1, i2, files)
+
+    # geometry at the nominal epochs: receiver clocks and the find_arcs pre-filter
+    clocks = []
+    arcsets: list[ArcSet] = []
+    for obs, pos, code, slip in ((obs1, pos1, code1, slip1), (obs2, pos2, code2, slip2)):
+        rho, tau, el = _geometry_all(orbit, sats, obs.t_gps_s, pos)
+        clocks.append(_estimate_receiver_clock(obs, orbit, sats, code, rho, tau))
+        visible = [
+            s
+            for k, s in enumerate(sats)
+            if _any_above(obs, s, code, slip, el[:, k], elevation_mask_deg)
+        ]
+        pair = (code, code if slip is None else slip)
+        arcsets.append(
+            find_arcs(
+                obs,
+                pair,
+                system=system,
+                orbit=orbit,
+                receiver_xyz_m=pos,
+                min_length_s=min_length_s,
+                elevation_mask_deg=elevation_mask_deg,
+                satellites=visible,
+            )
+        )
+    (dt1, code_c1, n_interp1), (dt2, code_c2, n_interp2) = clocks
+
+    # single differences
+    where1 = np.full(obs1.t_gps_s.size, -1, dtype=np.intp)
+    where1[i1] = np.arange(n_common)
+    where2 = np.full(obs2.t_gps_s.size, -1, dtype=np.intp)
+    where2[i2] = np.arange(n_common)
+    t_rx1 = t1c - dt1[i1]
+    t_rx2 = t2c - dt2[i2]
+    sd_arcs: list[_SDArc] = []
+    n_sd_short = 0
+    by_sat2: dict[str, list] = {}
+    for a in arcsets[1]:
+        by_sat2.setdefault(a.sat, []).append(a)
+    for a1 in arcsets[0]:
+        c1 = where1[a1.epoch_index]
+        k1 = np.flatnonzero(c1 >= 0)
+        for a2 in by_sat2.get(a1.sat, []):
+            c2 = where2[a2.epoch_index]
+            k2 = np.flatnonzero(c2 >= 0)
+            ci, j1, j2 = np.intersect1d(c1[k1], c2[k2], assume_unique=True, return_indices=True)
+            j1, j2 = k1[j1], k2[j2]
+            if ci.size < 2 or t1c[ci[-1]] - t1c[ci[0]] < min_length_s:
+                n_sd_short += int(ci.size > 0)
+                continue
+            rho1 = _geometric_range_m(orbit, a1.sat, t_rx1[ci], pos1)[0]
+            rho2 = _geometric_range_m(orbit, a1.sat, t_rx2[ci], pos2)[0]
+            sd = a1.phase_m[j1, 0] - a2.phase_m[j2, 0] - (rho1 - rho2)
+            el = np.minimum(a1.elevation_deg[j1], a2.elevation_deg[j2])
+            ok = np.isfinite(sd) & np.isfinite(el)
+            if not ok.all():
+                ci, sd, el = ci[ok], sd[ok], el[ok]
+                if ci.size < 2 or t1c[ci[-1]] - t1c[ci[0]] < min_length_s:
+                    n_sd_short += 1
+                    continue
+            sd_arcs.append(_SDArc(a1.sat, ci, sd, el))
+    if not sd_arcs:
+        raise NoDataError(
+            f"no single-difference arc of at least {min_length_s:g} s above "
+            f"{elevation_mask_deg:g} deg in {files} ({len(arcsets[0])} and "
+            f"{len(arcsets[1])} tracking arcs, {n_sd_short} common stretches too short)"
+        )
+    sd_arcs.sort(key=lambda a: (int(a.ci[0]), a.sat))
+
+    # reference periods and double differences
+    lam = wavelength_m(sats[0], RINEX2_TO_RINEX3.get(code1, code1), obs1.header.glonass_channels)
+    jump_m = DD_JUMP_FRACTION * lam
+    periods = _reference_periods(sd_arcs)
+    arcs: list[dict[str, Any]] = []
+    n_dd_short = 0
+    n_jump_splits = 0
+    for ref, k0, k1 in periods:
+        in_period = (ref.ci >= k0) & (ref.ci <= k1)
+        rci, rsd, rel = ref.ci[in_period], ref.sd_m[in_period], ref.el_deg[in_period]
+        for other in sd_arcs:
+            if other.sat == ref.sat or other.ci[-1] < k0 or other.ci[0] > k1:
+                continue
+            ci, jo, jr = np.intersect1d(other.ci, rci, assume_unique=True, return_indices=True)
+            if ci.size < 2:
+                continue
+            dd = other.sd_m[jo] - rsd[jr]
+            el = np.minimum(other.el_deg[jo], rel[jr])
+            cuts = np.flatnonzero(np.abs(np.diff(dd)) > jump_m) + 1
+            n_jump_splits += int(cuts.size)
+            for piece in np.split(np.arange(ci.size), cuts):
+                tp = t1c[ci[piece]]
+                if piece.size < 2 or tp[-1] - tp[0] < min_length_s:
+                    n_dd_short += 1
+                    continue
+                v = dd[piece]
+                arcs.append(
+                    {
+                        "sats": f"{other.sat}-{ref.sat}",
+                        "t_gps_s": tp,
+                        "value_m": DA_SCALING * (v - v.mean()),
+                        "elevation_deg": el[piece],
+                    }
+                )
+    if not arcs:
+        raise NoDataError(
+            f"no double-difference arc of at least {min_length_s:g} s in {files} "
+            f"({len(sd_arcs)} single-difference arcs, {n_dd_short} double-difference "
+            "arcs too short)"
+        )
+    interval_s = float(np.median(np.diff(t1c))) if n_common > 1 else obs1.interval_s
+    meta: dict[str, Any] = {
+        "files": (obs1.path, obs2.path),
+        "markers": (obs1.header.marker_name, obs2.header.marker_name),
+        "baseline_m": baseline_m,
+        "positions_m": (pos1.tolist(), pos2.tolist()),
+        "position_sources": (src1, src2),
+        "codes": (code1, code2),
+        "slip_codes": (slip1, slip2),
+        "slip_detection": (
+            "geometry-free test with the second signal, gaps, loss of lock, power failure"
+            if slip_signal is not None
+            else "gaps, loss of lock and power failure only (no second signal)"
+        )
+        + f"; double-difference jumps > {DD_JUMP_FRACTION:g} wavelength split arcs",
+        "reference_periods": [
+            {
+                "sat": ref.sat,
+                "start_gps_s": float(t1c[k0]),
+                "stop_gps_s": float(t1c[k1]),
+            }
+            for ref, k0, k1 in periods
+        ],
+        "receiver_clock": {
+            "method": _CLOCK_NOTE,
+            "codes": (code_c1, code_c2),
+            "satellite_clock": hasattr(orbit, "satellite_clock_s"),
+            "median_offset_s": (float(np.median(dt1[i1])), float(np.median(dt2[i2]))),
+            "max_abs_offset_s": (float(np.max(np.abs(dt1))), float(np.max(np.abs(dt2)))),
+            "epochs_interpolated": (n_interp1, n_interp2),
+        },
+        "n_common_epochs": n_common,
+        "n_tracking_arcs": (len(arcsets[0]), len(arcsets[1])),
+        "tracking_breaks": (dict(arcsets[0].breaks), dict(arcsets[1].breaks)),
+        "n_sd_arcs": len(sd_arcs),
+        "n_sd_arcs_dropped": n_sd_short,
+        "n_dd_arcs": len(arcs),
+        "n_dd_arcs_dropped": n_dd_short,
+        "n_dd_jump_splits": n_jump_splits,
+        "min_length_s": float(min_length_s),
+        "elevation_mask_deg": float(elevation_mask_deg),
+        "max_baseline_m": float(max_baseline_m),
+        "note": _NOTE,
+    }
+    return MultipathSeries.from_arcs(
+        "DA",
+        arcs,
+        signals=(signal,),
+        scaling=DA_SCALING,
+        interval_s=interval_s,
+        cutoff_hz=None,
+        meta=meta,
+    )
+
+
+# --------------------------------------------------------------------------- checks
+
+
+def _check_not_same(obs1: Observations, obs2: Observations, files: str) -> None:
+    same = obs1 is obs2
+    if not same:
+        try:
+            same = os.path.samefile(obs1.path, obs2.path)
+        except OSError:
+            same = os.path.abspath(obs1.path) == os.path.abspath(obs2.path)
+    if same:
+        raise InputError(
+            f"the same observation file given twice ({files}): dual-antenna isolation "
+            "needs the files of two receivers"
+        )
+
+
+def _antenna_position(
+    obs: Observations, given: ArrayLike | None, name: str
+) -> tuple[NDArray[np.float64], str]:
+    if given is not None:
+        pos = np.asarray(given, dtype=np.float64).reshape(-1)
+        if pos.shape != (3,) or not np.all(np.isfinite(pos)):
+            raise InputError(f"{name} must be three finite ECEF coordinates in metres, got {given}")
+        return pos, "user"
+    marker = obs.header.approx_position_m
+    if marker is None:
+        raise InputError(
+            f"no antenna position: the header has no APPROX POSITION XYZ; give {name}",
+            path=obs.path,
+        )
+    marker = np.asarray(marker, dtype=np.float64)
+    hen = np.asarray(obs.header.antenna_delta_hen_m, dtype=np.float64)
+    if np.any(hen != 0.0):
+        lat, lon, _ = ecef_to_geodetic(marker)
+        enu = np.array([hen[1], hen[2], hen[0]])
+        return marker + enu_rotation(lat, lon).T @ enu, "header APPROX POSITION XYZ + DELTA H/E/N"
+    return marker, "header APPROX POSITION XYZ"
+
+
+def _resolve_pair(
+    obs1: Observations, obs2: Observations, system: str, code: str, what: str
+) -> tuple[str, str]:
+    out, missing = [], []
+    for obs in (obs1, obs2):
+        try:
+            out.append(obs.resolve_code(system, code))
+        except InputError:
+            missing.append(obs)
+    if missing:
+        have = "; ".join(f"{o.path} has {' '.join(o.codes(system))}" for o in (obs1, obs2))
+        raise InputError(
+            f"{what} {code!r} missing from {' and '.join(o.path for o in missing)} "
+            f"(system {system}); {have}"
+        )
+    return out[0], out[1]
+
+
+def _span(obs: Observations) -> str:
+    if obs.t_gps_s.size == 0:
+        return "no epochs"
+    lab = gps_s_to_datetime64(obs.t_gps_s[[0, -1]]).astype("datetime64[ms]")
+    a, b = (str(x).replace("T", " ") for x in lab)
+    return f"{a} to {b} GPST"
+
+
+def _match_epochs(
+    obs1: Observations, obs2: Observations, files: str
+) -> tuple[NDArray[np.intp], NDArray[np.intp]]:
+    """Return the indices of the common epochs in both files (closer than 1 ms)."""
+    t1, t2 = obs1.t_gps_s, obs2.t_gps_s
+    i1 = i2 = np.zeros(0, dtype=np.intp)
+    if t1.size and t2.size:
+        order = np.argsort(t2, kind="stable")
+        ts = t2[order]
+        j = np.searchsorted(ts, t1)
+        jl = np.clip(j - 1, 0, ts.size - 1)
+        jr = np.clip(j, 0, ts.size - 1)
+        dl, dr = np.abs(t1 - ts[jl]), np.abs(ts[jr] - t1)
+        jb = np.where(dr < dl, jr, jl)
+        ok = np.minimum(dl, dr) <= EPOCH_TOLERANCE_S
+        i1 = np.flatnonzero(ok)
+        i2 = order[jb[ok]]
+        _, first = np.unique(i2, return_index=True)
+        keep = np.sort(first)
+        i1, i2 = i1[keep], i2[keep]
+    if i1.size == 0:
+        hint = ""
+        if t1.size and t2.size:
+            d1 = gps_s_to_datetime64(t1[[0, -1]]).astype("datetime64[D]")
+            d2 = gps_s_to_datetime64(t2[[0, -1]]).astype("datetime64[D]")
+            if d1[0] != d2[0] and d1[-1] != d2[-1]:
+                hint = " (files from different days)"
+        raise InputError(
+            f"no common epochs{hint}: {obs1.path} spans {_span(obs1)}, "
+            f"{obs2.path} spans {_span(obs2)}"
+        )
+    return i1, i2
+
+
+def _common_satellites(
+    obs1: Observations,
+    obs2: Observations,
+    system: str,
+    code1: str,
+    code2: str,
+    i1: NDArray[np.intp],
+    i2: NDArray[np.intp],
+    files: str,
+) -> list[str]:
+    b1, b2 = obs1.blocks[system], obs2.blocks[system]
+    k1, k2 = b1.codes.index(code1), b2.codes.index(code2)
+    out = []
+    for s in sorted(set(b1.sats) & set(b2.sats)):
+        v1 = b1.values[i1, b1.sats.index(s), k1]
+        v2 = b2.values[i2, b2.sats.index(s), k2]
+        if np.any(np.isfinite(v1) & np.isfinite(v2) & (v1 != 0.0) & (v2 != 0.0)):
+            out.append(s)
+    if not out:
+        raise InputError(
+            f"no common satellites tracked on {code1} at common epochs in {files}: "
+            f"{obs1.path} has {' '.join(b1.sats) or 'none'}, "
+            f"{obs2.path} has {' '.join(b2.sats) or 'none'}"
+        )
+    return out
+
+
+def _any_above(
+    obs: Observations,
+    sat: str,
+    code: str,
+    slip: str | None,
+    el: NDArray[np.float64],
+    mask_deg: float,
+) -> bool:
+    """Whether ``find_arcs`` would find any epoch of ``sat`` above the mask.
+
+    Works around a satellite whose tracked epochs are all below the mask.
+    """
+    ok = np.isfinite(obs.phase_m(sat, code))
+    if slip is not None:
+        ok &= np.isfinite(obs.phase_m(sat, slip))
+    return bool(ok.sum() >= 2 and np.any(el[ok] >= mask_deg))
+
+
+# --------------------------------------------------------------------------- geometry
+
+
+def _geometric_range_m(
+    orbit: OrbitSource, sat: str, t_rx_gps_s: NDArray[np.float64], rx_m: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Range (m), travel time (s) and transmit position (m); see :func:`signal_path`."""
+    return signal_path(orbit, sat, t_rx_gps_s, rx_m)
+
+
+def _geometry_all(
+    orbit: OrbitSource, sats: Sequence[str], t_gps_s: NDArray[np.float64], rx_m: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Range, travel time and elevation of every satellite at the nominal epochs."""
+    shape = (t_gps_s.size, len(sats))
+    rho, tau, el = np.empty(shape), np.empty(shape), np.empty(shape)
+    for k, s in enumerate(sats):
+        rho[:, k], tau[:, k], sv = _geometric_range_m(orbit, s, t_gps_s, rx_m)
+        el[:, k] = azimuth_elevation(rx_m, sv)[1]
+    return rho, tau, el
+
+
+def _clock_code(obs: Observations, system: str, phase_code: str) -> str:
+    """Pseudorange code for the clock estimate: same band, else C1C, P1, any."""
+    r3 = RINEX2_TO_RINEX3.get(phase_code, phase_code)
+    for c in (f"C{r3[1:]}", "C1C", "C1W", "C1P", "C1X"):
+        try:
+            return obs.resolve_code(system, c)
+        except InputError:
+            pass
+    for c in obs.codes(system):
+        if c[0] in "CP":
+            return c
+    raise InputError(
+        f"no pseudorange to estimate the receiver clock (codes: {' '.join(obs.codes(system))})",
+        path=obs.path,
+    )
+
+
+def _estimate_receiver_clock(
+    obs: Observations,
+    orbit: OrbitSource,
+    sats: Sequence[str],
+    phase_code: str,
+    rho_m: NDArray[np.float64],
+    tau_s: NDArray[np.float64],
+) -> tuple[NDArray[np.float64], str, int]:
+    """Receiver clock offset per epoch of ``obs``, seconds.
+
+    Median over satellites of ``(P - rho + c dT) / c``; epochs without any
+    usable pseudorange get the value interpolated linearly in time.
+
+    Returns
+    -------
+    dt_s : ndarray of float64, shape (n_epoch,)
+        Clock offset (receiver time minus GPS time), seconds.
+    code : str
+        The pseudorange code used.
+    n_interpolated : int
+        Number of epochs with an interpolated value.
+    """
+    system = sats[0][0]
+    code = _clock_code(obs, system, phase_code)
+    block = obs.blocks[system]
+    kc = block.codes.index(code)
+    pr = np.full(rho_m.shape, np.nan)
+    sat_clock = getattr(orbit, "satellite_clock_s", None)
+    for k, s in enumerate(sats):
+        if s not in block.sats:
+            continue
+        p = block.values[:, block.sats.index(s), kc]
+        pr[:, k] = np.where(p > 0.0, p, np.nan)
+        if sat_clock is not None:
+            pr[:, k] += SPEED_OF_LIGHT_M_S * sat_clock(s, obs.t_gps_s - tau_s[:, k])
+    x = (pr - rho_m) / SPEED_OF_LIGHT_M_S
+    good = np.isfinite(x)
+    dt = np.full(obs.t_gps_s.size, np.nan)
+    rows = good.any(axis=1)
+    if not rows.any():
+        raise InputError(
+            f"no usable pseudorange ({code}) to estimate the receiver clock", path=obs.path
+        )
+    dt[rows] = np.nanmedian(x[rows], axis=1)
+    n_interp = int((~rows).sum())
+    if n_interp:
+        dt[~rows] = np.interp(obs.t_gps_s[~rows], obs.t_gps_s[rows], dt[rows])
+    return dt, code, n_interp
+
+
+# --------------------------------------------------------------------------- reference
+
+
+def _reference_periods(sd_arcs: list[_SDArc]) -> list[tuple[_SDArc, int, int]]:
+    """Choose reference arcs and their periods (inclusive common-epoch indices)."""
+    starts = np.array([a.ci[0] for a in sd_arcs])
+    stops = np.array([a.ci[-1] for a in sd_arcs])
+    periods: list[tuple[_SDArc, int, int]] = []
+    k = int(starts.min())
+    last = int(stops.max())
+    while k <= last:
+        active = np.flatnonzero((starts <= k) & (stops >= k))
+        if active.size == 0:
+            later = starts[starts > k]
+            if later.size == 0:
+                break
+            k = int(later.min())
+            continue
+
+        def elevation_at(a: _SDArc, k: int = k) -> float:
+            j = min(int(np.searchsorted(a.ci, k)), a.ci.size - 1)
+            return float(a.el_deg[j])
+
+        ref = max((sd_arcs[j] for j in active), key=elevation_at)
+        periods.append((ref, k, int(ref.ci[-1])))
+        k = int(ref.ci[-1]) + 1
+    return periods
