@@ -1,0 +1,24 @@
+"""Stationarity: elevation mapping, Levene/K-S tests, slide/trim windowing."""
+
+from __future__ import annotations
+
+from psdbound.stationarity.mapping import THESIS_MAPPING, ElevationMapping, fit_mapping
+from psdbound.stationarity.tests import StationarityTest, test_stationarity
+from psdbound.stationarity.windowing import (
+    Window,
+    WindowSet,
+    find_stationary_windows,
+    window_arc,
+)
+
+__all__ = [
+    "THESIS_MAPPING",
+    "ElevationMapping",
+    "StationarityTest",
+    "Window",
+    "WindowSet",
+    "find_stationary_windows",
+    "fit_mapping",
+    "test_stationarity",
+    "window_arc",
+]
