@@ -1,7 +1,34 @@
-"""Spectra and bounds: PSD estimators, the GMRP + white-noise model, bound fitting."""
+"""Spectra and bounds: PSD estimators, the GMRP + white-noise model, bound fitting.
+
+Public surface:
+
+* :func:`estimate_psd` -> :class:`PSDEstimate` (Blackman-Tukey with the
+  thesis's 80 %/20 % lag taper, Welch, multitaper; one-sided, m^2/Hz, with
+  degrees of freedom and chi-square confidence intervals)
+* :func:`fit_bound` -> :class:`BoundFit` (tightest GMRP + white-noise bound)
+* :class:`BoundModel` / :class:`BoundResults` (windows -> PSDs -> bound)
+* closed forms: :func:`gm_psd_sampled`, :func:`gm_psd_continuous`,
+  :func:`white_psd`, :func:`gm_acf`
+"""
 
 from __future__ import annotations
 
+from psdbound.spectra.bound import OBJECTIVES, BoundFit, fit_bound
+from psdbound.spectra.estimators import METHODS, PSDEstimate, estimate_psd
+from psdbound.spectra.fitting import BoundModel, BoundResults
 from psdbound.spectra.models import gm_acf, gm_psd_continuous, gm_psd_sampled, white_psd
 
-__all__ = ["gm_acf", "gm_psd_continuous", "gm_psd_sampled", "white_psd"]
+__all__ = [
+    "METHODS",
+    "OBJECTIVES",
+    "BoundFit",
+    "BoundModel",
+    "BoundResults",
+    "PSDEstimate",
+    "estimate_psd",
+    "fit_bound",
+    "gm_acf",
+    "gm_psd_continuous",
+    "gm_psd_sampled",
+    "white_psd",
+]

@@ -77,7 +77,10 @@ def gm_psd_sampled(
     f = np.asarray(f_hz, dtype=float)
     phi = np.exp(-dt_s / tau_s)
     return (
-        2.0 * sigma_m**2 * dt_s * (1.0 - phi**2)
+        2.0
+        * sigma_m**2
+        * dt_s
+        * (1.0 - phi**2)
         / (1.0 - 2.0 * phi * np.cos(2.0 * np.pi * f * dt_s) + phi**2)
     )
 
