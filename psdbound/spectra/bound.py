@@ -82,6 +82,9 @@ class BoundFit:
         All (frequency, PSD) data points bounded.
     f_min_hz, f_max_hz : float
         Frequency band of the data.
+    gap_db_median, gap_db_p05 : float
+        Tightness: median and 5th percentile over all data points of
+        ``10 log10(S_model / S_data)`` (0 dB = touching).
     """
 
     sigma_gm_m: float
@@ -99,6 +102,8 @@ class BoundFit:
     n_points: int
     f_min_hz: float
     f_max_hz: float
+    gap_db_median: float = float("nan")
+    gap_db_p05: float = float("nan")
     meta: dict[str, Any] = field(default_factory=dict)
 
     @property
@@ -154,6 +159,8 @@ class BoundFit:
             f"{'band':<28}{self.f_min_hz:>12.4g} - {self.f_max_hz:.4g} Hz",
             f"{'min margin (bound/data)':<28}{m.min() if m.size else np.nan:>12.4f}",
             f"{'median of per-PSD margins':<28}{np.median(m) if m.size else np.nan:>12.4f}",
+            f"{'gap bound/data (dB)':<28}{self.gap_db_median:>12.2f}   median "
+            f"(5th percentile {self.gap_db_p05:.2f})",
             "=" * 66,
         ]
         return "\n".join(rows)
@@ -300,6 +307,9 @@ def fit_bound(
     if worst < 1.0:  # solver tolerance: scale up so the bound holds (1e-12 for rounding)
         up = (1.0 + 1e-12) / worst
         var_gm, var_wn = var_gm * up, var_wn * up
+    gap_db = 10.0 * np.log10(
+        (var_gm * gm_psd_sampled(f_all, 1.0, best_tau, dt_s) + var_wn * white) / s_all
+    )
     margins = []
     for f, s in data:
         mod = var_gm * gm_psd_sampled(f, 1.0, best_tau, dt_s) + var_wn * white
@@ -325,4 +335,6 @@ def fit_bound(
         n_points=int(f_all.size),
         f_min_hz=f_min,
         f_max_hz=f_max,
+        gap_db_median=float(np.median(gap_db)),
+        gap_db_p05=float(np.percentile(gap_db, 5)),
     )
