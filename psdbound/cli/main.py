@@ -15,6 +15,9 @@ EXIT_OK = 0
 EXIT_INTERNAL = 1
 EXIT_BAD_INPUT = 2
 
+# subcommand modules psdbound.cli.<name>, each with add_parser(sub) and run(args)
+_COMMANDS = ("inspect", "fit", "cutoff", "validate", "simulate", "report")
+
 # subcommands whose pipeline stage has not landed yet, and the issue that brings it
 _PENDING = {
     "fit": ("fit a PSD bound to RINEX observations (or the demo data)", 8),
@@ -43,27 +46,19 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"psdbound {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
 
-    p = sub.add_parser(
-        "inspect",
-        help="read observation files and list systems, signals and tracking arcs",
-        description="Read RINEX observation files (2.x/3.x, gzip, Hatanaka) and "
-        "print their content and the continuous dual-signal tracking arcs.",
-    )
-    p.add_argument("obs", nargs="+", help="RINEX observation file(s)")
-    p.add_argument("--nav", help="navigation (RINEX) or SP3 file for elevations")
-    p.add_argument("--system", default="G", help="satellite system letter (default G)")
-    p.add_argument(
-        "--signals", help="phase signal pair, e.g. L1C,L2W (default: per-system default)"
-    )
-    p.add_argument(
-        "--min-arc-min", type=float, default=30.0, help="minimum arc length, minutes (30)"
-    )
-    p.add_argument(
-        "--elevation-mask-deg", type=float, default=0.0, help="elevation mask, degrees (0)"
-    )
-    p.set_defaults(func=_cmd_inspect)
+    import importlib
 
+    for name in _COMMANDS:
+        try:
+            module = importlib.import_module(f"psdbound.cli.{name}")
+        except ModuleNotFoundError as exc:
+            if exc.name != f"psdbound.cli.{name}":
+                raise
+            continue
+        module.add_parser(sub)
     for name, (text, issue) in _PENDING.items():
+        if name in sub.choices:
+            continue
         sp = sub.add_parser(name, help=f"{text} (not available yet)", description=text)
         sp.add_argument("args", nargs=argparse.REMAINDER, help=argparse.SUPPRESS)
         sp.set_defaults(func=_pending(name, issue))
@@ -80,39 +75,6 @@ def _pending(name: str, issue: int):  # noqa: ANN202
         return EXIT_INTERNAL
 
     return run
-
-
-def _cmd_inspect(args: argparse.Namespace) -> int:
-    from psdbound.io import find_arcs, read_obs, read_orbit
-
-    orbit = read_orbit(args.nav) if args.nav else None
-    signals = args.signals.split(",") if args.signals else None
-    for path in args.obs:
-        obs = read_obs(path)
-        print(obs.summary())
-        if args.system not in obs.blocks:
-            raise InputError(
-                f"no observations of system {args.system!r}; present: {' '.join(obs.systems)}",
-                path=path,
-            )
-        arcs = find_arcs(
-            obs,
-            signals,
-            system=args.system,
-            orbit=orbit,
-            min_length_s=args.min_arc_min * 60.0,
-            elevation_mask_deg=args.elevation_mask_deg,
-        )
-        print(arcs.summary())
-        for a in arcs:
-            el = ""
-            if a.elevation_deg is not None:
-                el = f"  elevation {a.elevation_deg.min():5.1f}-{a.elevation_deg.max():5.1f} deg"
-            print(
-                f"  arc {a.arc_id:3d} {a.sat}  {a.n:6d} epochs  {a.duration_s / 60:7.1f} min"
-                f"  starts on {a.start_reason}{el}"
-            )
-    return EXIT_OK
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -104,3 +104,53 @@ def pad_lines(lines: list[bytes], width: int) -> NDArray[np.uint8]:
         return np.zeros((0, width), dtype=np.uint8)
     buf = b"".join([ln[:width].ljust(width) for ln in lines])
     return np.frombuffer(buf, dtype=np.uint8).reshape(len(lines), width)
+
+
+def format_fields(
+    values: NDArray[np.float64], lli: NDArray[np.int8], ssi: NDArray[np.int8]
+) -> NDArray[np.uint8]:
+    """Format observation fields as ``F14.3`` + LLI + SSI characters (inverse of parsing).
+
+    Parameters
+    ----------
+    values : ndarray of float64
+        Values (NaN -> blank field).
+    lli, ssi : ndarray of int8, same shape
+        Indicator digits (-1 -> blank).
+
+    Returns
+    -------
+    ndarray of uint8, shape ``values.shape + (16,)``
+        Characters, right-justified, decimal point in column 11.
+    """
+    v = np.asarray(values, dtype=np.float64)
+    finite = np.isfinite(v)
+    k = np.rint(np.abs(np.where(finite, v, 0.0)) * 1000.0).astype(np.int64)
+    if np.any(k >= 10**13):
+        raise ValueError("value too large for the F14.3 format")
+    neg = (v < 0) & (k > 0)
+    out = np.full(v.shape + (FIELD_WIDTH,), _SPACE, dtype=np.uint8)
+    rem = k.copy()
+    n_digits = np.ones(v.shape, dtype=np.int64)  # integer digits written (>= 1)
+    for pos in range(VALUE_WIDTH - 1, -1, -1):
+        if pos == _POINT:
+            out[..., pos] = _DOT
+            continue
+        rem, d = np.divmod(rem, 10)
+        if pos > _POINT:
+            out[..., pos] = _ZERO + d
+        else:
+            show = (pos == _POINT - 1) | (d > 0) | (rem > 0)
+            out[..., pos] = np.where(show, _ZERO + d, _SPACE)
+            n_digits += show & (pos < _POINT - 1)
+    sign_pos = _POINT - 1 - n_digits
+    if np.any(neg & (sign_pos < 0)):
+        raise ValueError("negative value too large for the F14.3 format")
+    idx = np.nonzero(neg)
+    out[idx + (sign_pos[idx],)] = _MINUS
+    li = np.asarray(lli)
+    si = np.asarray(ssi)
+    out[..., VALUE_WIDTH] = np.where(li >= 0, _ZERO + np.clip(li, 0, 9), _SPACE)
+    out[..., VALUE_WIDTH + 1] = np.where(si >= 0, _ZERO + np.clip(si, 0, 9), _SPACE)
+    out[~finite] = _SPACE
+    return out

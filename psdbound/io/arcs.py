@@ -9,7 +9,8 @@ its carrier-phase ambiguities are constant. Arcs are broken
   signal, or RINEX epoch flag 1 (power failure);
 * on a cycle slip detected from the data: a jump of the geometry-free phase
   ``L_a - L_b`` (metres) between consecutive epochs that departs from the
-  local (running-median) rate by more than ``slip_threshold_m``. This test
+  local (running-median) rate by more than ``slip_threshold_m`` and by more
+  than six robust standard deviations of the local jumps. This test
   is blind to slip pairs that hardly move ``L_a - L_b`` (GPS L1/L2: 5 and 4
   cycles move it by 2.5 cm, 9 and 7 by 3 mm); such steps stay in the arc;
 * where the satellite is below the elevation mask (when an orbit is given).
@@ -41,6 +42,8 @@ DEFAULT_SIGNALS: dict[str, tuple[str, str]] = {
 }
 
 _SLIP_WINDOW = 11  # samples in the running median of the geometry-free rate
+_NOISE_WINDOW = 61  # samples in the running robust noise level of the jumps
+_NOISE_K = 6.0  # a slip must exceed this many robust standard deviations
 
 
 @dataclass(frozen=True)
@@ -161,13 +164,21 @@ class ArcSet:
 
 
 def _slips(gf_m: NDArray[np.float64], threshold_m: float) -> NDArray[np.bool_]:
-    """Boolean per epoch: a slip between the previous epoch and this one."""
+    """Boolean per epoch: a slip between the previous epoch and this one.
+
+    The jump ``d - median(d)`` must exceed ``threshold_m`` and ``_NOISE_K``
+    robust standard deviations of the local jumps (running median of
+    ``|d - median(d)|`` over ``_NOISE_WINDOW`` samples, times 1.4826), so
+    that noisy low-elevation stretches are not cut into pieces.
+    """
     out = np.zeros(gf_m.size, dtype=bool)
     if gf_m.size < 3:
         return out
     d = np.diff(gf_m)
     ref = median_filter(d, size=min(_SLIP_WINDOW, d.size | 1), mode="mirror")
-    out[1:] = np.abs(d - ref) > threshold_m
+    r = np.abs(d - ref)
+    noise = 1.4826 * median_filter(r, size=min(_NOISE_WINDOW, r.size | 1), mode="mirror")
+    out[1:] = r > np.maximum(threshold_m, _NOISE_K * noise)
     return out
 
 

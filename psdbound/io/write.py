@@ -12,10 +12,12 @@ from pathlib import Path
 
 import numpy as np
 
+from psdbound.io._fields import format_fields
+from psdbound.io.nav import Navigation
 from psdbound.io.obs import Observations
 from psdbound.io.timescales import gps_s_to_datetime64
 
-__all__ = ["format_obs_v3", "write_obs_v3"]
+__all__ = ["format_nav_v3", "format_obs_v3", "write_nav_v3", "write_obs_v3"]
 
 
 def _hdr(body: str, label: str) -> str:
@@ -74,27 +76,37 @@ def format_obs_v3(obs: Observations, *, program: str = "psdbound") -> str:
     out.append(_hdr("", "END OF HEADER"))
 
     labels = gps_s_to_datetime64(obs.t_gps_s).astype(str)
-    cells = {}
-    for s, b in obs.blocks.items():
-        v = b.values
-        txt = np.char.mod("%14.3f", np.where(np.isfinite(v), v, 0.0))
-        txt = np.where(np.isfinite(v), txt, " " * 14)
-        lli = np.where(b.lli >= 0, np.char.mod("%d", np.maximum(b.lli, 0)), " ")
-        ssi = np.where(b.ssi >= 0, np.char.mod("%d", np.maximum(b.ssi, 0)), " ")
-        cells[s] = (np.char.add(np.char.add(txt, lli), ssi), np.isfinite(v).any(axis=2))
+    epochs, order_sys, rows = [], [], []
+    for k, b in enumerate(obs.blocks.values()):
+        present = np.isfinite(b.values).any(axis=2)
+        ee, ii = np.nonzero(present)
+        chars = format_fields(b.values[ee, ii], b.lli[ee, ii], b.ssi[ee, ii])
+        ids = np.frombuffer("".join(b.sats).encode("ascii"), dtype=np.uint8).reshape(-1, 3)
+        rows.append(np.concatenate([ids[ii], chars.reshape(ee.size, -1)], axis=1))
+        epochs.append(ee)
+        order_sys.append(np.full(ee.size, k))
+    if rows:
+        width = max(r.shape[1] for r in rows)
+        rows = [np.pad(r, ((0, 0), (0, width - r.shape[1])), constant_values=32) for r in rows]
+        all_rows = np.concatenate(rows)
+        ep = np.concatenate(epochs)
+        order = np.lexsort((np.concatenate(order_sys), ep))  # stable within a system
+        all_rows, ep = all_rows[order], ep[order]
+        lines = [r.tobytes().rstrip().decode("ascii") for r in all_rows]
+        counts = np.bincount(ep, minlength=obs.t_gps_s.size)
+    else:
+        lines, counts = [], np.zeros(obs.t_gps_s.size, dtype=np.int64)
+    pos = 0
     for e, lab in enumerate(labels):
-        recs = []
-        for s, b in obs.blocks.items():
-            field, present = cells[s]
-            for i in np.flatnonzero(present[e]):
-                recs.append((b.sats[i] + "".join(field[e, i])).rstrip())
-        if not recs:
+        c = int(counts[e])
+        if not c:
             continue
         out.append(
             f"> {lab[:4]} {lab[5:7]} {lab[8:10]} {lab[11:13]} {lab[14:16]}"
-            f"{float(lab[17:]):11.7f}  {int(obs.epoch_flag[e]):d}{len(recs):3d}\n"
+            f"{float(lab[17:]):11.7f}  {int(obs.epoch_flag[e]):d}{c:3d}\n"
         )
-        out.extend(r + "\n" for r in recs)
+        out.append("\n".join(lines[pos : pos + c]) + "\n")
+        pos += c
     return "".join(out)
 
 
@@ -118,12 +130,88 @@ def write_obs_v3(path: str | os.PathLike[str], obs: Observations, **kwargs: str)
     pathlib.Path
         The written path.
     """
+    return _write_atomic(Path(path), format_obs_v3(obs, **kwargs))
+
+
+def _d19(v: float) -> str:
+    return f"{v:19.12E}"
+
+
+def format_nav_v3(nav: Navigation, *, program: str = "psdbound") -> str:
+    """Return the text of a RINEX 3.04 navigation file for Keplerian records (GPS, Galileo).
+
+    Parameters
+    ----------
+    nav : Navigation
+        Records to write (systems ``G`` and ``E``; others are skipped).
+    program : str, default "psdbound"
+        Written in the ``PGM / RUN BY / DATE`` record.
+
+    Returns
+    -------
+    str
+        The complete file text.
+    """
+    systems = [s for s in ("G", "E") if s in nav.ephemerides]
+    kind = "M: MIXED" if len(systems) > 1 else {"G": "G: GPS", "E": "E: GALILEO"}[systems[0]]
+    out = [
+        _hdr(f"{3.04:9.2f}{'':11s}{'N: GNSS NAV DATA':<20s}{kind:<20s}", "RINEX VERSION / TYPE"),
+        _hdr(f"{program:<20.20s}{'':40s}", "PGM / RUN BY / DATE"),
+        _hdr("", "END OF HEADER"),
+    ]
+    for s in systems:
+        e = nav.ephemerides[s]
+        labels = gps_s_to_datetime64(e.toc_gps_s).astype(str)
+        week = np.floor(e.toe_gps_s / 604800.0)
+        for k in np.argsort(e.toc_gps_s, kind="stable"):
+            lab = labels[k]
+            out.append(
+                f"{e.sat[k]} {lab[:4]} {lab[5:7]} {lab[8:10]} {lab[11:13]} {lab[14:16]} "
+                f"{lab[17:19]}{_d19(e.af0_s[k])}{_d19(e.af1[k])}{_d19(e.af2[k])}\n"
+            )
+            if s == "G":
+                extra = (0.0, week[k], 0.0, 2.0, float(e.health[k]), 0.0, float(e.iode[k]))
+            else:
+                extra = (float(e.data_source[k]), week[k], 0.0, 3.12, float(e.health[k]), 0.0, 0.0)
+            rows = (
+                (float(e.iode[k]), e.crs_m[k], e.delta_n_rad_s[k], e.m0_rad[k]),
+                (e.cuc_rad[k], e.e[k], e.cus_rad[k], e.sqrt_a[k]),
+                (e.toe_sow_s[k], e.cic_rad[k], e.omega0_rad[k], e.cis_rad[k]),
+                (e.i0_rad[k], e.crc_m[k], e.omega_rad[k], e.omega_dot_rad_s[k]),
+                (e.idot_rad_s[k], extra[0], extra[1], extra[2]),
+                (extra[3], extra[4], extra[5], extra[6]),
+                (e.toe_sow_s[k], 4.0 if s == "G" else 0.0),
+            )
+            out.extend("    " + "".join(_d19(float(v)) for v in r) + "\n" for r in rows)
+    return "".join(out)
+
+
+def write_nav_v3(path: str | os.PathLike[str], nav: Navigation, **kwargs: str) -> Path:
+    """Write ``nav`` as a RINEX 3.04 navigation file atomically (``.gz`` compresses).
+
+    Parameters
+    ----------
+    path : str or path-like
+        Destination.
+    nav : Navigation
+        Keplerian records to write.
+    **kwargs
+        Passed to :func:`format_nav_v3`.
+
+    Returns
+    -------
+    pathlib.Path
+        The written path.
+    """
+    return _write_atomic(Path(path), format_nav_v3(nav, **kwargs))
+
+
+def _write_atomic(p: Path, text: str) -> Path:
     import gzip
 
-    p = Path(path)
-    data = format_obs_v3(obs, **kwargs).encode("ascii")
+    data = text.encode("ascii")
     if p.suffix == ".gz":
-        data = gzip.compress(data, mtime=0)
+        data = gzip.compress(data, compresslevel=6, mtime=0)
     tmp = p.with_name(p.name + ".part")
     tmp.write_bytes(data)
     os.replace(tmp, p)

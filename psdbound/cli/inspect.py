@@ -1,0 +1,66 @@
+"""``psdbound inspect``: list systems, signals and tracking arcs of observation files."""
+
+from __future__ import annotations
+
+import argparse
+
+from psdbound.errors import InputError
+
+__all__ = ["add_parser", "run"]
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    """Register the ``inspect`` subcommand."""
+    p = sub.add_parser(
+        "inspect",
+        help="read observation files and list systems, signals and tracking arcs",
+        description="Read RINEX observation files (2.x/3.x, gzip, Hatanaka) and "
+        "print their content and the continuous dual-signal tracking arcs.",
+    )
+    p.add_argument("obs", nargs="+", help="RINEX observation file(s)")
+    p.add_argument("--nav", help="navigation (RINEX) or SP3 file for elevations")
+    p.add_argument("--system", default="G", help="satellite system letter (default G)")
+    p.add_argument(
+        "--signals", help="phase signal pair, e.g. L1C,L2W (default: per-system default)"
+    )
+    p.add_argument(
+        "--min-arc-min", type=float, default=30.0, help="minimum arc length, minutes (30)"
+    )
+    p.add_argument(
+        "--elevation-mask-deg", type=float, default=0.0, help="elevation mask, degrees (0)"
+    )
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Print file summaries and arcs; return the exit code."""
+    from psdbound.io import find_arcs, read_obs, read_orbit
+
+    orbit = read_orbit(args.nav) if args.nav else None
+    signals = args.signals.split(",") if args.signals else None
+    for path in args.obs:
+        obs = read_obs(path)
+        print(obs.summary())
+        if args.system not in obs.blocks:
+            raise InputError(
+                f"no observations of system {args.system!r}; present: {' '.join(obs.systems)}",
+                path=path,
+            )
+        arcs = find_arcs(
+            obs,
+            signals,
+            system=args.system,
+            orbit=orbit,
+            min_length_s=args.min_arc_min * 60.0,
+            elevation_mask_deg=args.elevation_mask_deg,
+        )
+        print(arcs.summary())
+        for a in arcs:
+            el = ""
+            if a.elevation_deg is not None:
+                el = f"  elevation {a.elevation_deg.min():5.1f}-{a.elevation_deg.max():5.1f} deg"
+            print(
+                f"  arc {a.arc_id:3d} {a.sat}  {a.n:6d} epochs  {a.duration_s / 60:7.1f} min"
+                f"  starts on {a.start_reason}{el}"
+            )
+    return 0

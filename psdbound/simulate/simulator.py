@@ -1,0 +1,396 @@
+"""Carrier-phase and code observation simulator with ground truth (method.md physics).
+
+For antenna ``a``, satellite ``s`` and signal ``f`` (phase in metres)::
+
+    phi = rho + c (dt_rx - dt_sat) + T - I_f + lambda_f N_f + nu_f
+    P   = rho + c (dt_rx - dt_sat) + T + I_f + code noise
+
+* ``rho``: geometric range from the broadcast records written to the
+  navigation file (light time and Earth rotation, as the reader computes it);
+  epochs are receiver-clock labels, the geometry is evaluated at the true
+  receive time ``t - dt_rx``.
+* ``dt_rx``: receiver clock (offset + drift); ``dt_sat``: satellite clock
+  from the records.
+* ``T``: zenith delay / sin(el) (common to both carriers).
+* ``I_f = 40.3 STEC / f^2``: smooth diurnal vertical TEC (peak 14 h local
+  time) plus a travelling disturbance, times a thin-shell (350 km)
+  obliquity factor.
+* ``N_f``: random integer ambiguity per satellite and carrier, changed by
+  cycle slips (1-3 cycles on one carrier; a set fraction flagged by LLI).
+* ``nu_f``: the truth error: ``m(el) (GM + WN) + reflections + noise`` (see
+  :class:`~psdbound.simulate.scenario.MultipathModel`); with two antennas a
+  fraction of the GM+WN variance is common to both.
+
+Satellites are tracked above the elevation mask; tracking gaps are drawn at
+a set rate. Everything random comes from one seeded generator, so the same
+scenario gives byte-identical files.
+"""
+
+from __future__ import annotations
+
+import gzip
+import json
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.signal import lfilter
+
+from psdbound import __version__
+from psdbound.errors import InputError
+from psdbound.io._header import ObsHeader
+from psdbound.io.geometry import azimuth_elevation, enu_rotation, geodetic_to_ecef, signal_path
+from psdbound.io.nav import Navigation, read_nav
+from psdbound.io.nominal import nominal_navigation
+from psdbound.io.obs import Observations, SystemBlock
+from psdbound.io.signals import SPEED_OF_LIGHT_M_S, carrier_frequency_hz
+from psdbound.io.write import format_nav_v3, write_obs_v3
+from psdbound.simulate.scenario import Scenario
+
+__all__ = ["SimulationResult", "simulate", "gauss_markov"]
+
+SIGNALS = {"G": ("L1C", "L2W"), "E": ("L1C", "L5Q")}
+CODES = {"G": ("C1C", "C2W"), "E": ("C1C", "C5Q")}
+SNR = {"G": ("S1C", "S2W"), "E": ("S1C", "S5Q")}
+_R_EARTH_M = 6371e3
+_SHELL_M = 350e3
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """Files written by :func:`simulate` and the truth in memory.
+
+    Attributes
+    ----------
+    scenario : Scenario
+        The parameters.
+    obs_paths : tuple of Path
+        RINEX 3 observation file(s): antenna A (and B).
+    nav_path : Path
+        RINEX 3 navigation file.
+    truth_path, truth_json_path : Path
+        Truth per epoch, satellite, antenna (CSV, gzip) and parameters (JSON).
+    t_gps_s : ndarray
+        Epochs, GPS seconds.
+    sats : tuple of str
+        Satellites (axis 1 of the truth arrays).
+    truth_m : ndarray, shape (n_antenna, n_epoch, n_sat, 2)
+        Truth error ``nu`` per signal (NaN where not tracked), metres.
+    elevation_deg : ndarray, shape (n_antenna, n_epoch, n_sat)
+        Elevations, degrees.
+    slips : list of dict
+        Injected cycle slips (sat, antenna, t_gps_s, signal, cycles, flagged).
+    """
+
+    scenario: Scenario
+    obs_paths: tuple[Path, ...]
+    nav_path: Path
+    truth_path: Path
+    truth_json_path: Path
+    t_gps_s: NDArray[np.float64]
+    sats: tuple[str, ...]
+    truth_m: NDArray[np.float64]
+    elevation_deg: NDArray[np.float64]
+    slips: list[dict]
+
+
+def gauss_markov(
+    n: int, sigma: float, tau_s: float, dt_s: float, rng: np.random.Generator, size: int = 1
+) -> NDArray[np.float64]:
+    """Stationary first-order Gauss-Markov sequences (exact discretisation).
+
+    Parameters
+    ----------
+    n : int
+        Samples per sequence.
+    sigma : float
+        Standard deviation.
+    tau_s, dt_s : float
+        Time constant and sampling interval, seconds.
+    rng : numpy.random.Generator
+        Random source.
+    size : int, default 1
+        Number of independent sequences.
+
+    Returns
+    -------
+    ndarray, shape (n, size)
+        ``x[k] = phi x[k-1] + w[k]``, ``phi = exp(-dt/tau)``, started in the
+        stationary distribution.
+    """
+    phi = np.exp(-dt_s / tau_s)
+    w = rng.normal(0.0, sigma * np.sqrt(1.0 - phi**2), (n, size))
+    w[0] = rng.normal(0.0, sigma, size)
+    return lfilter([1.0], [1.0, -phi], w, axis=0)
+
+
+def _start_gps_s(label: str) -> float:
+    try:
+        t = np.datetime64(label, "ns")
+    except ValueError:
+        raise InputError(f"start epoch {label!r} is not an ISO date-time") from None
+    return float((t - np.datetime64("1980-01-06T00:00:00", "ns")) / np.timedelta64(1, "s"))
+
+
+def _obliquity(el_deg: NDArray[np.float64]) -> NDArray[np.float64]:
+    c = _R_EARTH_M * np.cos(np.radians(el_deg)) / (_R_EARTH_M + _SHELL_M)
+    return 1.0 / np.sqrt(1.0 - c**2)
+
+
+def _reflection_m(kind: str, d_m: float, alpha: float, el_deg, lam_m: float):
+    el = np.radians(el_deg)
+    delta = 2.0 * d_m * (np.sin(el) if kind == "ground" else np.cos(el))
+    psi = 2.0 * np.pi * delta / lam_m
+    return np.arctan2(alpha * np.sin(psi), 1.0 + alpha * np.cos(psi)) * lam_m / (2.0 * np.pi)
+
+
+def simulate(scenario: Scenario, out_dir: str | os.PathLike[str]) -> SimulationResult:
+    """Simulate a data set and write it as real files.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        All parameters, including the seed.
+    out_dir : str or path-like
+        Destination folder (created). Files: ``<name>-A_MO.rnx.gz``
+        (``-B`` for the second antenna), ``<name>_MN.rnx.gz``,
+        ``<name>_truth.csv.gz`` and ``<name>_truth.json``.
+
+    Returns
+    -------
+    SimulationResult
+        Paths and the truth arrays.
+    """
+    sc = scenario
+    mp = sc.multipath
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    rng = np.random.default_rng(sc.seed)
+    t0 = _start_gps_s(sc.start_gps)
+    n = int(round(sc.duration_s / sc.interval_s))
+    t = t0 + sc.interval_s * np.arange(n)
+
+    # geometry source, written and read back so the simulation uses what readers see
+    nav_path = out / f"{sc.name}_MN.rnx.gz"
+    if sc.nav_path is None:
+        nav_src: Navigation = nominal_navigation(t0, t[-1], systems=sc.systems, clock_seed=sc.seed)
+    else:
+        nav_src = read_nav(sc.nav_path)
+    text = format_nav_v3(nav_src, program=f"psdbound {__version__}")
+    _write_gz(nav_path, text)
+    nav = read_nav(nav_path)
+
+    rx_a = geodetic_to_ecef(sc.lat_deg, sc.lon_deg, sc.height_m)
+    rx_b = rx_a + enu_rotation(sc.lat_deg, sc.lon_deg).T @ np.asarray(sc.baseline_enu_m, float)
+    antennas = [rx_a, rx_b] if sc.dual_antenna else [rx_a]
+    n_ant = len(antennas)
+    sats = tuple(s for s in nav.satellites if s[0] in sc.systems)
+    ns = len(sats)
+    clock0 = np.asarray(sc.receiver_clock_s, float)
+    drift = rng.uniform(-2e-10, 2e-10, 2)
+    local_h = ((t - t0) / 3600.0 + float(sc.start_gps[11:13]) + sc.lon_deg / 15.0) % 24.0
+
+    rho = np.full((n_ant, n, ns), np.nan)
+    el = np.full((n_ant, n, ns), np.nan)
+    dts = np.full((n, ns), np.nan)
+    for a, rx in enumerate(antennas):
+        t_true = t - (clock0[a] + drift[a] * (t - t0))
+        for j, s in enumerate(sats):
+            r, tau, sv = signal_path(nav, s, t_true, rx)
+            rho[a, :, j] = r
+            el[a, :, j] = azimuth_elevation(rx, sv)[1]
+            if a == 0:
+                dts[:, j] = nav.satellite_clock_s(s, t_true - tau)
+    tracked = el[0] >= sc.elevation_mask_deg
+    for a in range(1, n_ant):
+        tracked &= el[a] >= sc.elevation_mask_deg
+
+    # gaps: per satellite, Poisson count over the span, random lengths
+    for j in range(ns):
+        k = rng.poisson(sc.gap_rate_per_h * sc.duration_s / 3600.0)
+        for _ in range(k):
+            i0 = rng.integers(0, n)
+            length = max(1, int(rng.uniform(sc.interval_s, sc.gap_max_s) / sc.interval_s))
+            tracked[i0 : i0 + length, j] = False
+
+    # truth error per antenna, epoch, satellite, signal
+    m_el = mp.a + mp.b * np.exp(-(el**2) / (2.0 * mp.c_deg**2))
+    rho_c = sc.common_fraction if n_ant == 2 else 0.0
+    common = gauss_markov(n, mp.sigma_gm_m, mp.tau_s, sc.interval_s, rng, ns * 2)
+    common += rng.normal(0.0, mp.sigma_wn_m, common.shape)
+    truth = np.empty((n_ant, n, ns, 2))
+    lams = np.array(
+        [[SPEED_OF_LIGHT_M_S / carrier_frequency_hz(s, c) for c in SIGNALS[s[0]]] for s in sats]
+    )
+    for a in range(n_ant):
+        own = gauss_markov(n, mp.sigma_gm_m, mp.tau_s, sc.interval_s, rng, ns * 2)
+        own += rng.normal(0.0, mp.sigma_wn_m, own.shape)
+        stoch = (np.sqrt(rho_c) * common + np.sqrt(1.0 - rho_c) * own).reshape(n, ns, 2)
+        truth[a] = m_el[a][:, :, None] * stoch
+        for refl in mp.reflections:
+            for f in range(2):
+                truth[a, :, :, f] += _reflection_m(
+                    refl.kind, refl.distance_m, refl.alpha, el[a], lams[None, :, f]
+                )
+        truth[a] += rng.normal(0.0, sc.receiver_noise_m, (n, ns, 2))
+
+    # ionosphere (metres of L1-equivalent delay scaled per carrier) and troposphere
+    vtec = sc.vtec_night_tecu + (sc.vtec_day_tecu - sc.vtec_night_tecu) * 0.5 * (
+        1.0 + np.cos(2.0 * np.pi * (local_h - 14.0) / 24.0)
+    )
+    tid_phase = rng.uniform(0.0, 2.0 * np.pi, ns)
+    stec = (
+        vtec[None, :, None]
+        + sc.tid_amplitude_tecu
+        * np.sin(2.0 * np.pi * (t - t0)[None, :, None] / sc.tid_period_s + tid_phase[None, None, :])
+    ) * _obliquity(el)
+    freqs = np.array([[carrier_frequency_hz(s, c) for c in SIGNALS[s[0]]] for s in sats])
+    iono = 40.3e16 * stec[..., None] / freqs[None, None, :, :] ** 2
+    tropo = sc.zenith_tropo_m / np.sin(np.radians(np.clip(el, 1.0, 90.0)))
+
+    # ambiguities and slips
+    amb = rng.integers(-2_000_000, 2_000_000, (n_ant, ns, 2)).astype(float)
+    amb_t = np.broadcast_to(amb[:, None, :, :], (n_ant, n, ns, 2)).copy()
+    lli = np.zeros((n_ant, n, ns, 2), dtype=np.int8)
+    slips = []
+    for a in range(n_ant):
+        for j in range(ns):
+            for _ in range(rng.poisson(sc.slip_rate_per_h * sc.duration_s / 3600.0)):
+                i0 = int(rng.integers(1, n))
+                f = int(rng.integers(0, 2))
+                cycles = int(rng.choice([-3, -2, -1, 1, 2, 3]))
+                flagged = bool(rng.random() < sc.slip_lli_fraction)
+                amb_t[a, i0:, j, f] += cycles
+                if flagged:
+                    lli[a, i0, j, f] = 1
+                slips.append(
+                    {
+                        "antenna": "AB"[a],
+                        "sat": sats[j],
+                        "t_gps_s": float(t[i0]),
+                        "signal": SIGNALS[sats[j][0]][f],
+                        "cycles": cycles,
+                        "flagged": flagged,
+                    }
+                )
+
+    # assemble observations per antenna
+    obs_paths = []
+    for a in range(n_ant):
+        clock_m = SPEED_OF_LIGHT_M_S * (clock0[a] + drift[a] * (t - t0))
+        common_m = rho[a] + clock_m[:, None] - SPEED_OF_LIGHT_M_S * dts + tropo[a]
+        phase_m = common_m[..., None] - iono[a] + truth[a]
+        phase_cyc = phase_m / lams[None, :, :] + amb_t[a]
+        code_m = (
+            common_m[..., None]
+            + iono[a]
+            + rng.normal(0.0, sc.code_noise_m, (n, ns, 2))
+            * (m_el[a] / (mp.a + mp.b * np.exp(-(90.0**2) / (2 * mp.c_deg**2))))[..., None]
+        )
+        snr = np.clip(30.0 + 20.0 * np.sin(np.radians(np.clip(el[a], 0, 90))), 20, 55)
+        blocks = {}
+        for system in sc.systems:
+            cols = [j for j, s in enumerate(sats) if s[0] == system]
+            if not cols:
+                continue
+            codes = (CODES[system][0], SIGNALS[system][0], SNR[system][0],
+                     CODES[system][1], SIGNALS[system][1], SNR[system][1])  # fmt: skip
+            v = np.stack(
+                [np.round(code_m[:, cols, 0], 3), np.round(phase_cyc[:, cols, 0], 3),
+                 np.round(snr[:, cols], 3), np.round(code_m[:, cols, 1], 3),
+                 np.round(phase_cyc[:, cols, 1], 3), np.round(snr[:, cols] - 3.0, 3)],
+                axis=2,
+            )  # fmt: skip
+            keep = tracked[:, cols]
+            v[~keep] = np.nan
+            li = np.full(v.shape, -1, dtype=np.int8)
+            li[:, :, 1] = lli[a][:, cols, 0]
+            li[:, :, 4] = lli[a][:, cols, 1]
+            li[~keep] = -1
+            ssi = np.where(np.isfinite(v), np.clip(v // 6, 1, 9), -1).astype(np.int8)
+            ssi[:, :, [2, 5]] = -1
+            ssi[:, :, [0, 1, 3, 4]] = np.clip(snr[:, cols] // 6, 1, 9).astype(np.int8)[..., None]
+            ssi[~keep] = -1
+            blocks[system] = SystemBlock(system, tuple(sats[j] for j in cols), codes, v, li, ssi)
+        header = ObsHeader(
+            version=3.04,
+            file_system="M" if len(blocks) > 1 else sc.systems[0],
+            marker_name=f"{sc.name.upper()[:56]}-{'AB'[a]}",
+            receiver_type="PSDBOUND SIMULATOR",
+            antenna_type="SIMULATED",
+            approx_position_m=antennas[a],
+            antenna_delta_hen_m=np.zeros(3),
+            interval_s=sc.interval_s,
+            time_system="GPS",
+            obs_types={s: b.codes for s, b in blocks.items()},
+        )
+        obs = Observations(str(out), header, t, np.zeros(n, np.int8), blocks)
+        p = out / f"{sc.name}-{'AB'[a]}_MO.rnx.gz"
+        write_obs_v3(p, obs, program=f"psdbound {__version__}")
+        obs_paths.append(p)
+        truth[a][~tracked] = np.nan
+        el[a][~tracked] = np.nan
+
+    truth_path = out / f"{sc.name}_truth.csv.gz"
+    _write_truth_csv(truth_path, t, sats, truth, el)
+    truth_json = out / f"{sc.name}_truth.json"
+    meta = {
+        "scenario": sc.to_dict(),
+        "seed": sc.seed,
+        "digest": sc.digest(),
+        "psdbound_version": __version__,
+        "signals": {s: list(SIGNALS[s]) for s in sc.systems},
+        "truth_definition": "nu = m(el) (GM + WN) + reflections + receiver noise, per signal, m",
+        "df_truth": "(nu_1 - nu_2) / sqrt(2)",
+        "da_truth": "((nu_A,i - nu_B,i) - (nu_A,r - nu_B,r)) / 2",
+        "antenna_positions_m": [list(map(float, p)) for p in antennas],
+        "receiver_clock_drift_s_s": [float(d) for d in drift],
+        "slips": slips,
+        "files": {
+            "obs": [p.name for p in obs_paths],
+            "nav": nav_path.name,
+            "truth": truth_path.name,
+        },
+    }
+    _write_gz(truth_json, json.dumps(meta, indent=1, sort_keys=True) + "\n", compress=False)
+    return SimulationResult(
+        scenario=sc,
+        obs_paths=tuple(obs_paths),
+        nav_path=nav_path,
+        truth_path=truth_path,
+        truth_json_path=truth_json,
+        t_gps_s=t,
+        sats=sats,
+        truth_m=truth,
+        elevation_deg=el,
+        slips=slips,
+    )
+
+
+def _write_gz(p: Path, text: str, *, compress: bool = True) -> None:
+    data = text.encode("ascii")
+    if compress:
+        data = gzip.compress(data, mtime=0)
+    tmp = p.with_name(p.name + ".part")
+    tmp.write_bytes(data)
+    os.replace(tmp, p)
+
+
+def _write_truth_csv(p, t, sats, truth, el) -> None:
+    n_ant = truth.shape[0]
+    lines = ["t_gps_s,antenna,sat,elevation_deg,nu_1_m,nu_2_m"]
+    for a in range(n_ant):
+        ok = np.isfinite(truth[a, :, :, 0])
+        ii, jj = np.nonzero(ok)
+        rows = np.char.add(
+            np.char.add(np.char.mod("%.1f", t[ii]), f",{'AB'[a]},"),
+            np.asarray(sats)[jj],
+        )
+        cols = [el[a][ii, jj], truth[a, ii, jj, 0], truth[a, ii, jj, 1]]
+        body = rows
+        for fmt, v in zip((",%.4f", ",%.6f", ",%.6f"), cols, strict=True):
+            body = np.char.add(body, np.char.mod(fmt, v))
+        lines.extend(body.tolist())
+    _write_gz(p, "\n".join(lines) + "\n")
