@@ -103,3 +103,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("psdbound: interrupted", file=sys.stderr)
         return EXIT_INTERNAL
+    except Exception as exc:  # an internal error: one line, traceback with --verbose
+        if getattr(args, "verbose", False):
+            import traceback
+
+            traceback.print_exc()
+        print(
+            f"psdbound {args.command}: internal error: {type(exc).__name__}: {exc} "
+            "(run with --verbose for the traceback; please report it)",
+            file=sys.stderr,
+        )
+        return EXIT_INTERNAL

@@ -186,8 +186,7 @@ class FitConfig:
         for section, values in data.items():
             if section not in _SECTIONS:
                 raise InputError(
-                    f"{source}: unknown section [{section}]; expected one of "
-                    f"{', '.join(_SECTIONS)}"
+                    f"{source}: unknown section [{section}]; expected one of {', '.join(_SECTIONS)}"
                 )
             if not isinstance(values, dict):
                 raise InputError(f"{source}: [{section}] must be a table of options")

@@ -30,7 +30,7 @@ from psdbound.isolation import (
     isolate_dual_frequency,
 )
 from psdbound.pipeline.config import FitConfig
-from psdbound.pipeline.result import SCHEMA_VERSION, FitResult
+from psdbound.pipeline.result import SCHEMA_VERSION, FitResult, _jsonable
 from psdbound.spectra import BoundModel
 from psdbound.stationarity import (
     THESIS_MAPPING,
@@ -98,9 +98,7 @@ def _method(config: FitConfig, n_obs: int) -> str:
     if m not in ("df", "da"):
         raise InputError(f"--method must be df, da or auto, got {config.inputs.method!r}")
     if m == "da" and n_obs != 2:
-        raise InputError(
-            f"--method da needs two observation files (two antennas), got {n_obs}"
-        )
+        raise InputError(f"--method da needs two observation files (two antennas), got {n_obs}")
     if m == "df" and n_obs not in (1, 2):
         raise InputError(f"--method df needs one observation file, got {n_obs}")
     return m
@@ -160,9 +158,10 @@ def _validation(config: FitConfig, f_c_hz: float | None, method: str) -> dict[st
             "reason": "validation stage absent",
         }
     v = config.validation
-    return validate_cutoff(
-        f_c_hz, list(v.geometries), alpha=v.alpha, threshold=v.threshold, rate=v.rate
-    ).to_dict()
+    report = validate_cutoff(
+        list(v.geometries), cutoff_hz=f_c_hz, rate=v.rate, alpha=v.alpha, threshold=v.threshold
+    )
+    return report.to_dict()
 
 
 def run_fit(config: FitConfig, *, progress: Progress | None = None) -> FitResult:
@@ -264,8 +263,8 @@ def run_fit(config: FitConfig, *, progress: Progress | None = None) -> FitResult
              "kept": True, "start_reason": a.start_reason}
             for a in arcs
         ]  # fmt: skip
-        # the DF difference before/after filtering, for the arc with the largest RMS
-        k = int(np.argmax(series.rms_per_arc_m()))
+        # the DF difference before/after filtering, for the longest arc
+        k = int(np.argmax([a.duration_s for a in series.arcs()]))
         av = series.arc(k)
         sl = _decimate(av.t_gps_s.size)
         figures["df_filter"] = {
@@ -309,6 +308,7 @@ def run_fit(config: FitConfig, *, progress: Progress | None = None) -> FitResult
             for a in series.arcs()
         ]  # fmt: skip
     figures["arcs"] = arcs_fig
+    figures["t_ref_gps_s"] = float(obs[0].t_gps_s[0])
 
     say("elevation mapping and stationarity windows (Levene, then K-S)")
     mapping = _mapping(config, series)
@@ -467,4 +467,4 @@ def run_fit(config: FitConfig, *, progress: Progress | None = None) -> FitResult
             "seed": meta["seed"],
             "digest": meta["digest"],
         }
-    return FitResult(data)
+    return FitResult(_jsonable(data))

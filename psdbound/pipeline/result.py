@@ -120,8 +120,7 @@ class FitResult:
         version = data.get("schema_version")
         if version != SCHEMA_VERSION:
             raise InputError(
-                f"result schema version {version!r} is not supported (expected "
-                f"{SCHEMA_VERSION!r})",
+                f"result schema version {version!r} is not supported (expected {SCHEMA_VERSION!r})",
                 path=p,
             )
         for f in REQUIRED_FIELDS:

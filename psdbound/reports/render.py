@@ -1,0 +1,190 @@
+"""HTML and PDF reports from a result document, written atomically."""
+
+from __future__ import annotations
+
+import base64
+import io
+import os
+import shutil
+import tempfile
+import textwrap
+from pathlib import Path
+from typing import Any
+
+import jinja2
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.backends.backend_pdf import PdfPages  # noqa: E402
+
+from psdbound.pipeline.result import FitResult  # noqa: E402
+from psdbound.reports.figures import FIGURES  # noqa: E402
+
+__all__ = ["render_html", "render_pdf", "write_report_folder"]
+
+_METHOD = {
+    "DF": "dual-frequency (one antenna, two carriers) multipath",
+    "DA": "dual-antenna double-difference multipath",
+}
+
+
+def _figures(r: dict[str, Any]) -> list[tuple[str, Any]]:
+    out = []
+    for _, caption, func in FIGURES:
+        fig = func(r)
+        if fig is not None:
+            out.append((caption, fig))
+    return out
+
+
+def _validation_note(r: dict[str, Any]) -> str:
+    v = r["validation"]
+    if v.get("summary"):
+        return str(v["summary"])
+    return str(v.get("reason", ""))
+
+
+def _title(r: dict[str, Any]) -> str:
+    names = [i["name"] for i in r["provenance"]["inputs"] if i["role"] == "obs"]
+    return ", ".join(names) or "result"
+
+
+def render_html(result: FitResult) -> str:
+    """Return the self-contained HTML report (figures inline as PNG)."""
+    r = result.data
+    figs = []
+    for caption, fig in _figures(r):
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=110)
+        plt.close(fig)
+        figs.append({"caption": caption, "png": base64.b64encode(buf.getvalue()).decode()})
+    env = jinja2.Environment(
+        loader=jinja2.PackageLoader("psdbound.reports", "templates"),
+        autoescape=jinja2.select_autoescape(["html", "j2"]),
+        undefined=jinja2.StrictUndefined,
+    )
+    span_h = (r["data_span"]["stop_gps_s"] - r["data_span"]["start_gps_s"]) / 3600.0
+    return env.get_template("report.html.j2").render(
+        r=r,
+        title=_title(r),
+        method_long=_METHOD.get(r["method"], r["method"]),
+        span_h=span_h,
+        figures=figs,
+        demo=r.get("demo"),
+        validation_note=_validation_note(r),
+    )
+
+
+def _summary_page(r: dict[str, Any]):
+    b, s, c, w = r["bound"], r["sampling"], r["cutoff"], r["windows"]
+    fc = "n/a" if c["f_c_hz"] is None else f"{c['f_c_hz']:.4g} Hz ({c['tau_c_min']:.1f} min)"
+    rows = [
+        ("sigma_GM", f"{100 * b['sigma_gm_m']:.3f} cm"),
+        ("tau_GM", f"{b['tau_s']:.1f} s"),
+        ("sigma_WN (per sample)", f"{100 * b['sigma_wn_m']:.3f} cm at {s['interval_s']:g} s"),
+        ("N_WN (two-sided)", f"{b['n_wn_two_sided_m2_hz']:.4g} m^2/Hz"),
+        ("total variance", f"{b['total_variance_m2']:.4g} m^2 ({b['objective']}, {b['target']})"),
+        ("PSD estimator", b["estimator"]),
+        ("min margin bound/data", f"{b['min_margin']:.4f}"),
+        ("cutoff f_c", f"{fc}; source: {c['source']}"),
+        ("sampling / Nyquist", f"{s['interval_s']:g} s / {s['nyquist_hz']:.4g} Hz"),
+        ("windows", f"{w['count']} ({w['total_duration_s'] / 3600:.2f} h), never stationary "
+                    f"{w['never_stationary_s'] / 60:.1f} min"),
+        ("mapping", f"{r['mapping']['source']}: a={r['mapping']['a']:.3g}, "
+                    f"b={r['mapping']['b']:.3g}, c={r['mapping']['c_deg']:.3g} deg"),
+        ("cutoff validation", str(r["validation"].get("verdict"))),
+    ]  # fmt: skip
+    fig = plt.figure(figsize=(8.27, 11.69))
+    fig.text(0.08, 0.95, f"psdbound report: {_title(r)}", fontsize=14, weight="bold")
+    fig.text(0.08, 0.925, _METHOD.get(r["method"], r["method"]), fontsize=10)
+    y = 0.88
+    for k, v in rows:
+        fig.text(0.08, y, k, fontsize=10)
+        for j, line in enumerate(textwrap.wrap(v, 55) or [""]):
+            fig.text(0.42, y - 0.018 * j, line, fontsize=10)
+        y -= 0.028 + 0.018 * (len(textwrap.wrap(v, 55)) - 1 if len(v) > 55 else 0)
+    y -= 0.02
+    fig.text(0.08, y, "Caveats", fontsize=12, weight="bold")
+    y -= 0.03
+    for wtext in r["warnings"] or ["None."]:
+        for line in textwrap.wrap(wtext, 95):
+            fig.text(0.08, y, line, fontsize=8.5)
+            y -= 0.02
+        y -= 0.008
+    y -= 0.02
+    fig.text(0.08, y, "Inputs (SHA-256)", fontsize=12, weight="bold")
+    y -= 0.028
+    for i in r["provenance"]["inputs"]:
+        fig.text(0.08, y, f"{i['role']}: {i['name']}", fontsize=8)
+        fig.text(0.08, y - 0.016, i["sha256"], fontsize=7, family="monospace")
+        y -= 0.04
+    fig.text(0.08, 0.03, f"created {r['provenance']['created_utc']}, psdbound "
+             f"{r['provenance']['versions']['psdbound']}", fontsize=8)  # fmt: skip
+    return fig
+
+
+def render_pdf(result: FitResult, path: str | os.PathLike[str]) -> Path:
+    """Write the PDF report (summary and caveats page, then every figure)."""
+    r = result.data
+    p = Path(path)
+    with PdfPages(p, metadata={"Title": f"psdbound report: {_title(r)}", "Creator": "psdbound",
+                               "CreationDate": None}) as pdf:  # fmt: skip
+        page = _summary_page(r)
+        pdf.savefig(page)
+        plt.close(page)
+        for caption, fig in _figures(r):
+            fig.suptitle(caption, fontsize=10, y=0.995)
+            pdf.savefig(fig)
+            plt.close(fig)
+    return p
+
+
+def write_report_folder(
+    result: FitResult, out_dir: str | os.PathLike[str], *, pdf: bool = True
+) -> dict[str, Path]:
+    """Write ``result.json``, ``report.html`` (and ``report.pdf``) atomically.
+
+    Everything is written into a temporary sibling folder that replaces
+    ``out_dir`` only when complete: a failed run leaves no half-written folder
+    (and an existing folder untouched).
+
+    Parameters
+    ----------
+    result : FitResult
+        The result to write and render.
+    out_dir : str or path-like
+        Destination folder.
+    pdf : bool, default True
+        Also write the PDF report.
+
+    Returns
+    -------
+    dict of str to Path
+        ``{"result": ..., "html": ..., "pdf": ...}``.
+    """
+    out = Path(out_dir)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}-", dir=out.parent))
+    mask = os.umask(0)
+    os.umask(mask)
+    os.chmod(tmp, 0o777 & ~mask)  # mkdtemp makes 0700; give the folder normal permissions
+    try:
+        result.to_json(tmp / "result.json")
+        (tmp / "report.html").write_text(render_html(result))
+        if pdf:
+            render_pdf(result, tmp / "report.pdf")
+        if out.exists():
+            old = out.with_name(f".{out.name}-old-{os.getpid()}")
+            os.replace(out, old)
+            os.replace(tmp, out)
+            shutil.rmtree(old, ignore_errors=True)
+        else:
+            os.replace(tmp, out)
+    finally:
+        if tmp.exists():
+            shutil.rmtree(tmp, ignore_errors=True)
+    paths = {"result": out / "result.json", "html": out / "report.html"}
+    if pdf:
+        paths["pdf"] = out / "report.pdf"
+    return paths
