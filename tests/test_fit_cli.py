@@ -1,0 +1,184 @@
+"""End to end: psdbound fit / report, result schema, reports, CLI errors."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from conftest import ESBC_NAV, ESBC_OBS, UPC1_OBS, UPC2_OBS, UPC_NAV, shared_file
+
+from psdbound.pipeline import REQUIRED_FIELDS, FitConfig, FitResult
+from psdbound.pipeline.result import _get
+
+
+def run_cli(*args, cwd, env_extra=None, timeout=600):
+    env = dict(os.environ)
+    env.update(env_extra or {})
+    return subprocess.run(
+        [sys.executable, "-m", "psdbound", *map(str, args)],
+        cwd=cwd,
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=timeout,
+    )
+
+
+@pytest.fixture(scope="module")
+def demo_run(tmp_path_factory):
+    """`python -m psdbound fit` with no arguments, in an empty folder."""
+    work = tmp_path_factory.mktemp("empty")
+    cache = tmp_path_factory.mktemp("cache")
+    r = run_cli("fit", cwd=work, env_extra={"PSDBOUND_CACHE": str(cache)})
+    assert r.returncode == 0, r.stderr
+    return work, r
+
+
+def test_fit_without_arguments_uses_the_demo(demo_run):
+    work, r = demo_run
+    out = work / "reports" / "demo"
+    assert sorted(p.name for p in out.iterdir()) == ["report.html", "report.pdf", "result.json"]
+    res = FitResult.from_json(out / "result.json")
+    d = res.data
+    for f in REQUIRED_FIELDS:
+        _get(d, f)
+    b = d["bound"]
+    assert 1e-4 < b["sigma_gm_m"] < 0.05 and b["tau_s"] > 0 and b["sigma_wn_m"] >= 0
+    assert d["sampling"] == {"interval_s": 1.0, "nyquist_hz": 0.5}
+    assert d["cutoff"]["f_c_hz"] > 0 and d["cutoff"]["source"]
+    assert d["windows"]["count"] == len(d["windows"]["per_window"]) > 0
+    assert all(w["margin"] >= 1.0 for w in d["windows"]["per_window"])
+    assert d["validation"]["verdict"] in ("pass", "fail")
+    assert d["mapping"]["a"] == 1.0
+    assert all(len(i["sha256"]) == 64 for i in d["provenance"]["inputs"])
+    assert d["provenance"]["configuration"]["inputs"]["method"] == "df"
+    assert "demo" in d and d["demo"]["seed"] == 2020
+    # the figures can be redrawn from the file: data present and the bound over every PSD
+    bc = d["figures"]["bound_curve"]
+    assert max(bc["f_hz"]) <= d["sampling"]["nyquist_hz"] * (1 + 1e-9)
+    html = (out / "report.html").read_text()
+    assert html.count("data:image/png;base64,") >= 5 and "sigma" not in html[:50]
+    assert "Caveats" in html and "never tested stationary" in html
+    assert (out / "report.pdf").stat().st_size > 50_000
+    assert (out / "report.pdf").read_bytes()[:5] == b"%PDF-"
+    assert "psdbound fit (DF)" in r.stdout
+
+
+def test_report_rerenders_from_result_alone(demo_run, tmp_path):
+    work, _ = demo_run
+    src = work / "reports" / "demo" / "result.json"
+    copy = tmp_path / "r" / "result.json"
+    copy.parent.mkdir()
+    shutil.copy(src, copy)
+    r = run_cli("report", copy, "--no-pdf", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    html = (tmp_path / "r" / "report.html").read_text()
+    assert html.count("data:image/png;base64,") >= 5
+
+
+def test_config_file_is_applied_and_saved(tmp_path, demo_run):
+    work, _ = demo_run
+    cfg = tmp_path / "run.toml"
+    cfg.write_text('[cutoff]\nf_c_hz = 1.2e-3\n[spectra]\nestimator = "welch"\n'
+                   '[output]\nname = "toml-run"\npdf = false\n')  # fmt: skip
+    cache = {"PSDBOUND_CACHE": str(next(work.parent.glob("cache*")))}
+    r = run_cli("fit", "--config", cfg, "--quiet", cwd=tmp_path, env_extra=cache)
+    assert r.returncode == 0, r.stderr
+    d = json.loads((tmp_path / "reports" / "toml-run" / "result.json").read_text())
+    assert d["cutoff"] == {**d["cutoff"], "f_c_hz": 1.2e-3, "source": "given"}
+    assert d["bound"]["estimator"] == "welch"
+    assert d["provenance"]["configuration"]["spectra"]["estimator"] == "welch"
+    assert not (tmp_path / "reports" / "toml-run" / "report.pdf").exists()
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["fit", "missing.rnx", "--nav", "nav.rnx"], "missing.rnx: observation file not found"),
+        (["fit", "--frobnicate"], "unrecognized arguments: --frobnicate"),
+        (["fit", "a.rnx", "--method", "da"], "--method da needs two observation files"),
+        (["fit", "--config", "nope.toml"], "nope.toml: configuration file not found"),
+        (["report", "nothing.json"], "nothing.json: result file not found"),
+    ],
+)
+def test_cli_errors_one_line_exit_2_no_output(tmp_path, args, message):
+    (tmp_path / "a.rnx").write_text("x")
+    r = run_cli(*args, cwd=tmp_path)
+    assert r.returncode == 2, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and message in lines[0], r.stderr
+    assert not (tmp_path / "reports").exists()
+
+
+def test_bad_toml_option(tmp_path):
+    cfg = tmp_path / "bad.toml"
+    cfg.write_text("[spectra]\nestimater = 'welch'\n")
+    with pytest.raises(Exception, match="unknown option spectra.estimater"):
+        FitConfig.from_toml(cfg)
+
+
+@pytest.mark.realdata
+@pytest.mark.slow
+@pytest.mark.parametrize("case", ["esbc-df", "upc-da"])
+def test_fit_real_data(tmp_path, case):
+    if case == "esbc-df":
+        args = [shared_file(ESBC_OBS), "--nav", shared_file(ESBC_NAV), "--cutoff-hz", "9.55e-4"]
+    else:
+        args = [shared_file(UPC1_OBS), shared_file(UPC2_OBS), "--nav", shared_file(UPC_NAV)]
+    r = run_cli("fit", *args, "--name", case, "--quiet", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    out = tmp_path / "reports" / case
+    d = FitResult.from_json(out / "result.json").data
+    b = d["bound"]
+    print(f"{case}: sigma_GM {100 * b['sigma_gm_m']:.2f} cm, tau {b['tau_s']:.0f} s, "
+          f"sigma_WN {100 * b['sigma_wn_m']:.2f} cm, {d['windows']['count']} windows, "
+          f"validation {d['validation']['verdict']}")  # fmt: skip
+    assert 1e-4 < b["sigma_gm_m"] < 0.05
+    assert d["method"] == ("DF" if case == "esbc-df" else "DA")
+    if case == "esbc-df":
+        assert d["sampling"]["nyquist_hz"] == pytest.approx(1 / 60)
+        assert max(d["figures"]["bound_curve"]["f_hz"]) <= 1 / 60 * (1 + 1e-9)
+    else:
+        assert any("cancel" in w for w in d["warnings"])
+    assert (out / "report.html").stat().st_size > 100_000
+    assert (out / "report.pdf").stat().st_size > 50_000
+
+
+def _not_blank(png: Path) -> float:
+    import matplotlib.image as mpimg
+
+    img = mpimg.imread(png)
+    return float(np.std(img[..., :3]))
+
+
+@pytest.mark.skipif(
+    shutil.which("chromium") is None or shutil.which("pdftoppm") is None,
+    reason="needs Debian's chromium and poppler-utils (installed by .ci/run)",
+)
+def test_reports_as_a_person_sees_them(demo_run, tmp_path):
+    """Render report.html in headless Chromium and the PDF pages with pdftoppm."""
+    work, _ = demo_run
+    out = work / "reports" / "demo"
+    shot = tmp_path / "report.png"
+    subprocess.run(
+        ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
+         "--no-first-run", "--disable-background-networking", "--disable-component-update",
+         "--disable-sync", f"--user-data-dir={tmp_path / 'ud'}", "--window-size=1100,2400",
+         f"--screenshot={shot}", (out / "report.html").as_uri()],
+        capture_output=True, timeout=120, check=True,
+    )  # fmt: skip
+    assert shot.stat().st_size > 20_000 and _not_blank(shot) > 0.05
+    subprocess.run(
+        ["pdftoppm", "-r", "40", "-png", str(out / "report.pdf"), str(tmp_path / "page")],
+        check=True, timeout=120,
+    )  # fmt: skip
+    pages = sorted(tmp_path.glob("page-*.png"))
+    assert len(pages) >= 5
+    for p in pages:
+        assert _not_blank(p) > 0.02, p.name
