@@ -101,6 +101,60 @@ def _build_blocks(
     return blocks
 
 
+_V3_DATE = ((2, 6), (7, 9), (10, 12), (13, 15), (16, 18), (18, 29))
+_V2_DATE = ((1, 3), (4, 6), (7, 9), (10, 12), (13, 15), (15, 26))
+
+
+class _Collector:
+    """Gathers epochs and satellite records while a data section is scanned."""
+
+    def __init__(self, header: ObsHeader, path: Path, systems: Collection[str] | None) -> None:
+        self.header, self.path, self.systems = header, path, systems
+        self.times: list[tuple] = []
+        self.flags: list[int] = []
+        self.records: dict[str, list[bytes]] = {}
+        self.line_of: dict[str, list[int]] = {}
+        self.epoch_of: dict[str, list[int]] = {}
+        self.sat_of: dict[str, list[str]] = {}
+
+    def epoch(self, ln: bytes, i: int, flag: int, cols: tuple[tuple[int, int], ...]) -> int:
+        """Record an epoch's date and flag; return its index."""
+        try:
+            date = tuple(int(ln[a:b]) for a, b in cols[:5]) + (float(ln[cols[5][0] : cols[5][1]]),)
+        except ValueError:
+            raise InputError(
+                f"bad epoch date {ln[: cols[5][1]].decode('ascii', 'replace')!r}",
+                path=self.path,
+                line=_error_line(self.header, i),
+            ) from None
+        self.times.append(date)
+        self.flags.append(flag)
+        return len(self.flags) - 1
+
+    def record(self, sys_: str, rec: bytes, j: int, e: int, sat: str) -> None:
+        """Keep one satellite record (line ``j``, epoch ``e``) if its system is wanted."""
+        if self.systems is not None and sys_ not in self.systems:
+            return
+        if sys_ not in self.records:
+            self.records[sys_], self.line_of[sys_] = [], []
+            self.epoch_of[sys_], self.sat_of[sys_] = [], []
+        self.records[sys_].append(rec)
+        self.line_of[sys_].append(j)
+        self.epoch_of[sys_].append(e)
+        self.sat_of[sys_].append(sat)
+
+    def finish(
+        self, codes_wanted: Collection[str] | None, offset: int
+    ) -> tuple[np.ndarray, np.ndarray, dict[str, RawBlock]]:
+        """Return epochs (GPS s), epoch flags and the per-system blocks."""
+        t = _epoch_times(self.times, self.header)
+        blocks = _build_blocks(
+            self.line_of, self.epoch_of, self.records, self.sat_of, self.header, self.path,
+            len(self.flags), codes_wanted, offset,
+        )  # fmt: skip
+        return t, np.asarray(self.flags, dtype=np.int8), blocks
+
+
 def parse_v3(
     body: bytes,
     header: ObsHeader,
@@ -121,12 +175,7 @@ def parse_v3(
             path=path,
             line=_error_line(header, 0),
         )
-    times: list[tuple] = []
-    flags: list[int] = []
-    sat_lines: dict[str, list[int]] = {}
-    epoch_of_line: dict[str, list[int]] = {}
-    records: dict[str, list[bytes]] = {}
-    sat_of_line: dict[str, list[str]] = {}
+    acc = _Collector(header, path, systems)
     starts.append(n_lines)
     for k in range(len(starts) - 1):
         i, nxt = starts[k], starts[k + 1]
@@ -150,54 +199,12 @@ def parse_v3(
             )
         if flag > 1:
             continue  # event records (2-5) and cycle-slip records (6) carry no observations
-        try:
-            times.append(
-                (
-                    int(ln[2:6]),
-                    int(ln[7:9]),
-                    int(ln[10:12]),
-                    int(ln[13:15]),
-                    int(ln[16:18]),
-                    float(ln[18:29]),
-                )
-            )
-        except ValueError:
-            raise InputError(
-                f"bad epoch date {ln[2:29].decode('ascii', 'replace')!r}",
-                path=path,
-                line=_error_line(header, i),
-            ) from None
-        e = len(flags)
-        flags.append(flag)
+        e = acc.epoch(ln, i, flag, _V3_DATE)
         for j in range(i + 1, i + 1 + nsat):
             rec = lines[j]
             sys_ = chr(rec[0]) if rec else " "
-            if systems is not None and sys_ not in systems:
-                continue
-            if sys_ not in records:
-                records[sys_], sat_lines[sys_], epoch_of_line[sys_], sat_of_line[sys_] = (
-                    [],
-                    [],
-                    [],
-                    [],
-                )
-            records[sys_].append(rec)
-            sat_lines[sys_].append(j)
-            epoch_of_line[sys_].append(e)
-            sat_of_line[sys_].append(rec[:3].decode("ascii", "replace").replace(" ", "0"))
-    t = _epoch_times(times, header)
-    blocks = _build_blocks(
-        sat_lines,
-        epoch_of_line,
-        records,
-        sat_of_line,
-        header,
-        path,
-        len(flags),
-        codes_wanted,
-        3,
-    )
-    return t, np.asarray(flags, dtype=np.int8), blocks
+            acc.record(sys_, rec, j, e, rec[:3].decode("ascii", "replace").replace(" ", "0"))
+    return acc.finish(codes_wanted, 3)
 
 
 def parse_v2(
@@ -215,12 +222,7 @@ def parse_v2(
     n_types = len(next(iter(header.obs_types.values())))
     per_sat = -(-n_types // 5)
     default_sys = header.file_system if header.file_system != "M" else "G"
-    times: list[tuple] = []
-    flags: list[int] = []
-    sat_lines: dict[str, list[int]] = {}
-    epoch_of_line: dict[str, list[int]] = {}
-    records: dict[str, list[bytes]] = {}
-    sat_of_line: dict[str, list[str]] = {}
+    acc = _Collector(header, path, systems)
     i = 0
     while i < n_lines:
         ln = lines[i]
@@ -251,53 +253,13 @@ def parse_v2(
                 path=path,
                 line=_error_line(header, i),
             )
-        try:
-            times.append(
-                (
-                    int(ln[1:3]),
-                    int(ln[4:6]),
-                    int(ln[7:9]),
-                    int(ln[10:12]),
-                    int(ln[13:15]),
-                    float(ln[15:26]),
-                )
-            )
-        except ValueError:
-            raise InputError(
-                f"bad epoch date {ln[:26].decode('ascii', 'replace')!r}",
-                path=path,
-                line=_error_line(header, i),
-            ) from None
-        e = len(flags)
-        flags.append(flag)
-        for s, sat in enumerate(sats):
+        e = acc.epoch(ln, i, flag, _V2_DATE)
+        for s_idx, sat in enumerate(sats):
             sys_ = sat[0] if sat[0] != " " else default_sys
-            j = first_obs + s * per_sat
+            j = first_obs + s_idx * per_sat
             if systems is not None and sys_ not in systems:
                 continue
             rec = b"".join(lines[j + r][:80].ljust(80) for r in range(per_sat))
-            if sys_ not in records:
-                records[sys_], sat_lines[sys_], epoch_of_line[sys_], sat_of_line[sys_] = (
-                    [],
-                    [],
-                    [],
-                    [],
-                )
-            records[sys_].append(rec)
-            sat_lines[sys_].append(j)
-            epoch_of_line[sys_].append(e)
-            sat_of_line[sys_].append(sys_ + sat[1:].replace(" ", "0"))
+            acc.record(sys_, rec, j, e, sys_ + sat[1:].replace(" ", "0"))
         i = first_obs + nsat * per_sat
-    t = _epoch_times(times, header)
-    blocks = _build_blocks(
-        sat_lines,
-        epoch_of_line,
-        records,
-        sat_of_line,
-        header,
-        path,
-        len(flags),
-        codes_wanted,
-        0,
-    )
-    return t, np.asarray(flags, dtype=np.int8), blocks
+    return acc.finish(codes_wanted, 0)
