@@ -31,7 +31,15 @@ def test_help_lists_subcommands():
 
 
 def test_pending_subcommand_says_so_and_fails(capsys):
-    assert main(["cutoff"]) == 1
+    from psdbound.cli.main import _PENDING, build_parser
+
+    sub = next(a for a in build_parser()._actions if a.dest == "command")
+    pending = [n for n in _PENDING if "not available yet" in (sub.choices[n].description or "")
+               or n not in sub.choices]  # fmt: skip
+    pending = [n for n in pending if n in sub.choices]
+    if not pending:
+        pytest.skip("every pipeline stage is available")
+    assert main([pending[0]]) == 1
     assert "not available yet" in capsys.readouterr().err
 
 

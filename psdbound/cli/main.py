@@ -59,7 +59,9 @@ def build_parser() -> argparse.ArgumentParser:
     for name, (text, issue) in _PENDING.items():
         if name in sub.choices:
             continue
-        sp = sub.add_parser(name, help=f"{text} (not available yet)", description=text)
+        sp = sub.add_parser(
+            name, help=f"{text} (not available yet)", description=f"{text} (not available yet)"
+        )
         sp.add_argument("args", nargs=argparse.REMAINDER, help=argparse.SUPPRESS)
         sp.set_defaults(func=_pending(name, issue))
     return parser

@@ -161,7 +161,31 @@ def _validation(config: FitConfig, f_c_hz: float | None, method: str) -> dict[st
     report = validate_cutoff(
         list(v.geometries), cutoff_hz=f_c_hz, rate=v.rate, alpha=v.alpha, threshold=v.threshold
     )
-    return report.to_dict()
+    out = report.to_dict()
+    out["applicable"] = True
+    out["summary"] = (
+        f"{'pass' if report.passed else 'fail'}: largest fraction of multipath power below "
+        f"f_c over {', '.join(v.geometries)} (physical convention) vs threshold "
+        f"{100 * v.threshold:g} %"
+    )
+    cases: dict[str, dict[str, Any]] = {}
+    for chk in report.expansion:
+        h = chk.second
+        f_hz = np.asarray(h.orders, dtype=float) * chk.rate.frequency_hz
+        keep = slice(0, 2000)
+        case = cases.setdefault(
+            chk.geometry.label,
+            {"label": f"{chk.geometry.label}, rate {chk.rate.name} "
+                      f"({chk.rate.frequency_hz:.3g} Hz), alpha {chk.alpha:g}"},
+        )  # fmt: skip
+        case[chk.convention] = {
+            "f_hz": f_hz[keep],
+            "power": np.asarray(h.power_rad2)[keep],
+            "fraction_below": chk.fraction_below_cutoff,
+            "z": chk.z,
+        }
+    out["figure"] = {"cases": list(cases.values())}
+    return out
 
 
 def run_fit(config: FitConfig, *, progress: Progress | None = None) -> FitResult:

@@ -1,0 +1,244 @@
+"""``psdbound validate``: does a cutoff remove too much multipath.
+
+Registered by :mod:`psdbound.cli.main` through :func:`add_parser`; the
+command runs :func:`psdbound.validation.validate_cutoff`, prints the table
+and, with ``--out``, writes ``validation.csv``, ``validation.json`` and the
+figures ``validation_expansion.png`` (and ``validation_direct.png`` when a
+direct simulation ran), each atomically. A failing verdict is a result,
+not an error: the exit code is 0 unless the input is bad (2).
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import json
+import os
+import re
+import tempfile
+from pathlib import Path
+from typing import Any
+
+from psdbound.errors import InputError
+
+__all__ = ["add_parser", "run"]
+
+_OUTPUTS = ("validation.csv", "validation.json")
+
+
+def add_parser(subparsers: Any) -> None:
+    """Add the ``validate`` subcommand to an ``add_subparsers()`` object.
+
+    Parameters
+    ----------
+    subparsers : argparse._SubParsersAction
+        From :meth:`argparse.ArgumentParser.add_subparsers`.
+    """
+    p = subparsers.add_parser(
+        "validate",
+        help="validate a cutoff with the Jacobi-Anger expansion and direct simulation",
+        description="Fraction of geometric multipath power below a high-pass cutoff, "
+        "for ground (h) and wall (d) reflections, from the Jacobi-Anger expansion "
+        "(thesis model and aircraft attitude oscillations) and from a direct simulation "
+        "of the exact phase error along satellite passes or oscillations; pass/fail "
+        "against a threshold, in the thesis convention (z = 2D/lambda) and the physical "
+        "one (z = 4 pi D/lambda). The verdict uses the physical convention.",
+        epilog="example: psdbound validate --cutoff-hz 9.55e-4 --geometry wall:d=25 "
+        "--geometry ground:h=1.5 --rate orbit --out out/",
+    )
+    p.add_argument("--cutoff-hz", type=float, required=True, help="high-pass cutoff f_c, Hz")
+    p.add_argument(
+        "--geometry",
+        action="append",
+        default=[],
+        metavar="SPEC",
+        help="reflection, repeatable: wall:d=METRES or ground:h=METRES",
+    )
+    p.add_argument(
+        "--rate",
+        default="orbit",
+        help="geometry rate: orbit (GPS, half a sidereal day), orbit-galileo, orbit-glonass, "
+        "orbit-beidou, an aircraft mode (phugoid, spiral, or from --modes), or a frequency "
+        "in Hz (default orbit)",
+    )
+    p.add_argument("--modes", metavar="FILE", help="TOML file adding aircraft modes")
+    p.add_argument(
+        "--theta0-deg",
+        type=float,
+        default=30.0,
+        help="aircraft modes: mean angle of arrival relative to the reflector, deg (30)",
+    )
+    p.add_argument(
+        "--amplitude-deg",
+        type=float,
+        help="aircraft modes: attitude oscillation amplitude, deg (default: the mode's, 2)",
+    )
+    p.add_argument("--nav", metavar="FILE", help="navigation or SP3 file: simulate real passes")
+    p.add_argument(
+        "--receiver-ecef",
+        type=float,
+        nargs=3,
+        metavar=("X", "Y", "Z"),
+        help="receiver ECEF position for --nav, m",
+    )
+    p.add_argument("--system", default="G", help="satellite system of the passes (G)")
+    p.add_argument("--sat", action="append", help="satellite for --nav, repeatable (default all)")
+    p.add_argument(
+        "--elevation-mask-deg", type=float, default=5.0, help="elevation mask of the passes (5)"
+    )
+    p.add_argument(
+        "--min-pass-min", type=float, default=60.0, help="shortest pass simulated, minutes (60)"
+    )
+    p.add_argument(
+        "--alpha", type=float, default=0.1, help="reflected/direct amplitude ratio (0.1)"
+    )
+    p.add_argument(
+        "--threshold",
+        type=float,
+        default=0.10,
+        help="largest acceptable fraction of multipath power below f_c (0.10)",
+    )
+    p.add_argument(
+        "--convention",
+        choices=("both", "physical", "thesis"),
+        default="both",
+        help="phase convention(s) to report (both)",
+    )
+    p.add_argument(
+        "--wavelength-m", type=float, help="carrier wavelength, m (default GPS L1, 0.190294)"
+    )
+    p.add_argument(
+        "--distance-tolerance-m",
+        type=float,
+        default=0.0,
+        help="also sweep each distance over +- this many metres and judge the worst (0)",
+    )
+    p.add_argument("--out", metavar="DIR", help="write table (CSV, JSON) and PNG figures here")
+    p.add_argument("--no-figures", action="store_true", help="with --out: skip the PNG figures")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run ``psdbound validate``.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed options of :func:`add_parser`.
+
+    Returns
+    -------
+    int
+        0 (also when the verdict is a failure).
+
+    Raises
+    ------
+    InputError
+        Bad geometry, distance, cutoff, rate, mode file, navigation file or
+        output folder.
+    """
+    from psdbound.validation import (
+        CONVENTIONS,
+        GPS_L1_WAVELENGTH_M,
+        mode_table,
+        validate_cutoff,
+    )
+
+    if not args.geometry:
+        raise InputError("give at least one --geometry, e.g. --geometry wall:d=25")
+    if not (args.cutoff_hz > 0.0):
+        raise InputError(f"--cutoff-hz must be > 0, got {args.cutoff_hz}")
+    if args.nav and args.receiver_ecef is None:
+        raise InputError("--nav needs --receiver-ecef X Y Z (receiver position, m)")
+    if args.min_pass_min <= 0.0:
+        raise InputError(f"--min-pass-min must be > 0, got {args.min_pass_min}")
+    for sat in args.sat or ():
+        if not re.fullmatch(r"[A-Z]\d{2}", sat):
+            raise InputError(f"--sat {sat!r}: expected a satellite id such as G05")
+    modes = mode_table(args.modes) if args.modes else None
+    orbit = None
+    if args.nav:
+        from psdbound.io import read_orbit
+
+        orbit = read_orbit(args.nav)
+    conventions = CONVENTIONS if args.convention == "both" else (args.convention,)
+    out = Path(args.out) if args.out else None
+    if out is not None:
+        try:
+            out.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise InputError(f"cannot create output folder: {exc.strerror}", path=out) from None
+    report = validate_cutoff(
+        args.geometry,
+        cutoff_hz=args.cutoff_hz,
+        rate=args.rate,
+        alpha=args.alpha,
+        threshold=args.threshold,
+        conventions=conventions,
+        wavelength_m=GPS_L1_WAVELENGTH_M if args.wavelength_m is None else args.wavelength_m,
+        modes=modes,
+        theta0_deg=args.theta0_deg,
+        amplitude_deg=args.amplitude_deg,
+        orbit=orbit,
+        receiver_xyz_m=args.receiver_ecef,
+        sats=args.sat,
+        system=args.system,
+        elevation_mask_deg=args.elevation_mask_deg,
+        min_pass_s=args.min_pass_min * 60.0,
+        distance_tolerance_m=args.distance_tolerance_m,
+    )
+    print(report.summary())
+    if out is not None:
+        written = _write_outputs(report, out, figures=not args.no_figures)
+        print("wrote " + ", ".join(str(p) for p in written))
+    return 0
+
+
+def _atomic_text(path: Path, text: str) -> Path:
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8", newline="") as fh:
+            fh.write(text)
+        mask = os.umask(0)
+        os.umask(mask)
+        os.chmod(tmp, 0o666 & ~mask)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path
+
+
+def _csv_text(rows: list[dict[str, Any]]) -> str:
+    fields: list[str] = []
+    for r in rows:
+        fields += [k for k in r if k not in fields]
+    buf = io.StringIO()
+    w = csv.DictWriter(buf, fieldnames=fields, lineterminator="\n")
+    w.writeheader()
+    for r in rows:
+        w.writerow(
+            {
+                k: json.dumps(v) if isinstance(v, list | dict) else ("" if v is None else v)
+                for k, v in r.items()
+            }
+        )
+    return buf.getvalue()
+
+
+def _write_outputs(report: Any, out: Path, *, figures: bool) -> list[Path]:
+    written = [
+        _atomic_text(out / _OUTPUTS[0], _csv_text(report.rows())),
+        _atomic_text(out / _OUTPUTS[1], json.dumps(report.to_dict(), indent=2) + "\n"),
+    ]
+    if figures:
+        from psdbound.validation.figures import plot_direct, plot_expansion, save_figure
+
+        written.append(
+            save_figure(plot_expansion(report.expansion), out / "validation_expansion.png")
+        )
+        if report.direct:
+            fig = plot_direct(report.direct, report.expansion)
+            written.append(save_figure(fig, out / "validation_direct.png"))
+    return written

@@ -1,0 +1,114 @@
+"""Cutoff validation: how much multipath does the ionosphere high-pass remove?
+
+A cutoff that removes multipath along with the ionosphere makes the PSD
+bound optimistic. This package predicts the fraction of multipath power
+below the cutoff ``f_c`` for specular ground and wall reflections (method.md
+section 3, thesis section 2.7) and gives a pass/fail verdict against a
+threshold (default 10 %):
+
+* :func:`validate_cutoff` -> :class:`ValidationReport` runs everything;
+* :func:`check_rotating` (the thesis's Jacobi-Anger model, the geometry
+  angle turning at the orbit or mode rate) and :func:`check_oscillation`
+  (an aircraft attitude oscillation) -> :class:`ExpansionCheck`;
+* :func:`direct_check` -> :class:`DirectCheck`: the exact phase error
+  simulated along a real satellite pass (:func:`satellite_passes`) or an
+  oscillation (:func:`oscillation_track`), its tapered periodogram and
+  fraction, independent of the expansion;
+* :func:`rotating_harmonics`, :func:`oscillation_harmonics` ->
+  :class:`Harmonics` with rigorous truncation bounds
+  (:func:`terms_for_tolerance`, :func:`truncation_bound`);
+* geometries (:class:`Reflection`, :func:`parse_geometry`) in two phase
+  conventions, labelled everywhere: ``"physical"`` (``z = 4 pi D /
+  lambda``) and ``"thesis"`` (``z = 2 D / lambda``);
+* aircraft modes (:data:`AIRCRAFT_MODES`, :func:`mode_table`,
+  :func:`load_modes`) and orbit rates (:func:`resolve_rate`);
+* figures in :mod:`psdbound.validation.figures` (matplotlib, imported on
+  demand).
+"""
+
+from __future__ import annotations
+
+from psdbound.validation.cutoff import (
+    DEFAULT_THRESHOLD,
+    check_oscillation,
+    check_rotating,
+    power_fraction_below,
+)
+from psdbound.validation.direct import (
+    SatellitePass,
+    direct_check,
+    oscillation_track,
+    phase_error_rad,
+    sampling_interval_s,
+    satellite_passes,
+    tapered_periodogram,
+)
+from psdbound.validation.geometry import (
+    CONVENTION_LABELS,
+    CONVENTIONS,
+    GPS_L1_WAVELENGTH_M,
+    Reflection,
+    parse_geometry,
+    phase_scale,
+)
+from psdbound.validation.jacobi_anger import (
+    Harmonics,
+    bessel_tail_bound,
+    closed_form_power_rad2,
+    oscillation_harmonics,
+    rotating_harmonics,
+    series_coefficients,
+    terms_for_tolerance,
+    truncation_bound,
+)
+from psdbound.validation.modes import (
+    AIRCRAFT_MODES,
+    ORBIT_RATES_HZ,
+    DynamicMode,
+    RateSource,
+    load_modes,
+    mode_table,
+    resolve_rate,
+)
+from psdbound.validation.results import DirectCheck, ExpansionCheck, ValidationReport
+from psdbound.validation.validate import DEFAULT_THETA0_DEG, validate_cutoff
+
+__all__ = [
+    "AIRCRAFT_MODES",
+    "CONVENTIONS",
+    "CONVENTION_LABELS",
+    "DEFAULT_THETA0_DEG",
+    "DEFAULT_THRESHOLD",
+    "GPS_L1_WAVELENGTH_M",
+    "ORBIT_RATES_HZ",
+    "DirectCheck",
+    "DynamicMode",
+    "ExpansionCheck",
+    "Harmonics",
+    "RateSource",
+    "Reflection",
+    "SatellitePass",
+    "ValidationReport",
+    "bessel_tail_bound",
+    "check_oscillation",
+    "check_rotating",
+    "closed_form_power_rad2",
+    "direct_check",
+    "load_modes",
+    "mode_table",
+    "oscillation_harmonics",
+    "oscillation_track",
+    "parse_geometry",
+    "phase_error_rad",
+    "phase_scale",
+    "power_fraction_below",
+    "resolve_rate",
+    "rotating_harmonics",
+    "sampling_interval_s",
+    "satellite_passes",
+    "series_coefficients",
+    "tapered_periodogram",
+    "terms_for_tolerance",
+    "truncation_bound",
+    "validate_cutoff",
+]
