@@ -7,6 +7,11 @@ from pathlib import Path
 
 import pytest
 
+# tiny matrices everywhere: BLAS threads only add contention on the 2-core machines
+# (effective because nothing has loaded numpy's BLAS before conftest is imported)
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
 _REPO = Path(__file__).resolve().parents[1]
 SHARED_RINEX = (
     Path(os.environ.get("PSDBOUND_SHARED_DATA", _REPO.parent / "shared" / "data")) / "rinex"

@@ -1,0 +1,74 @@
+"""Kalman-filter tools for KF-ARAIM: the bound as a filter model, and its verification.
+
+Public surface:
+
+* :class:`GaussMarkovBound` -- the bound (from parameters, a
+  :class:`~psdbound.spectra.BoundFit` or a ``result.json``), its PSDs,
+  autocovariance and :meth:`~GaussMarkovBound.to_state_space` ``(Phi, Qd, R)``
+* :func:`augment_gm_states` -> :class:`AugmentedModel` -- one Gauss-Markov
+  multipath state per measurement appended to a filter's ``(F, Q, H, R)``
+* :func:`analyze_covariance` -> :class:`CovarianceAnalysis` -- true vs
+  filter error covariance, step by step and in steady state, for a true
+  multipath given as an :class:`ErrorProcess`, a :class:`SampledPSD` or
+  :class:`ErrorSequences`
+* aviation utilities (:mod:`psdbound.kalman.aviation`): airborne sigma curves,
+  iono-free factor, carrier-smoothing inflation, ``xi(tau)``, Gaussian
+  overbound
+"""
+
+from __future__ import annotations
+
+from psdbound.kalman.augment import AugmentedModel, augment_gm_states
+from psdbound.kalman.aviation import (
+    F_L1_HZ,
+    F_L5_HZ,
+    alpha_for_inflation,
+    alpha_from_tau,
+    gaussian_overbound_sigma,
+    hatch_filter_variance,
+    iono_free_factor,
+    qq_ratio,
+    running_mean_variance,
+    sigma_air_m,
+    sigma_multipath_airborne_m,
+    sigma_noise_airborne_m,
+    smoothing_sigma_factor,
+    smoothing_time_ratio,
+    smoothing_variance_factor,
+)
+from psdbound.kalman.bound import WHITE_NOISE_MODES, GaussMarkovBound, GMStateSpace
+from psdbound.kalman.covariance import (
+    CovarianceAnalysis,
+    ErrorProcess,
+    ErrorSequences,
+    SampledPSD,
+    analyze_covariance,
+)
+
+__all__ = [
+    "F_L1_HZ",
+    "F_L5_HZ",
+    "WHITE_NOISE_MODES",
+    "AugmentedModel",
+    "CovarianceAnalysis",
+    "ErrorProcess",
+    "ErrorSequences",
+    "GMStateSpace",
+    "GaussMarkovBound",
+    "SampledPSD",
+    "alpha_for_inflation",
+    "alpha_from_tau",
+    "analyze_covariance",
+    "augment_gm_states",
+    "gaussian_overbound_sigma",
+    "hatch_filter_variance",
+    "iono_free_factor",
+    "qq_ratio",
+    "running_mean_variance",
+    "sigma_air_m",
+    "sigma_multipath_airborne_m",
+    "sigma_noise_airborne_m",
+    "smoothing_sigma_factor",
+    "smoothing_time_ratio",
+    "smoothing_variance_factor",
+]
