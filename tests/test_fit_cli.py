@@ -182,3 +182,13 @@ def test_reports_as_a_person_sees_them(demo_run, tmp_path):
     assert len(pages) >= 5
     for p in pages:
         assert _not_blank(p) > 0.02, p.name
+
+
+def test_cutoff_map_lookup_nearest_station():
+    from psdbound.pipeline.fit import cutoff_from_map
+
+    f_c, info = cutoff_from_map(41.84, -87.63)  # Chicago -> SASK (Saskatoon)
+    assert info["station"] == "SASK" and 10 < info["station_distance_deg"] < 20
+    assert 1e-4 < f_c < 1 / 24
+    f_c2, info2 = cutoff_from_map(-26.0, -110.0)
+    assert info2["station"] == "ISPA" and f_c2 != f_c

@@ -64,9 +64,10 @@ class ArcsConfig:
 class CutoffConfig:
     """Ionosphere high-pass cutoff.
 
-    ``source``: ``auto`` (``given`` if ``f_c_hz`` is set, else the nearest
-    station of the cutoff map when available, else the thesis's Chicago
-    2020 value with a warning), ``given``, ``map`` or ``computed``.
+    ``source``: ``auto`` (``given`` if ``f_c_hz`` is set, else the thesis's
+    Chicago 2020 value 9.55e-4 Hz with a warning that also quotes the map),
+    ``given``, ``map`` (nearest of the 20 stations of the shipped 2020 map)
+    or ``computed`` (PyIRI at the receiver for the data's year, ~20 s).
     """
 
     f_c_hz: float | None = None

@@ -39,7 +39,7 @@ from psdbound.stationarity import (
     fit_mapping,
 )
 
-__all__ = ["run_fit", "THESIS_CUTOFF_HZ"]
+__all__ = ["run_fit", "THESIS_CUTOFF_HZ", "cutoff_from_map", "cutoff_computed"]
 
 #: The thesis's recommended cutoff for Chicago 2020 (maximum over the year).
 THESIS_CUTOFF_HZ = 9.55e-4
@@ -104,28 +104,81 @@ def _method(config: FitConfig, n_obs: int) -> str:
     return m
 
 
-def _cutoff(config: FitConfig, lat_lon: tuple[float, float] | None, warnings: list[str]):
+def cutoff_from_map(lat_deg: float, lon_deg: float) -> tuple[float, dict[str, Any]]:
+    """Recommended cutoff of the nearest station of the shipped 2020 cutoff map.
+
+    Parameters
+    ----------
+    lat_deg, lon_deg : float
+        Receiver position, degrees.
+
+    Returns
+    -------
+    f_c_hz : float
+        The nearest station's recommended (maximum) cutoff, Hz.
+    info : dict
+        Station, its distance (deg of arc), the map's days and settings.
+    """
+    import json
+    from importlib import resources
+
+    from psdbound.ionosphere import MAP_STATIONS, nearest_station
+
+    text = resources.files("psdbound.ionosphere").joinpath("data/cutoff_map_2020.json")
+    table = json.loads(text.read_text())
+    station, dist_deg = nearest_station(lat_deg, lon_deg, MAP_STATIONS)
+    row = next(r for r in table["stations"] if r["name"] == station.name)
+    return float(row["recommended_f_c_hz"]), {
+        "station": station.name,
+        "station_distance_deg": float(dist_deg),
+        "map": "psdbound/ionosphere/data/cutoff_map_2020.json",
+        "map_days": table["days"],
+        "map_note": table["note"],
+    }
+
+
+def cutoff_computed(lat_deg: float, lon_deg: float, year: int) -> tuple[float, dict[str, Any]]:
+    """Compute the cutoff for a position (PyIRI, nominal GPS, first Monday of each month).
+
+    Returns the recommended (maximum) f_c in Hz and the station summary.
+    """
+    from psdbound.ionosphere import select_days, station_cutoffs
+
+    res = station_cutoffs(lat_deg, lon_deg, select_days(year), name="receiver", workers=2)
+    summ = res.summary()
+    return float(summ["recommended_f_c_hz"]), {"computed": summ}
+
+
+def _cutoff(config: FitConfig, lat_lon: tuple[float, float] | None, year: int,
+            warnings: list[str]):  # fmt: skip
     c = config.cutoff
     src = c.source
     if src == "auto":
-        src = "given" if c.f_c_hz is not None else "map"
+        src = "given" if c.f_c_hz is not None else "default"
     if src == "given":
         if c.f_c_hz is None:
             raise InputError("cutoff source 'given' needs --cutoff-hz")
         return float(c.f_c_hz), "given", {}
-    if src in ("map", "computed"):
-        try:
-            from psdbound.ionosphere import cutoff_for_position  # type: ignore[attr-defined]
-        except ImportError:
-            cutoff_for_position = None
-        if cutoff_for_position is not None and lat_lon is not None:
-            f_c, info = cutoff_for_position(*lat_lon, computed=(src == "computed"))
-            return float(f_c), src, info
-        if c.source != "auto":
-            raise InputError(f"cutoff source {src!r} is not available in this installation")
+    if src in ("map", "computed", "default") and lat_lon is None:
+        if src != "default":
+            raise InputError(f"cutoff source {src!r} needs a receiver position")
+    if src == "map":
+        f_c, info = cutoff_from_map(*lat_lon)
+        return f_c, f"map (nearest station {info['station']})", info
+    if src == "computed":
+        f_c, info = cutoff_computed(*lat_lon, year)
+        return f_c, f"computed (PyIRI, {year})", info
+    if src == "default":
+        note = ""
+        if lat_lon is not None:
+            f_map, info = cutoff_from_map(*lat_lon)
+            note = (
+                f"; the 2020 cutoff map gives {f_map:.3g} Hz (nearest station {info['station']}), "
+                "about 10x higher because Lomb-Scargle leakage of the satellite passes sets its "
+                "40 dB point - use --cutoff-source map to apply it"
+            )
         warnings.append(
-            f"no cutoff given and no cutoff map available: used the thesis's Chicago 2020 "
-            f"value {THESIS_CUTOFF_HZ:g} Hz"
+            f"no cutoff given: used the thesis's Chicago 2020 value {THESIS_CUTOFF_HZ:g} Hz{note}"
         )
         return THESIS_CUTOFF_HZ, "default (thesis Chicago 2020 maximum)", {}
     raise InputError(f"unknown cutoff source {c.source!r}; use auto, given, map or computed")
@@ -260,7 +313,8 @@ def run_fit(config: FitConfig, *, progress: Progress | None = None) -> FitResult
         if pos is not None:
             lat, lon, _ = ecef_to_geodetic(np.asarray(pos))
             lat_lon = (float(lat), float(lon))
-        f_c, f_c_source, f_c_info = _cutoff(config, lat_lon, warnings)
+        year = int(str(obs[0].times[0])[:4])
+        f_c, f_c_source, f_c_info = _cutoff(config, lat_lon, year, warnings)
         say(f"dual-frequency isolation (high-pass {f_c:.4g} Hz)")
         hp = HighPass(kind=config.filter.kind, order=config.filter.order, edge=config.filter.edge)
         series = isolate_dual_frequency(arcs, f_c, highpass=hp)
