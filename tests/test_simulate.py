@@ -146,3 +146,17 @@ def test_cli_simulate_and_bad_input(tmp_path, capsys):
     assert main(["simulate", "--preset", "nope"]) == 2
     with pytest.raises(InputError, match="latitude"):
         preset("short").replace(lat_deg=95.0)
+
+
+def test_nominal_records_match_the_ionosphere_constellation():
+    """Two independent nominal GPS implementations (records vs direct) agree to 1 cm."""
+    from psdbound.io.nominal import nominal_navigation
+    from psdbound.io.timescales import calendar_to_gps_s
+    from psdbound.ionosphere import nominal_constellation
+
+    t0 = float(calendar_to_gps_s(2020, 6, 25, 0, 0, 0.0))
+    t = t0 + np.arange(0.0, 86400.0, 600.0)
+    nav, direct = nominal_navigation(t0, t0 + 86400.0), nominal_constellation("G")
+    for sat in ("G01", "G07", "G13", "G24"):
+        d = np.linalg.norm(nav.positions_ecef_m(sat, t) - direct.positions_ecef_m(sat, t), axis=1)
+        assert d.max() < 0.01, sat

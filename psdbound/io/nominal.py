@@ -3,7 +3,8 @@
 * GPS: the 24-slot reference constellation of the GPS SPS Performance
   Standard (table 3-1: six planes A-F, RAAN and argument of latitude per slot
   at 1993-07-01 00:00, Greenwich hour angle 18 h 36 min 14.4 s, circular
-  orbits, i = 55 deg, a = 26559.7 km). Slot ``A1`` .. ``F4`` is given PRN
+  orbits, i = 55 deg, a = 26559.7 km, two revolutions per sidereal day so the
+  ground track repeats every sidereal day). Slot ``A1`` .. ``F4`` is given PRN
   ``G01`` .. ``G24`` in that order.
 * Galileo: a Walker 24/3/1 constellation (i = 56 deg, a = 29600 km, planes
   at RAAN 0/120/240 deg, eight slots per plane 45 deg apart, phasing 15 deg
@@ -42,7 +43,11 @@ GPS_SLOTS = (
     ("E3", 152.847, 66.066), ("E4", 152.847, 333.686), ("F1", 212.847, 238.886),
     ("F2", 212.847, 345.226), ("F3", 212.847, 105.206), ("F4", 212.847, 135.346),
 )  # fmt: skip
-_GPS_EPOCH_GPS_S = float(calendar_to_gps_s(1993, 7, 1, 0, 0, 0.0)) + 8.0  # UTC + 8 s
+# 1993-07-01 00:00:00 UTC = 00:00:09 GPS (GPS - UTC became 9 s at that instant)
+_GPS_EPOCH_GPS_S = float(calendar_to_gps_s(1993, 7, 1, 0, 0, 9.0))
+_SIDEREAL_DAY_S = 2.0 * np.pi / 7.2921151467e-5
+#: Revolutions per sidereal day (GPS: exact repeat of the ground track).
+_REVS = {"G": 2.0, "E": 1.7}
 _GPS_GHA_DEG = (18 + 36 / 60 + 14.4 / 3600) * 15.0
 _GPS_A_M = 26559.7e3
 _GAL_EPOCH_GPS_S = float(calendar_to_gps_s(2000, 1, 1, 12, 0, 0.0)) + 13.0
@@ -102,7 +107,8 @@ def nominal_navigation(
     ephs = {}
     for system in systems:
         sats, lan0, u0, a, inc, epoch = _elements(system)
-        n = np.sqrt(_MU[system] / a**3)
+        n0 = np.sqrt(_MU[system] / a**3)  # Keplerian mean motion of the records
+        n = 2.0 * np.pi * _REVS[system] / _SIDEREAL_DAY_S  # nominal mean motion
         ns = len(sats)
         af0 = np.zeros(ns) if rng is None else rng.uniform(-5e-4, 5e-4, ns)
         af1 = np.zeros(ns) if rng is None else rng.uniform(-1e-11, 1e-11, ns)
@@ -129,7 +135,7 @@ def nominal_navigation(
             af1=np.array(rows["af1"]),
             af2=z.copy(),
             crs_m=z.copy(),
-            delta_n_rad_s=z.copy(),
+            delta_n_rad_s=np.full(m, n - n0),
             m0_rad=np.array(rows["m0"]),
             cuc_rad=z.copy(),
             e=z.copy(),

@@ -32,6 +32,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from psdbound.io.geometry import OMEGA_E_RAD_S
+from psdbound.io.nominal import GPS_SLOTS as _GPS_SLOTS
 from psdbound.io.timescales import calendar_to_gps_s
 
 __all__ = [
@@ -44,18 +45,8 @@ __all__ = [
 #: Sidereal day (Earth rotation period relative to the stars), s: 2 pi / omega_E.
 SIDEREAL_DAY_S = 2.0 * np.pi / OMEGA_E_RAD_S
 
-#: GPS SPS PS (2008) table 3.2-1: (slot, RAAN deg, argument of latitude deg) at
-#: 1993-07-01 00:00:00 UTC.
-GPS_SLOTS: tuple[tuple[str, float, float], ...] = (
-    ("A1", 272.847, 268.126), ("A2", 272.847, 161.786), ("A3", 272.847, 11.676),
-    ("A4", 272.847, 41.806), ("B1", 332.847, 80.956), ("B2", 332.847, 173.336),
-    ("B3", 332.847, 309.976), ("B4", 332.847, 204.376), ("C1", 32.847, 111.876),
-    ("C2", 32.847, 11.796), ("C3", 32.847, 339.666), ("C4", 32.847, 241.556),
-    ("D1", 92.847, 135.226), ("D2", 92.847, 265.446), ("D3", 92.847, 35.156),
-    ("D4", 92.847, 167.356), ("E1", 152.847, 197.046), ("E2", 152.847, 302.596),
-    ("E3", 152.847, 66.066), ("E4", 152.847, 333.686), ("F1", 212.847, 238.886),
-    ("F2", 212.847, 345.226), ("F3", 212.847, 105.206), ("F4", 212.847, 135.346),
-)  # fmt: skip
+#: GPS SPS PS (2008) table 3.2-1 (shared with the broadcast-record constellation).
+GPS_SLOTS = _GPS_SLOTS
 
 _GPS_GHA_DEG = (18.0 + 36.0 / 60.0 + 14.4 / 3600.0) * 15.0
 _GPS_RADIUS_M = 26_559.7e3

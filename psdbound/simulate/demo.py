@@ -22,7 +22,10 @@ from psdbound import __version__
 from psdbound.simulate.scenario import Scenario, preset
 from psdbound.simulate.simulator import simulate
 
-__all__ = ["DemoData", "cache_dir", "demo_data"]
+__all__ = ["DemoData", "cache_dir", "demo_data", "SIMULATOR_FORMAT"]
+
+#: Bumped whenever the simulator output changes for the same scenario (cache key).
+SIMULATOR_FORMAT = "s2"
 
 
 def cache_dir() -> Path:
@@ -93,7 +96,7 @@ def demo_data(
     target = (
         Path(folder)
         if folder is not None
-        else cache_dir() / f"demo-{sc.digest()[:12]}-{__version__}"
+        else cache_dir() / f"demo-{sc.digest()[:12]}-{__version__}-{SIMULATOR_FORMAT}"
     )
     data = _files(target, sc)
     complete = all(p.is_file() for p in (*data.obs_paths, data.nav_path, data.truth_json_path))
