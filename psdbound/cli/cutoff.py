@@ -298,23 +298,7 @@ def _station_figures(res: Any, out: Path, tag: str) -> list[Path]:
             np.asarray(series["delay_m"][j], dtype=np.float64),
             min_arc_s=s.min_arc_s,
         )
-        r = series_cutoff(
-            t,
-            y,
-            dt_s=s.sampling_s,
-            copies=s.copies,
-            oversample=s.oversample,
-            nyquist_fraction=s.nyquist_fraction,
-            criterion=s.criterion,
-            drop_db=s.drop_db,
-            reference=s.reference,
-            variance_m2=s.variance_m2,
-            degree=s.degree,
-            quantile=s.quantile,
-            envelope_method=s.envelope_method,
-            bins_per_decade=s.bins_per_decade,
-            keep_spectrum=True,
-        )
+        r = series_cutoff(t, y, **s.series_options(), keep_spectrum=True)
         files.append(
             plot_series_psd(
                 r,

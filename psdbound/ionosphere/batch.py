@@ -156,6 +156,23 @@ class CutoffSettings:
             if not ok:
                 raise InputError(message)
 
+    def series_options(self) -> dict[str, Any]:
+        """Return the keyword options of :func:`series_cutoff` for these settings."""
+        return {
+            "dt_s": self.sampling_s,
+            "copies": self.copies,
+            "oversample": self.oversample,
+            "nyquist_fraction": self.nyquist_fraction,
+            "criterion": self.criterion,
+            "drop_db": self.drop_db,
+            "reference": self.reference,
+            "variance_m2": self.variance_m2,
+            "degree": self.degree,
+            "quantile": self.quantile,
+            "envelope_method": self.envelope_method,
+            "bins_per_decade": self.bins_per_decade,
+        }
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict of the settings."""
         d = dataclasses.asdict(self)
@@ -480,22 +497,7 @@ def _day_task(spec: dict[str, Any]) -> dict[str, Any]:
                 }
             )
             continue
-        r = series_cutoff(
-            t,
-            y,
-            dt_s=s.sampling_s,
-            copies=s.copies,
-            oversample=s.oversample,
-            nyquist_fraction=s.nyquist_fraction,
-            criterion=s.criterion,
-            drop_db=s.drop_db,
-            reference=s.reference,
-            variance_m2=s.variance_m2,
-            degree=s.degree,
-            quantile=s.quantile,
-            envelope_method=s.envelope_method,
-            bins_per_decade=s.bins_per_decade,
-        )
+        r = series_cutoff(t, y, **s.series_options())
         row = {"date": spec["date"], "sat": sat}
         d = r.to_dict()
         d.pop("settings")
