@@ -18,15 +18,6 @@ EXIT_BAD_INPUT = 2
 # subcommand modules psdbound.cli.<name>, each with add_parser(sub) and run(args)
 _COMMANDS = ("inspect", "fit", "cutoff", "validate", "simulate", "report")
 
-# subcommands whose pipeline stage has not landed yet, and the issue that brings it
-_PENDING = {
-    "fit": ("fit a PSD bound to RINEX observations (or the demo data)", 8),
-    "cutoff": ("select the ionosphere high-pass cutoff frequency", 4),
-    "validate": ("validate a cutoff with the Jacobi-Anger expansion", 6),
-    "simulate": ("simulate observations with known multipath", 7),
-    "report": ("re-render a report from a result file", 8),
-}
-
 
 class _Parser(argparse.ArgumentParser):
     """ArgumentParser whose usage errors are one line and exit code 2."""
@@ -49,34 +40,8 @@ def build_parser() -> argparse.ArgumentParser:
     import importlib
 
     for name in _COMMANDS:
-        try:
-            module = importlib.import_module(f"psdbound.cli.{name}")
-        except ModuleNotFoundError as exc:
-            if exc.name != f"psdbound.cli.{name}":
-                raise
-            continue
-        module.add_parser(sub)
-    for name, (text, issue) in _PENDING.items():
-        if name in sub.choices:
-            continue
-        sp = sub.add_parser(
-            name, help=f"{text} (not available yet)", description=f"{text} (not available yet)"
-        )
-        sp.add_argument("args", nargs=argparse.REMAINDER, help=argparse.SUPPRESS)
-        sp.set_defaults(func=_pending(name, issue))
+        importlib.import_module(f"psdbound.cli.{name}").add_parser(sub)
     return parser
-
-
-def _pending(name: str, issue: int):  # noqa: ANN202
-    def run(args: argparse.Namespace) -> int:
-        print(
-            f"psdbound {name}: not available yet (this pipeline stage arrives with issue "
-            f"#{issue}); nothing was computed.",
-            file=sys.stderr,
-        )
-        return EXIT_INTERNAL
-
-    return run
 
 
 def main(argv: Sequence[str] | None = None) -> int:
