@@ -1,0 +1,141 @@
+"""Schema version ``"1"`` of ``result.json``: required fields, writing and checked reading."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from psdbound.common import atomic_write_text
+from psdbound.errors import InputError
+
+__all__ = [
+    "SCHEMA_VERSION",
+    "REQUIRED_FIELDS",
+    "to_jsonable",
+    "get_field",
+    "write_document",
+    "read_document",
+]
+
+SCHEMA_VERSION = "1"
+
+#: Dotted paths every result file must contain.
+REQUIRED_FIELDS = (
+    "schema_version",
+    "method",
+    "bound.sigma_gm_m",
+    "bound.tau_s",
+    "bound.sigma_wn_m",
+    "bound.n_wn_two_sided_m2_hz",
+    "cutoff.f_c_hz",
+    "cutoff.source",
+    "sampling.interval_s",
+    "sampling.nyquist_hz",
+    "mapping",
+    "windows.count",
+    "windows.total_duration_s",
+    "windows.per_window",
+    "validation",
+    "warnings",
+    "provenance.inputs",
+    "provenance.versions",
+    "provenance.configuration",
+    "provenance.created_utc",
+    "figures",
+)
+
+
+def to_jsonable(obj: Any) -> Any:
+    """Convert numpy arrays/scalars, tuples and paths to plain JSON data.
+
+    Non-finite floats become ``None`` (JSON has no NaN or infinity).
+    """
+    if isinstance(obj, dict):
+        return {str(k): to_jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [to_jsonable(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return to_jsonable(obj.tolist())
+    if isinstance(obj, np.generic):
+        return to_jsonable(obj.item())
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return None
+    if isinstance(obj, os.PathLike):
+        return os.fspath(obj)
+    return obj
+
+
+def get_field(document: dict[str, Any], dotted: str) -> Any:
+    """Return ``document[a][b]...`` for ``dotted = "a.b..."``; KeyError if absent."""
+    cur: Any = document
+    for part in dotted.split("."):
+        if not isinstance(cur, dict) or part not in cur:
+            raise KeyError(dotted)
+        cur = cur[part]
+    return cur
+
+
+def write_document(path: str | os.PathLike[str], document: dict[str, Any]) -> Path:
+    """Write a result document as JSON, atomically.
+
+    Parameters
+    ----------
+    path : str or path-like
+        Target file (``result.json``).
+    document : dict
+        The document; numpy values are converted, NaN becomes ``null``.
+
+    Returns
+    -------
+    Path
+        The written path.
+    """
+    text = json.dumps(to_jsonable(document), indent=1, allow_nan=False) + "\n"
+    return atomic_write_text(path, text)
+
+
+def read_document(path: str | os.PathLike[str]) -> dict[str, Any]:
+    """Read and check a result file.
+
+    Parameters
+    ----------
+    path : str or path-like
+        A ``result.json`` written by psdbound.
+
+    Returns
+    -------
+    dict
+        The document.
+
+    Raises
+    ------
+    InputError
+        Missing file, invalid JSON, wrong schema version or a missing field
+        (the message names the file and the field).
+    """
+    p = Path(path)
+    if not p.is_file():
+        raise InputError("result file not found", path=p)
+    try:
+        data = json.loads(p.read_text())
+    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
+        raise InputError(f"not a JSON result file: {exc}", path=p) from None
+    if not isinstance(data, dict):
+        raise InputError("not a psdbound result (top level is not an object)", path=p)
+    version = data.get("schema_version")
+    if version != SCHEMA_VERSION:
+        raise InputError(
+            f"result schema version {version!r} is not supported (expected {SCHEMA_VERSION!r})",
+            path=p,
+        )
+    for f in REQUIRED_FIELDS:
+        try:
+            get_field(data, f)
+        except KeyError:
+            raise InputError(f"result file lacks the field {f!r}", path=p) from None
+    return data
