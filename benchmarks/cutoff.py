@@ -50,7 +50,7 @@ def main() -> int:
         select_days,
         station_cutoffs,
     )
-    from psdbound.ionosphere._ls_astropy import expand
+    from psdbound.periodogram import replicate_series as expand
 
     days = select_days(2020)
     with tempfile.TemporaryDirectory(prefix="psdbound-cutoff-bench-") as cache:

@@ -1,21 +1,36 @@
 """psdbound: provable Gauss-Markov + white-noise PSD bounds of GNSS carrier-phase multipath.
 
+The front door (statsmodels-style)::
+
+    import psdbound
+    res = psdbound.fit("SITE.crx.gz", nav="SITE_MN.rnx.gz")   # or psdbound.fit() for the demo
+    print(res.summary())
+    res.report("reports/site")                                # result.json, HTML, PDF
+    again = psdbound.load("reports/site/result.json")
+
 Pipeline stages, one subpackage each (data flows one way)::
 
-    io          observations, orbits, geometry -> arcs
-    (isolation, ionosphere, stationarity, spectra, validation, kalman, reports)
-    cli         the ``python -m psdbound`` command line
+    io -> isolation -> stationarity -> spectra -> pipeline (result) -> reports
+    (ionosphere: cutoff; validation: cutoff check; kalman: filter tools;
+     simulate: data with known truth; cli: ``python -m psdbound``)
 """
 
 from __future__ import annotations
 
-from importlib.metadata import PackageNotFoundError, version
+from typing import Any
 
 from psdbound.errors import InputError, NoDataError
+from psdbound.version import __version__
 
-try:
-    __version__ = version("psdbound")
-except PackageNotFoundError:  # pragma: no cover - running from a source tree
-    __version__ = "0.0.0+unknown"
+__all__ = ["FitConfig", "FitResults", "InputError", "NoDataError", "__version__", "fit", "load"]
 
-__all__ = ["InputError", "NoDataError", "__version__"]
+_LAZY = {"fit", "load", "FitResults", "FitConfig"}
+
+
+def __getattr__(name: str) -> Any:
+    # the front door imports every stage: load it on first use, not on `import psdbound`
+    if name in _LAZY:
+        from psdbound import pipeline
+
+        return getattr(pipeline, name)
+    raise AttributeError(f"module 'psdbound' has no attribute {name!r}")

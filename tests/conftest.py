@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import sys
 from pathlib import Path
 
 import pytest
@@ -13,6 +14,8 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
 _REPO = Path(__file__).resolve().parents[1]
+# tests/ mirrors the packages (tests/io, tests/kalman, ...); shared helpers live here
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 SHARED_RINEX = (
     Path(os.environ.get("PSDBOUND_SHARED_DATA", _REPO.parent / "shared" / "data")) / "rinex"
 )

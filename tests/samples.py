@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from psdbound.io._header import ObsHeader
+from psdbound.io import ObsHeader
 from psdbound.io.obs import Observations, SystemBlock
 from psdbound.io.signals import wavelength_m
 from psdbound.io.timescales import calendar_to_gps_s

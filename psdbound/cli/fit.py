@@ -8,6 +8,7 @@ import sys
 import time
 from pathlib import Path
 
+from psdbound.cli.exit_codes import EXIT_NOT_BOUNDED, EXIT_OK
 from psdbound.errors import InputError
 
 __all__ = ["add_parser", "run", "add_output_options"]
@@ -34,7 +35,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "report.html and report.pdf. With no observation file, runs on the embedded demo.",
         epilog="Every option can also be set in --config FILE.toml (sections inputs, arcs, "
         "cutoff, filter, mapping, stationarity, spectra, bound, validation, output); "
-        "command-line options win. Exit codes: 0 ok, 2 bad input, 1 internal error.",
+        "command-line options win. Exit codes: 0 bounded; 3 ran but no trustworthy bound "
+        "(verdict not-bounded: reasons printed, outputs written); 2 bad input (nothing "
+        "written); 1 internal error.",
     )
     p.add_argument("obs", nargs="*", help="observation file(s): one (DF) or two (DA)")
     p.add_argument("--nav", help="navigation (RINEX 2/3) or SP3 file")
@@ -49,6 +52,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument("--min-arc-min", type=float, help="minimum arc length, minutes (30)")
     p.add_argument("--elevation-mask-deg", type=float, help="elevation mask, degrees (10)")
+    p.add_argument(
+        "--roti-threshold",
+        type=float,
+        help="screening: ROTI above this is ionosphere, TECU/min (0.15)",
+    )
     p.add_argument("--filter", choices=("butter", "cheby2", "fir"), help="high-pass design")
     p.add_argument("--filter-order", type=int, help="IIR filter order (4)")
     p.add_argument("--edge", choices=("trim", "pad"), help="filter edge handling (trim)")
@@ -105,6 +113,7 @@ def _config(args: argparse.Namespace):
     )
     cfg = cfg.updated("cutoff", f_c_hz=args.cutoff_hz, source=args.cutoff_source)
     cfg = cfg.updated("filter", kind=args.filter, order=args.filter_order, edge=args.edge)
+    cfg = cfg.updated("screening", roti_threshold_tecu_min=args.roti_threshold)
     cfg = cfg.updated("mapping", **mapping)
     cfg = cfg.updated(
         "stationarity",
@@ -152,17 +161,16 @@ def reporter(args: argparse.Namespace):
 
 def run(args: argparse.Namespace) -> int:
     """Run the fit and write the outputs; return the exit code."""
-    from psdbound.pipeline import run_fit
-    from psdbound.reports import write_report_folder
+    import psdbound
 
     cfg = _config(args)
     name = _run_name(cfg)
     out = Path(cfg.output.out) if cfg.output.out else Path("reports") / name
     say = reporter(args)
-    result = run_fit(cfg, progress=say)
+    result = psdbound.fit(config=cfg, progress=say)
     say(f"writing {out}/ (result.json, report.html{', report.pdf' if cfg.output.pdf else ''})")
-    paths = write_report_folder(result, out, pdf=cfg.output.pdf)
+    paths = result.report(out, pdf=cfg.output.pdf)
     print(result.summary())
     for p in paths.values():
         print(p)
-    return 0
+    return EXIT_OK if result.verdict == "bounded" else EXIT_NOT_BOUNDED

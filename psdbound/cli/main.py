@@ -6,14 +6,13 @@ import argparse
 import sys
 from collections.abc import Sequence
 
-from psdbound import __version__
+from psdbound.cli.exit_codes import EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_NOT_BOUNDED, EXIT_OK
 from psdbound.errors import InputError
+from psdbound.version import __version__
 
-__all__ = ["main", "build_parser", "EXIT_OK", "EXIT_BAD_INPUT", "EXIT_INTERNAL"]
+__all__ = ["main", "build_parser", "EXIT_OK", "EXIT_BAD_INPUT", "EXIT_INTERNAL",
+           "EXIT_NOT_BOUNDED"]
 
-EXIT_OK = 0
-EXIT_INTERNAL = 1
-EXIT_BAD_INPUT = 2
 
 # subcommand modules psdbound.cli.<name>, each with add_parser(sub) and run(args)
 _COMMANDS = ("inspect", "fit", "cutoff", "validate", "simulate", "report")
@@ -32,7 +31,9 @@ def build_parser() -> argparse.ArgumentParser:
         prog="psdbound",
         description="Provable Gauss-Markov + white-noise PSD bounds of GNSS "
         "carrier-phase multipath.",
-        epilog="Exit codes: 0 ok, 2 bad input, 1 internal error.",
+        epilog="Exit codes: 0 ok (fit: bounded); 3 fit ran but gives no trustworthy bound "
+        "(verdict not-bounded, reasons printed, outputs written); 2 bad input (one line, "
+        "nothing written); 1 internal error.",
     )
     parser.add_argument("--version", action="version", version=f"psdbound {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)

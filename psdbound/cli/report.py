@@ -26,12 +26,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Re-render; return the exit code."""
-    from psdbound.pipeline import FitResult
-    from psdbound.reports import write_report_folder
+    import psdbound
 
-    result = FitResult.from_json(args.result)
+    result = psdbound.load(args.result)
     out = Path(args.out) if args.out else Path(args.result).resolve().parent
-    paths = write_report_folder(result, out, pdf=not args.no_pdf)
+    paths = result.report(out, pdf=not args.no_pdf)
     if not args.quiet:
         for p in paths.values():
             print(p)

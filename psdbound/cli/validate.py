@@ -1,30 +1,23 @@
 """``psdbound validate``: does a cutoff remove too much multipath.
 
 Registered by :mod:`psdbound.cli.main` through :func:`add_parser`; the
-command runs :func:`psdbound.validation.validate_cutoff`, prints the table
-and, with ``--out``, writes ``validation.csv``, ``validation.json`` and the
-figures ``validation_expansion.png`` (and ``validation_direct.png`` when a
-direct simulation ran), each atomically. A failing verdict is a result,
-not an error: the exit code is 0 unless the input is bad (2).
+command checks the options, runs :func:`psdbound.validation.run_validation`
+(which, with ``--out``, writes ``validation.csv``, ``validation.json`` and
+the figures ``validation_expansion.png`` and, when a direct simulation ran,
+``validation_direct.png``, each atomically) and prints the table. A failing
+verdict is a result, not an error: the exit code is 0 unless the input is
+bad (2).
 """
 
 from __future__ import annotations
 
 import argparse
-import csv
-import io
-import json
-import os
 import re
-import tempfile
-from pathlib import Path
 from typing import Any
 
 from psdbound.errors import InputError
 
 __all__ = ["add_parser", "run"]
-
-_OUTPUTS = ("validation.csv", "validation.json")
 
 
 def add_parser(subparsers: Any) -> None:
@@ -138,12 +131,7 @@ def run(args: argparse.Namespace) -> int:
         Bad geometry, distance, cutoff, rate, mode file, navigation file or
         output folder.
     """
-    from psdbound.validation import (
-        CONVENTIONS,
-        GPS_L1_WAVELENGTH_M,
-        mode_table,
-        validate_cutoff,
-    )
+    from psdbound.validation import run_validation
 
     if not args.geometry:
         raise InputError("give at least one --geometry, e.g. --geometry wall:d=25")
@@ -156,89 +144,28 @@ def run(args: argparse.Namespace) -> int:
     for sat in args.sat or ():
         if not re.fullmatch(r"[A-Z]\d{2}", sat):
             raise InputError(f"--sat {sat!r}: expected a satellite id such as G05")
-    modes = mode_table(args.modes) if args.modes else None
-    orbit = None
-    if args.nav:
-        from psdbound.io import read_orbit
-
-        orbit = read_orbit(args.nav)
-    conventions = CONVENTIONS if args.convention == "both" else (args.convention,)
-    out = Path(args.out) if args.out else None
-    if out is not None:
-        try:
-            out.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise InputError(f"cannot create output folder: {exc.strerror}", path=out) from None
-    report = validate_cutoff(
+    report, written = run_validation(
         args.geometry,
         cutoff_hz=args.cutoff_hz,
         rate=args.rate,
         alpha=args.alpha,
         threshold=args.threshold,
-        conventions=conventions,
-        wavelength_m=GPS_L1_WAVELENGTH_M if args.wavelength_m is None else args.wavelength_m,
-        modes=modes,
+        convention=args.convention,
+        wavelength_m=args.wavelength_m,
+        modes_file=args.modes,
         theta0_deg=args.theta0_deg,
         amplitude_deg=args.amplitude_deg,
-        orbit=orbit,
-        receiver_xyz_m=args.receiver_ecef,
+        nav_file=args.nav,
+        receiver_ecef_m=args.receiver_ecef,
         sats=args.sat,
         system=args.system,
         elevation_mask_deg=args.elevation_mask_deg,
         min_pass_s=args.min_pass_min * 60.0,
         distance_tolerance_m=args.distance_tolerance_m,
+        out_dir=args.out or None,
+        figures=not args.no_figures,
     )
     print(report.summary())
-    if out is not None:
-        written = _write_outputs(report, out, figures=not args.no_figures)
+    if written:
         print("wrote " + ", ".join(str(p) for p in written))
     return 0
-
-
-def _atomic_text(path: Path, text: str) -> Path:
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="") as fh:
-            fh.write(text)
-        mask = os.umask(0)
-        os.umask(mask)
-        os.chmod(tmp, 0o666 & ~mask)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
-
-
-def _csv_text(rows: list[dict[str, Any]]) -> str:
-    fields: list[str] = []
-    for r in rows:
-        fields += [k for k in r if k not in fields]
-    buf = io.StringIO()
-    w = csv.DictWriter(buf, fieldnames=fields, lineterminator="\n")
-    w.writeheader()
-    for r in rows:
-        w.writerow(
-            {
-                k: json.dumps(v) if isinstance(v, list | dict) else ("" if v is None else v)
-                for k, v in r.items()
-            }
-        )
-    return buf.getvalue()
-
-
-def _write_outputs(report: Any, out: Path, *, figures: bool) -> list[Path]:
-    written = [
-        _atomic_text(out / _OUTPUTS[0], _csv_text(report.rows())),
-        _atomic_text(out / _OUTPUTS[1], json.dumps(report.to_dict(), indent=2) + "\n"),
-    ]
-    if figures:
-        from psdbound.validation.figures import plot_direct, plot_expansion, save_figure
-
-        written.append(
-            save_figure(plot_expansion(report.expansion), out / "validation_expansion.png")
-        )
-        if report.direct:
-            fig = plot_direct(report.direct, report.expansion)
-            written.append(save_figure(fig, out / "validation_direct.png"))
-    return written

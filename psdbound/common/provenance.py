@@ -27,11 +27,9 @@ def file_sha256(path: str | os.PathLike[str]) -> str:
 
 def package_versions() -> dict[str, str]:
     """Return the versions of psdbound, Python and every runtime dependency."""
-    try:
-        own = metadata.version("psdbound")
-    except metadata.PackageNotFoundError:  # pragma: no cover - source tree
-        own = "0.0.0+unknown"
-    out = {"psdbound": own, "python": platform.python_version()}
+    from psdbound.version import __version__
+
+    out = {"psdbound": __version__, "python": platform.python_version()}
     for name in DEPENDENCIES:
         try:
             out[name] = metadata.version(name)

@@ -15,10 +15,12 @@ from psdbound.io.arcs import DEFAULT_SIGNALS, Arc, ArcSet, find_arcs, require_ar
 from psdbound.io.geometry import azimuth_elevation, ecef_to_geodetic, satellite_azel
 from psdbound.io.nav import Navigation, read_nav
 from psdbound.io.obs import Observations, ObsHeader, SystemBlock, read_obs
+from psdbound.io.options import ArcOptions
 from psdbound.io.orbits import read_orbit
 from psdbound.io.sp3 import PreciseOrbit, read_sp3
 
 __all__ = [
+    "ArcOptions",
     "Arc",
     "ArcSet",
     "DEFAULT_SIGNALS",

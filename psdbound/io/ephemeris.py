@@ -35,7 +35,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from psdbound.io.nav import KeplerEphemerides
+from psdbound.io.kepler import KeplerEphemerides
 
 __all__ = [
     "GM_M3_S2",

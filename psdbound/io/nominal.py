@@ -1,38 +1,69 @@
-"""Nominal constellations as broadcast ephemerides.
+"""Nominal GPS and Galileo constellations: the one definition, and as broadcast ephemerides.
 
-* GPS: the 24-slot reference constellation of the GPS SPS Performance
-  Standard (table 3-1: six planes A-F, RAAN and argument of latitude per slot
-  at 1993-07-01 00:00, Greenwich hour angle 18 h 36 min 14.4 s, circular
-  orbits, i = 55 deg, a = 26559.7 km, two revolutions per sidereal day so the
-  ground track repeats every sidereal day). Slot ``A1`` .. ``F4`` is given PRN
-  ``G01`` .. ``G24`` in that order.
-* Galileo: a Walker 24/3/1 constellation (i = 56 deg, a = 29600 km, planes
-  at RAAN 0/120/240 deg, eight slots per plane 45 deg apart, phasing 15 deg
-  between planes) referenced to the Greenwich meridian at 2000-01-01 12:00
-  (an arbitrary but fixed phasing).
+The constellations (circular orbits, no perturbations) are defined here once,
+by :func:`nominal_elements`, and used twice: as Keplerian broadcast records
+(:func:`nominal_navigation`, for the simulator) and as a direct circular-orbit
+propagator (:func:`psdbound.ionosphere.nominal_constellation`, for the
+ionosphere geometry).
 
-The orbits are turned into Keplerian broadcast records (one every two hours,
-valid four hours) so the result is a :class:`~psdbound.io.nav.Navigation`:
-the same propagation code as for real navigation files computes positions,
-and :func:`psdbound.io.write.write_nav_v3` writes it as a RINEX 3 file.
-Nodal regression and perturbations are ignored (nominal geometry).
+* **GPS 24-slot** (``"G"``): the baseline 24-slot reference constellation of
+  the GPS SPS Performance Standard (4th ed., 2008, table 3.2-1): six planes
+  A-F, right ascension of the ascending node (RAAN) and argument of latitude
+  per slot at the reference epoch 1993-07-01 00:00:00 UTC (00:00:09 GPS),
+  when the Greenwich hour angle was 18 h 36 min 14.4 s; circular orbits,
+  inclination 55 deg, radius 26 559.7 km. Slot ``A1`` .. ``F4`` becomes
+  satellite ``G01`` .. ``G24`` in that order.
+* **Galileo Walker 24/3/1** (``"E"``): inclination 56 deg, radius
+  29 600 km, three planes whose ascending nodes lie at Earth-fixed longitudes
+  0, 120 and 240 deg at the reference epoch 2000-01-01 12:00:00 GPS time,
+  eight satellites per plane 45 deg apart in argument of latitude, phasing
+  15 deg between adjacent planes (Walker F = 1: 360 F / T). Plane ``p``
+  (0-2), slot ``k`` (0-7) is ``E{8p + k + 1:02d}``. This phasing is a fixed,
+  documented convention, not the real constellation's.
+
+Mean motions are set so the ground tracks repeat exactly, as the real
+constellations are maintained: GPS two revolutions per sidereal day (period
+43 082.045 s), Galileo 17 revolutions in 10 sidereal days. Nodal regression
+and all perturbations are ignored (nominal geometry).
+
+The broadcast records (one every two hours, valid four hours) make a
+:class:`~psdbound.io.navigation.Navigation`: the same propagation code as for
+real navigation files computes positions, and
+:func:`psdbound.io.write.write_nav_v3` writes it as a RINEX 3 file. The
+records' Galileo node longitudes and arguments of latitude refer to
+2000-01-01 12:00:00 **UTC** (12:00:13 GPS) instead of 12:00:00 GPS
+(``_RECORD_EPOCH_SHIFT_S``), as the simulator has always written them: the
+record Galileo constellation is the Walker pattern above shifted 13 s along
+the orbits and in Earth rotation.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import NDArray
 
-from psdbound.io.nav import KeplerEphemerides, Navigation
+from psdbound.io.ephemeris import GM_M3_S2
+from psdbound.io.geometry import OMEGA_E_RAD_S
+from psdbound.io.kepler import KeplerEphemerides
+from psdbound.io.navigation import Navigation
 from psdbound.io.timescales import SECONDS_PER_WEEK, calendar_to_gps_s
 
-__all__ = ["nominal_navigation", "GPS_SLOTS", "OMEGA_E_RAD_S"]
+__all__ = [
+    "GPS_SLOTS",
+    "OMEGA_E_RAD_S",
+    "SIDEREAL_DAY_S",
+    "NominalElements",
+    "nominal_elements",
+    "nominal_navigation",
+]
 
-OMEGA_E_RAD_S = 7.2921151467e-5
-_MU = {"G": 3.986005e14, "E": 3.986004418e14}
+#: Sidereal day (Earth rotation period relative to the stars), s: 2 pi / omega_E.
+SIDEREAL_DAY_S = 2.0 * np.pi / OMEGA_E_RAD_S
 
-#: (slot, RAAN deg, argument of latitude deg) at the GPS reference epoch.
+#: GPS SPS PS (2008) table 3.2-1: (slot, RAAN deg, argument of latitude deg) at the epoch.
 GPS_SLOTS = (
     ("A1", 272.847, 268.126), ("A2", 272.847, 161.786), ("A3", 272.847, 11.676),
     ("A4", 272.847, 41.806), ("B1", 332.847, 80.956), ("B2", 332.847, 173.336),
@@ -43,34 +74,121 @@ GPS_SLOTS = (
     ("E3", 152.847, 66.066), ("E4", 152.847, 333.686), ("F1", 212.847, 238.886),
     ("F2", 212.847, 345.226), ("F3", 212.847, 105.206), ("F4", 212.847, 135.346),
 )  # fmt: skip
-# 1993-07-01 00:00:00 UTC = 00:00:09 GPS (GPS - UTC became 9 s at that instant)
+
+_GPS_GHA_DEG = (18.0 + 36.0 / 60.0 + 14.4 / 3600.0) * 15.0
+_GPS_RADIUS_M = 26_559.7e3
+_GPS_INCLINATION_DEG = 55.0
+_GPS_REVS_PER_SIDEREAL_DAY = 2.0
+# 1993-07-01 00:00:00 UTC = 00:00:09 GPS (GPS - UTC = 9 s from that instant on)
 _GPS_EPOCH_GPS_S = float(calendar_to_gps_s(1993, 7, 1, 0, 0, 9.0))
-_SIDEREAL_DAY_S = 2.0 * np.pi / 7.2921151467e-5
-#: Revolutions per sidereal day (GPS: exact repeat of the ground track).
-_REVS = {"G": 2.0, "E": 1.7}
-_GPS_GHA_DEG = (18 + 36 / 60 + 14.4 / 3600) * 15.0
-_GPS_A_M = 26559.7e3
-_GAL_EPOCH_GPS_S = float(calendar_to_gps_s(2000, 1, 1, 12, 0, 0.0)) + 13.0
-_GAL_A_M = 29600.0e3
+
+_GAL_RADIUS_M = 29_600.0e3
+_GAL_INCLINATION_DEG = 56.0
+_GAL_REVS_PER_SIDEREAL_DAY = 1.7
+_GAL_EPOCH_GPS_S = float(calendar_to_gps_s(2000, 1, 1, 12, 0, 0.0))
+
+_DESCRIPTIONS = {
+    "G": "GPS 24-slot reference constellation (SPS PS 2008, epoch 1993-07-01)",
+    "E": "Galileo Walker 24/3/1 (i=56 deg, nodes 0/120/240 deg E at 2000-01-01T12 GPS)",
+}
+# The broadcast records' reference epoch minus the constellation's, s: the
+# simulator's Galileo records have always used 2000-01-01 12:00 UTC (GPS - UTC = 13 s).
+_RECORD_EPOCH_SHIFT_S = {"G": 0.0, "E": 13.0}
 
 
-def _elements(system: str) -> tuple[list[str], np.ndarray, np.ndarray, float, float, float]:
-    """Satellites, LAN at epoch (rad, Earth-fixed), arg. of latitude (rad), a, i, epoch."""
+@dataclass(frozen=True, eq=False)
+class NominalElements:
+    """Circular orbits of one system's nominal constellation at its reference epoch.
+
+    Attributes
+    ----------
+    system : str
+        System letter, ``"G"`` or ``"E"``.
+    sats : tuple of str
+        Satellite ids, e.g. ``('G01', ..., 'G24')``.
+    node_lon0_rad : ndarray of float64
+        Earth-fixed longitude of the ascending node per satellite at
+        ``epoch_gps_s``, rad.
+    arg_lat0_rad : ndarray of float64
+        Argument of latitude per satellite at ``epoch_gps_s``, rad.
+    radius_m : float
+        Orbit radius, m.
+    inclination_rad : float
+        Inclination, rad.
+    revs_per_sidereal_day : float
+        Revolutions per sidereal day (exact ground-track repeat).
+    epoch_gps_s : float
+        Reference epoch, GPS seconds.
+    description : str
+        What this constellation is (recorded with results).
+    """
+
+    system: str
+    sats: tuple[str, ...]
+    node_lon0_rad: NDArray[np.float64]
+    arg_lat0_rad: NDArray[np.float64]
+    radius_m: float
+    inclination_rad: float
+    revs_per_sidereal_day: float
+    epoch_gps_s: float
+    description: str
+
+    @property
+    def mean_motion_rad_s(self) -> float:
+        """Mean motion ``revs_per_sidereal_day * omega_E``, rad/s."""
+        return self.revs_per_sidereal_day * OMEGA_E_RAD_S
+
+
+def nominal_elements(system: str) -> NominalElements:
+    """Return the nominal constellation of one system.
+
+    Parameters
+    ----------
+    system : str
+        ``"G"`` (GPS 24-slot) or ``"E"`` (Galileo Walker 24/3/1).
+
+    Returns
+    -------
+    NominalElements
+
+    Raises
+    ------
+    ValueError
+        For another system letter.
+    """
     if system == "G":
-        sats = [f"G{k + 1:02d}" for k in range(len(GPS_SLOTS))]
+        sats = tuple(f"G{k + 1:02d}" for k in range(len(GPS_SLOTS)))
         raan = np.radians([s[1] for s in GPS_SLOTS])
-        u0 = np.radians([s[2] for s in GPS_SLOTS])
-        lan = raan - np.radians(_GPS_GHA_DEG)
-        return sats, lan, u0, _GPS_A_M, np.radians(55.0), _GPS_EPOCH_GPS_S
+        return NominalElements(
+            system="G",
+            sats=sats,
+            node_lon0_rad=raan - np.radians(_GPS_GHA_DEG),
+            arg_lat0_rad=np.radians([s[2] for s in GPS_SLOTS]),
+            radius_m=_GPS_RADIUS_M,
+            inclination_rad=float(np.radians(_GPS_INCLINATION_DEG)),
+            revs_per_sidereal_day=_GPS_REVS_PER_SIDEREAL_DAY,
+            epoch_gps_s=_GPS_EPOCH_GPS_S,
+            description=_DESCRIPTIONS["G"],
+        )
     if system == "E":
-        sats, lan, u0 = [], [], []
+        sats_e, lan, u0 = [], [], []
         for p in range(3):
             for k in range(8):
-                sats.append(f"E{p * 8 + k + 1:02d}")
+                sats_e.append(f"E{8 * p + k + 1:02d}")
                 lan.append(np.radians(120.0 * p))
                 u0.append(np.radians(45.0 * k + 15.0 * p))
-        return sats, np.array(lan), np.array(u0), _GAL_A_M, np.radians(56.0), _GAL_EPOCH_GPS_S
-    raise ValueError(f"no nominal constellation for system {system!r} (G or E)")
+        return NominalElements(
+            system="E",
+            sats=tuple(sats_e),
+            node_lon0_rad=np.array(lan),
+            arg_lat0_rad=np.array(u0),
+            radius_m=_GAL_RADIUS_M,
+            inclination_rad=float(np.radians(_GAL_INCLINATION_DEG)),
+            revs_per_sidereal_day=_GAL_REVS_PER_SIDEREAL_DAY,
+            epoch_gps_s=_GAL_EPOCH_GPS_S,
+            description=_DESCRIPTIONS["E"],
+        )
+    raise ValueError(f"no nominal constellation for system {system!r}; use 'G' and/or 'E'")
 
 
 def nominal_navigation(
@@ -100,15 +218,23 @@ def nominal_navigation(
     -------
     Navigation
         With ``path`` ``<nominal>`` and circular Keplerian records.
+
+    Raises
+    ------
+    ValueError
+        For a system letter other than G or E.
     """
     rng = None if clock_seed is None else np.random.default_rng(clock_seed)
     t0 = np.floor(t_start_gps_s / record_interval_s) * record_interval_s - record_interval_s
     toes = np.arange(t0, t_stop_gps_s + 2 * record_interval_s, record_interval_s)
     ephs = {}
     for system in systems:
-        sats, lan0, u0, a, inc, epoch = _elements(system)
-        n0 = np.sqrt(_MU[system] / a**3)  # Keplerian mean motion of the records
-        n = 2.0 * np.pi * _REVS[system] / _SIDEREAL_DAY_S  # nominal mean motion
+        el = nominal_elements(system)
+        sats, lan0, u0 = list(el.sats), el.node_lon0_rad, el.arg_lat0_rad
+        a, inc = el.radius_m, el.inclination_rad
+        epoch = el.epoch_gps_s + _RECORD_EPOCH_SHIFT_S[system]
+        n0 = np.sqrt(GM_M3_S2[system] / a**3)  # Keplerian mean motion of the records
+        n = 2.0 * np.pi * el.revs_per_sidereal_day / SIDEREAL_DAY_S  # nominal mean motion
         ns = len(sats)
         af0 = np.zeros(ns) if rng is None else rng.uniform(-5e-4, 5e-4, ns)
         af1 = np.zeros(ns) if rng is None else rng.uniform(-1e-11, 1e-11, ns)

@@ -13,30 +13,35 @@ Public surface:
   :func:`read_yuma` / :func:`write_yuma` / :func:`almanac_from_navigation`
   -> :class:`Almanac`
 * delays: :func:`simulate_slant_delay` -> :class:`SlantDelay`
-* spectrum: :func:`lomb_scargle`, :func:`frequency_grid`,
-  :func:`to_one_sided_density`
+  (:mod:`~psdbound.ionosphere.slant`, density from
+  :mod:`~psdbound.ionosphere.iri`)
+* spectrum (from :mod:`psdbound.periodogram`): :func:`lomb_scargle`,
+  :func:`frequency_grid`, :func:`to_one_sided_density`
 * envelope and criteria: :func:`fit_envelope` -> :class:`Envelope`,
   :func:`relative_cutoff`, :func:`absolute_cutoff`, :func:`one_day_series`,
   :func:`series_cutoff` -> :class:`SeriesCutoff`
-* batch: :func:`station_cutoffs` -> :class:`StationCutoffs`,
-  :func:`map_cutoffs` -> :class:`CutoffMap`, :class:`CutoffSettings`,
-  :func:`select_days`
-* stations: :data:`MAP_STATIONS`, :data:`CHICAGO`, :func:`nearest_station`
-* figures: :mod:`psdbound.ionosphere.figures`
+* batch: :class:`CutoffSettings` and :data:`SETTING_OPTIONS`
+  (:mod:`~psdbound.ionosphere.settings`),
+  :func:`station_cutoffs` -> :class:`StationCutoffs`, :func:`map_cutoffs`
+  -> :class:`CutoffMap` (:mod:`~psdbound.ionosphere.results`),
+  :func:`select_days`, :func:`default_cache_dir`; station-day tasks and
+  their cache in :mod:`~psdbound.ionosphere.tasks` (run by
+  :mod:`psdbound.compute`)
+* whole runs and files: :func:`run_cutoff` -> :class:`CutoffOutcome`,
+  :func:`write_cutoff_outputs` (:mod:`~psdbound.ionosphere.outputs`);
+  figures in :mod:`psdbound.ionosphere.figures`
+* stations: :data:`MAP_STATIONS`, :data:`CHICAGO`, :func:`nearest_station`,
+  :func:`validate_station`
+* cutoff policy for a fit (:mod:`~psdbound.ionosphere.policy`):
+  :func:`choose_cutoff`, :class:`CutoffOptions` -> :class:`CutoffChoice`,
+  :func:`cutoff_from_map`, :func:`cutoff_computed`,
+  :data:`THESIS_CUTOFF_HZ`, :data:`CUTOFF_SOURCES`
 """
 
 from __future__ import annotations
 
 from psdbound.ionosphere.almanac import Almanac, almanac_from_navigation, read_yuma, write_yuma
-from psdbound.ionosphere.batch import (
-    CutoffMap,
-    CutoffSettings,
-    StationCutoffs,
-    default_cache_dir,
-    map_cutoffs,
-    select_days,
-    station_cutoffs,
-)
+from psdbound.ionosphere.batch import default_cache_dir, map_cutoffs, select_days, station_cutoffs
 from psdbound.ionosphere.constellation import (
     SIDEREAL_DAY_S,
     NominalConstellation,
@@ -51,24 +56,45 @@ from psdbound.ionosphere.cutoff import (
     series_cutoff,
 )
 from psdbound.ionosphere.envelope import Envelope, fit_envelope, local_maxima
-from psdbound.ionosphere.iri import (
-    DEFAULT_F107_SFU,
-    FREQUENCIES_HZ,
-    SlantDelay,
-    simulate_slant_delay,
+from psdbound.ionosphere.iri import DEFAULT_F107_SFU
+from psdbound.ionosphere.outputs import write_cutoff_outputs
+from psdbound.ionosphere.policy import (
+    CUTOFF_SOURCES,
+    THESIS_CUTOFF_HZ,
+    CutoffChoice,
+    CutoffOptions,
+    choose_cutoff,
+    cutoff_computed,
+    cutoff_from_map,
 )
-from psdbound.ionosphere.lombscargle import frequency_grid, lomb_scargle, to_one_sided_density
-from psdbound.ionosphere.stations import CHICAGO, MAP_STATIONS, Station, nearest_station
+from psdbound.ionosphere.results import CutoffMap, StationCutoffs
+from psdbound.ionosphere.settings import SETTING_OPTIONS, CutoffSettings
+from psdbound.ionosphere.slant import FREQUENCIES_HZ, SlantDelay, simulate_slant_delay
+from psdbound.ionosphere.stations import (
+    CHICAGO,
+    MAP_STATIONS,
+    Station,
+    nearest_station,
+    validate_station,
+)
+from psdbound.ionosphere.workflow import CutoffOutcome, run_cutoff
+from psdbound.periodogram import frequency_grid, lomb_scargle, to_one_sided_density
 
 __all__ = [
     "CHICAGO",
     "CRITERIA",
+    "CUTOFF_SOURCES",
     "DEFAULT_F107_SFU",
     "FREQUENCIES_HZ",
     "MAP_STATIONS",
+    "SETTING_OPTIONS",
     "SIDEREAL_DAY_S",
+    "THESIS_CUTOFF_HZ",
     "Almanac",
+    "CutoffChoice",
     "CutoffMap",
+    "CutoffOptions",
+    "CutoffOutcome",
     "CutoffSettings",
     "Envelope",
     "NominalConstellation",
@@ -78,6 +104,9 @@ __all__ = [
     "StationCutoffs",
     "absolute_cutoff",
     "almanac_from_navigation",
+    "choose_cutoff",
+    "cutoff_computed",
+    "cutoff_from_map",
     "default_cache_dir",
     "fit_envelope",
     "frequency_grid",
@@ -89,10 +118,13 @@ __all__ = [
     "one_day_series",
     "read_yuma",
     "relative_cutoff",
+    "run_cutoff",
     "select_days",
     "series_cutoff",
     "simulate_slant_delay",
     "station_cutoffs",
     "to_one_sided_density",
+    "validate_station",
+    "write_cutoff_outputs",
     "write_yuma",
 ]

@@ -41,6 +41,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from psdbound.common import atomic_write_text
 from psdbound.errors import InputError
 from psdbound.io.timescales import SECONDS_PER_WEEK
 
@@ -287,7 +288,7 @@ def write_yuma(almanac: Almanac, path: str | os.PathLike[str]) -> Path:
     almanac : Almanac
         What to write.
     path : str or path-like
-        Output file; written to a temporary name, then renamed.
+        Output file; written atomically (temporary name, then rename).
 
     Returns
     -------
@@ -317,10 +318,7 @@ def write_yuma(almanac: Almanac, path: str | os.PathLike[str]) -> Path:
             f"week:                        {week}",
             "",
         ]
-    tmp = p.with_name(p.name + ".tmp")
-    tmp.write_text("\n".join(out), encoding="ascii")
-    os.replace(tmp, p)
-    return p
+    return atomic_write_text(p, "\n".join(out), encoding="ascii")
 
 
 def almanac_from_navigation(nav, t_gps_s: float, *, system: str = "G") -> Almanac:  # noqa: ANN001

@@ -1,21 +1,10 @@
-"""Nominal GNSS constellations as circular Keplerian orbits.
+"""Nominal GNSS constellations as circular Keplerian orbits, for the ionosphere geometry.
 
-Used when the user gives no navigation, SP3 or almanac file. Two systems:
-
-* **GPS 24-slot** (``"G"``): the baseline 24-slot reference constellation of
-  the GPS SPS Performance Standard (4th ed., 2008, table 3.2-1): six planes
-  A-F, right ascension of the ascending node (RAAN) and argument of latitude
-  per slot at the reference epoch 1993-07-01 00:00:00 UTC, when the Greenwich
-  hour angle was 18 h 36 min 14.4 s; circular orbits, inclination 55 deg,
-  radius 26 559.7 km. Slot ``A1`` .. ``F4`` becomes satellite ``G01`` ..
-  ``G24`` in that order.
-* **Galileo Walker 24/3/1** (``"E"``): inclination 56 deg, radius
-  29 600 km, three planes whose ascending nodes lie at Earth-fixed longitudes
-  0, 120 and 240 deg at the reference epoch 2000-01-01 12:00:00 GPS time,
-  eight satellites per plane 45 deg apart in argument of latitude, phasing
-  15 deg between adjacent planes (Walker F = 1: 360 F / T). Plane ``p``
-  (0-2), slot ``k`` (0-7) is ``E{8p + k + 1:02d}``. This phasing is a fixed,
-  documented convention, not the real constellation's.
+Used when the user gives no navigation, SP3 or almanac file. The
+constellations -- GPS 24-slot (``"G"``) and Galileo Walker 24/3/1 (``"E"``)
+-- are defined once, in :mod:`psdbound.io.nominal` (:func:`~psdbound.io.nominal.nominal_elements`,
+which the simulator's broadcast records use too); this module propagates
+them directly: :func:`nominal_constellation` -> :class:`NominalConstellation`.
 
 Mean motions are set so the ground tracks repeat exactly, as the real
 constellations are maintained: GPS two revolutions per sidereal day (period
@@ -26,14 +15,14 @@ such as the ionosphere cutoff this is what matters, not metre-level orbits.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from psdbound.io.geometry import OMEGA_E_RAD_S
-from psdbound.io.nominal import GPS_SLOTS as _GPS_SLOTS
-from psdbound.io.timescales import calendar_to_gps_s
+from psdbound.io.nominal import GPS_SLOTS, SIDEREAL_DAY_S, NominalElements, nominal_elements
 
 __all__ = [
     "SIDEREAL_DAY_S",
@@ -41,29 +30,6 @@ __all__ = [
     "NominalConstellation",
     "nominal_constellation",
 ]
-
-#: Sidereal day (Earth rotation period relative to the stars), s: 2 pi / omega_E.
-SIDEREAL_DAY_S = 2.0 * np.pi / OMEGA_E_RAD_S
-
-#: GPS SPS PS (2008) table 3.2-1 (shared with the broadcast-record constellation).
-GPS_SLOTS = _GPS_SLOTS
-
-_GPS_GHA_DEG = (18.0 + 36.0 / 60.0 + 14.4 / 3600.0) * 15.0
-_GPS_RADIUS_M = 26_559.7e3
-_GPS_INCLINATION_DEG = 55.0
-_GPS_REVS_PER_SIDEREAL_DAY = 2.0
-# 1993-07-01 00:00:00 UTC = 00:00:09 GPS (GPS - UTC = 9 s from that instant on)
-_GPS_EPOCH_GPS_S = float(calendar_to_gps_s(1993, 7, 1, 0, 0, 9.0))
-
-_GAL_RADIUS_M = 29_600.0e3
-_GAL_INCLINATION_DEG = 56.0
-_GAL_REVS_PER_SIDEREAL_DAY = 1.7
-_GAL_EPOCH_GPS_S = float(calendar_to_gps_s(2000, 1, 1, 12, 0, 0.0))
-
-_DESCRIPTIONS = {
-    "G": "GPS 24-slot reference constellation (SPS PS 2008, epoch 1993-07-01)",
-    "E": "Galileo Walker 24/3/1 (i=56 deg, nodes 0/120/240 deg E at 2000-01-01T12 GPS)",
-}
 
 
 @dataclass(frozen=True, eq=False)
@@ -154,41 +120,6 @@ class NominalConstellation:
         )
 
 
-def _system_elements(system: str) -> dict[str, np.ndarray | list[str]]:
-    if system == "G":
-        sats = [f"G{k + 1:02d}" for k in range(len(GPS_SLOTS))]
-        raan = np.radians([s[1] for s in GPS_SLOTS])
-        u0 = np.radians([s[2] for s in GPS_SLOTS])
-        n = len(sats)
-        return {
-            "sats": sats,
-            "radius_m": np.full(n, _GPS_RADIUS_M),
-            "inclination_rad": np.full(n, np.radians(_GPS_INCLINATION_DEG)),
-            "node_lon0_rad": raan - np.radians(_GPS_GHA_DEG),
-            "arg_lat0_rad": u0,
-            "mean_motion_rad_s": np.full(n, _GPS_REVS_PER_SIDEREAL_DAY * OMEGA_E_RAD_S),
-            "epoch_gps_s": np.full(n, _GPS_EPOCH_GPS_S),
-        }
-    if system == "E":
-        sats, lan, u0 = [], [], []
-        for p in range(3):
-            for k in range(8):
-                sats.append(f"E{8 * p + k + 1:02d}")
-                lan.append(np.radians(120.0 * p))
-                u0.append(np.radians(45.0 * k + 15.0 * p))
-        n = len(sats)
-        return {
-            "sats": sats,
-            "radius_m": np.full(n, _GAL_RADIUS_M),
-            "inclination_rad": np.full(n, np.radians(_GAL_INCLINATION_DEG)),
-            "node_lon0_rad": np.array(lan),
-            "arg_lat0_rad": np.array(u0),
-            "mean_motion_rad_s": np.full(n, _GAL_REVS_PER_SIDEREAL_DAY * OMEGA_E_RAD_S),
-            "epoch_gps_s": np.full(n, _GAL_EPOCH_GPS_S),
-        }
-    raise ValueError(f"no nominal constellation for system {system!r}; use 'G' and/or 'E'")
-
-
 def nominal_constellation(systems: str = "G") -> NominalConstellation:
     """Build the nominal constellation of one or more systems.
 
@@ -210,10 +141,20 @@ def nominal_constellation(systems: str = "G") -> NominalConstellation:
     letters = list(dict.fromkeys(systems.upper()))
     if not letters:
         raise ValueError("systems must name at least one of 'G', 'E'")
-    parts = [_system_elements(s) for s in letters]
-    keys = [k for k in parts[0] if k != "sats"]
+    parts = [nominal_elements(s) for s in letters]
+
+    def per_sat(value: Callable[[NominalElements], ArrayLike]) -> NDArray[np.float64]:
+        return np.concatenate(
+            [np.asarray(np.broadcast_to(value(p), len(p.sats)), dtype=np.float64) for p in parts]
+        )
+
     return NominalConstellation(
-        sats=tuple(s for p in parts for s in p["sats"]),
-        **{k: np.concatenate([np.asarray(p[k], dtype=np.float64) for p in parts]) for k in keys},
-        description="; ".join(_DESCRIPTIONS[s] for s in letters),
+        sats=tuple(s for p in parts for s in p.sats),
+        radius_m=per_sat(lambda p: p.radius_m),
+        inclination_rad=per_sat(lambda p: p.inclination_rad),
+        node_lon0_rad=per_sat(lambda p: p.node_lon0_rad),
+        arg_lat0_rad=per_sat(lambda p: p.arg_lat0_rad),
+        mean_motion_rad_s=per_sat(lambda p: p.mean_motion_rad_s),
+        epoch_gps_s=per_sat(lambda p: p.epoch_gps_s),
+        description="; ".join(p.description for p in parts),
     )

@@ -42,15 +42,11 @@ from numpy.typing import ArrayLike, NDArray
 from psdbound.errors import InputError
 from psdbound.ionosphere.constellation import SIDEREAL_DAY_S
 from psdbound.ionosphere.envelope import Envelope, fit_envelope
-from psdbound.ionosphere.lombscargle import (
-    REPLICAS,
-    frequency_grid,
-    lomb_scargle,
-    to_one_sided_density,
-)
+from psdbound.periodogram import frequency_grid, lomb_scargle, to_one_sided_density
 
 __all__ = [
     "MIN_ARC_S",
+    "REPLICAS",
     "one_day_series",
     "CRITERIA",
     "DEFAULT_DROP_DB",
@@ -63,6 +59,8 @@ __all__ = [
     "series_cutoff",
 ]
 
+#: Default number of sidereal-day copies (the one-day series and six replicas).
+REPLICAS = 7
 #: Cutoff criteria.
 CRITERIA = ("relative", "absolute")
 #: Reference levels of the relative criterion.

@@ -7,18 +7,20 @@
 * :func:`plot_cutoff_map`: recommended f_c of each station on a plain
   latitude/longitude plot (no coastlines).
 
-Each function writes a PNG atomically (temporary name, then rename) and
-returns its path.
+Each function writes a PNG atomically (:func:`psdbound.common.atomic_write_bytes`)
+and returns its path.
 """
 
 from __future__ import annotations
 
+import io
 import os
 from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 
+from psdbound.common import atomic_write_bytes
 from psdbound.ionosphere.cutoff import SeriesCutoff
 from psdbound.ionosphere.envelope import Envelope, local_maxima
 
@@ -35,12 +37,9 @@ def _figure(size: tuple[float, float]):  # noqa: ANN202
 
 
 def _save(fig, path: str | os.PathLike[str]) -> Path:  # noqa: ANN001
-    p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    tmp = p.with_name(p.name + ".tmp.png")
-    fig.savefig(tmp, dpi=110)
-    os.replace(tmp, p)
-    return p
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=110)
+    return atomic_write_bytes(path, buf.getvalue())
 
 
 def plot_series_psd(result: SeriesCutoff, path: str | os.PathLike[str], *, title: str = "") -> Path:

@@ -1,7 +1,9 @@
-"""Reference stations of the worldwide cutoff map, and nearest-station lookup.
+"""Stations: the worldwide cutoff map's, position checks and nearest-station lookup.
 
 The 20 stations of the thesis's appendix C (table C.1, method.md section 2,
-step 7), plus the thesis's Chicago rooftop site (not part of the map).
+step 7), plus the thesis's Chicago rooftop site (not part of the map);
+:func:`validate_station` checks a position for every entry point,
+:func:`nearest_station` finds the map station nearest a receiver.
 """
 
 from __future__ import annotations
@@ -11,9 +13,16 @@ from typing import NamedTuple
 
 import numpy as np
 
-from psdbound.ionosphere.iri import validate_station
+from psdbound.errors import InputError
 
-__all__ = ["CHICAGO", "MAP_STATIONS", "Station", "great_circle_deg", "nearest_station"]
+__all__ = [
+    "CHICAGO",
+    "MAP_STATIONS",
+    "Station",
+    "great_circle_deg",
+    "nearest_station",
+    "validate_station",
+]
 
 
 class Station(NamedTuple):
@@ -52,6 +61,39 @@ MAP_STATIONS: tuple[Station, ...] = (
 CHICAGO = Station("CHICAGO", 41.84, -87.63)
 
 
+def validate_station(lat_deg: float, lon_deg: float) -> tuple[float, float]:
+    """Check a station position; return latitude and longitude in (-180, 180].
+
+    Parameters
+    ----------
+    lat_deg, lon_deg : float
+        Geodetic latitude and longitude, degrees.
+
+    Returns
+    -------
+    tuple of float
+        ``(lat_deg, lon_deg)`` with the longitude wrapped to (-180, 180].
+
+    Raises
+    ------
+    InputError
+        If the latitude is outside [-90, 90], the longitude outside
+        [-180, 360], or either is not a finite number.
+    """
+    try:
+        lat, lon = float(lat_deg), float(lon_deg)
+    except (TypeError, ValueError):
+        raise InputError(f"station position ({lat_deg!r}, {lon_deg!r}) is not numeric") from None
+    if not np.isfinite(lat) or not -90.0 <= lat <= 90.0:
+        raise InputError(f"latitude {lat_deg} deg is out of range: expected -90 to 90 degrees")
+    if not np.isfinite(lon) or not -180.0 <= lon <= 360.0:
+        raise InputError(f"longitude {lon_deg} deg is out of range: expected -180 to 360 degrees")
+    lon = (lon + 180.0) % 360.0 - 180.0
+    if lon == -180.0:
+        lon = 180.0
+    return lat, lon
+
+
 def great_circle_deg(lat1_deg: float, lon1_deg: float, lat2_deg, lon2_deg):  # noqa: ANN001, ANN201
     """Great-circle central angle between points, degrees (haversine; arrays broadcast)."""
     p1, p2 = np.radians(lat1_deg), np.radians(lat2_deg)
@@ -84,8 +126,6 @@ def nearest_station(
     InputError
         For a latitude outside [-90, 90] or an empty station list.
     """
-    from psdbound.errors import InputError
-
     lat, lon = validate_station(lat_deg, lon_deg)
     if not stations:
         raise InputError("no station to choose from")

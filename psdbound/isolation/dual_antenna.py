@@ -48,39 +48,41 @@ the dual-frequency method is preferred. ``meta["note"]`` says so.
 
 from __future__ import annotations
 
-import os
-from collections.abc import Sequence
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
 from psdbound.errors import InputError, NoDataError
 from psdbound.io.arcs import ArcSet, find_arcs
 from psdbound.io.geometry import (
-    SPEED_OF_LIGHT_M_S,
     OrbitSource,
-    azimuth_elevation,
-    ecef_to_geodetic,
-    enu_rotation,
-    signal_path,
 )
 from psdbound.io.obs import Observations
 from psdbound.io.signals import RINEX2_TO_RINEX3, wavelength_m
-from psdbound.io.timescales import gps_s_to_datetime64
+from psdbound.isolation._dd_support import (
+    SDArc,
+    antenna_position,
+    any_above,
+    check_not_same,
+    common_satellites,
+    estimate_receiver_clock,
+    geometric_range_m,
+    geometry_all,
+    match_epochs,
+    reference_periods,
+    resolve_pair,
+)
 from psdbound.isolation.series import MultipathSeries
 
 __all__ = ["isolate_dual_antenna"]
 
-#: Two epochs of the two files are the same epoch when closer than this, s.
-EPOCH_TOLERANCE_S = 1e-3
 #: Scaling of the double difference to one signal (four independent terms).
 DA_SCALING = 0.5
 #: A double-difference jump between consecutive epochs larger than this
 #: fraction of the wavelength is an undetected cycle slip: the arc is split.
 DD_JUMP_FRACTION = 0.4
-_MIN_ANTENNA_SEPARATION_M = 1e-3
+MIN_ANTENNA_SEPARATION_M = 1e-3
 _NOTE = (
     "short-baseline dual-antenna double differences partly cancel multipath that is "
     "common to both antennas; the dual-frequency method is preferred"
@@ -90,16 +92,6 @@ _CLOCK_NOTE = (
     "(P pseudorange, rho geometric range at the nominal epoch, dT broadcast satellite "
     "clock); geometric ranges evaluated at the clock-corrected receive time"
 )
-
-
-@dataclass
-class _SDArc:
-    """A single-difference arc on the common epoch axis."""
-
-    sat: str
-    ci: NDArray[np.intp]  # indices into the common epochs, increasing
-    sd_m: NDArray[np.float64]
-    el_deg: NDArray[np.float64]
 
 
 def isolate_dual_antenna(
@@ -190,11 +182,11 @@ def isolate_dual_antenna(
     >>> print(da.summary())  # doctest: +SKIP
     """
     files = f"{obs1.path} and {obs2.path}"
-    _check_not_same(obs1, obs2, files)
-    pos1, src1 = _antenna_position(obs1, receiver1_xyz_m, "receiver1_xyz_m")
-    pos2, src2 = _antenna_position(obs2, receiver2_xyz_m, "receiver2_xyz_m")
+    check_not_same(obs1, obs2, files)
+    pos1, src1 = antenna_position(obs1, receiver1_xyz_m, "receiver1_xyz_m")
+    pos2, src2 = antenna_position(obs2, receiver2_xyz_m, "receiver2_xyz_m")
     baseline_m = float(np.linalg.norm(pos1 - pos2))
-    if baseline_m < _MIN_ANTENNA_SEPARATION_M:
+    if baseline_m < MIN_ANTENNA_SEPARATION_M:
         raise InputError(
             f"identical antenna positions for {files} ({src1}, {src2}): "
             "the same station twice? dual-antenna isolation needs two antennas"
@@ -210,28 +202,28 @@ def isolate_dual_antenna(
                 f"no {system} observations in {obs.path} (systems: {' '.join(obs.blocks)}); "
                 f"dual-antenna inputs {files}"
             )
-    code1, code2 = _resolve_pair(obs1, obs2, system, signal, "signal")
+    code1, code2 = resolve_pair(obs1, obs2, system, signal, "signal")
     if not code1.startswith("L"):
         raise InputError(f"signal {signal!r} is not a carrier phase (L..) in {files}")
     slip1 = slip2 = None
     if slip_signal is not None:
-        slip1, slip2 = _resolve_pair(obs1, obs2, system, slip_signal, "slip_signal")
-    i1, i2 = _match_epochs(obs1, obs2, files)
+        slip1, slip2 = resolve_pair(obs1, obs2, system, slip_signal, "slip_signal")
+    i1, i2 = match_epochs(obs1, obs2, files)
     t1c, t2c = obs1.t_gps_s[i1], obs2.t_gps_s[i2]
     n_common = int(i1.size)
 
-    sats = _common_satellites(obs1, obs2, system, code1, code2, i1, i2, files)
+    sats = common_satellites(obs1, obs2, system, code1, code2, i1, i2, files)
 
     # geometry at the nominal epochs: receiver clocks and the find_arcs pre-filter
     clocks = []
     arcsets: list[ArcSet] = []
     for obs, pos, code, slip in ((obs1, pos1, code1, slip1), (obs2, pos2, code2, slip2)):
-        rho, tau, el = _geometry_all(orbit, sats, obs.t_gps_s, pos)
-        clocks.append(_estimate_receiver_clock(obs, orbit, sats, code, rho, tau))
+        rho, tau, el = geometry_all(orbit, sats, obs.t_gps_s, pos)
+        clocks.append(estimate_receiver_clock(obs, orbit, sats, code, rho, tau))
         visible = [
             s
             for k, s in enumerate(sats)
-            if _any_above(obs, s, code, slip, el[:, k], elevation_mask_deg)
+            if any_above(obs, s, code, slip, el[:, k], elevation_mask_deg)
         ]
         pair = (code, code if slip is None else slip)
         arcsets.append(
@@ -255,7 +247,7 @@ def isolate_dual_antenna(
     where2[i2] = np.arange(n_common)
     t_rx1 = t1c - dt1[i1]
     t_rx2 = t2c - dt2[i2]
-    sd_arcs: list[_SDArc] = []
+    sd_arcs: list[SDArc] = []
     n_sd_short = 0
     by_sat2: dict[str, list] = {}
     for a in arcsets[1]:
@@ -271,8 +263,8 @@ def isolate_dual_antenna(
             if ci.size < 2 or t1c[ci[-1]] - t1c[ci[0]] < min_length_s:
                 n_sd_short += int(ci.size > 0)
                 continue
-            rho1 = _geometric_range_m(orbit, a1.sat, t_rx1[ci], pos1)[0]
-            rho2 = _geometric_range_m(orbit, a1.sat, t_rx2[ci], pos2)[0]
+            rho1 = geometric_range_m(orbit, a1.sat, t_rx1[ci], pos1)[0]
+            rho2 = geometric_range_m(orbit, a1.sat, t_rx2[ci], pos2)[0]
             sd = a1.phase_m[j1, 0] - a2.phase_m[j2, 0] - (rho1 - rho2)
             el = np.minimum(a1.elevation_deg[j1], a2.elevation_deg[j2])
             ok = np.isfinite(sd) & np.isfinite(el)
@@ -281,7 +273,7 @@ def isolate_dual_antenna(
                 if ci.size < 2 or t1c[ci[-1]] - t1c[ci[0]] < min_length_s:
                     n_sd_short += 1
                     continue
-            sd_arcs.append(_SDArc(a1.sat, ci, sd, el))
+            sd_arcs.append(SDArc(a1.sat, ci, sd, el))
     if not sd_arcs:
         raise NoDataError(
             f"no single-difference arc of at least {min_length_s:g} s above "
@@ -293,7 +285,7 @@ def isolate_dual_antenna(
     # reference periods and double differences
     lam = wavelength_m(sats[0], RINEX2_TO_RINEX3.get(code1, code1), obs1.header.glonass_channels)
     jump_m = DD_JUMP_FRACTION * lam
-    periods = _reference_periods(sd_arcs)
+    periods = reference_periods(sd_arcs)
     arcs: list[dict[str, Any]] = []
     n_dd_short = 0
     n_jump_splits = 0
@@ -388,261 +380,3 @@ def isolate_dual_antenna(
 # --------------------------------------------------------------------------- checks
 
 
-def _check_not_same(obs1: Observations, obs2: Observations, files: str) -> None:
-    same = obs1 is obs2
-    if not same:
-        try:
-            same = os.path.samefile(obs1.path, obs2.path)
-        except OSError:
-            same = os.path.abspath(obs1.path) == os.path.abspath(obs2.path)
-    if same:
-        raise InputError(
-            f"the same observation file given twice ({files}): dual-antenna isolation "
-            "needs the files of two receivers"
-        )
-
-
-def _antenna_position(
-    obs: Observations, given: ArrayLike | None, name: str
-) -> tuple[NDArray[np.float64], str]:
-    if given is not None:
-        pos = np.asarray(given, dtype=np.float64).reshape(-1)
-        if pos.shape != (3,) or not np.all(np.isfinite(pos)):
-            raise InputError(f"{name} must be three finite ECEF coordinates in metres, got {given}")
-        return pos, "user"
-    marker = obs.header.approx_position_m
-    if marker is None:
-        raise InputError(
-            f"no antenna position: the header has no APPROX POSITION XYZ; give {name}",
-            path=obs.path,
-        )
-    marker = np.asarray(marker, dtype=np.float64)
-    hen = np.asarray(obs.header.antenna_delta_hen_m, dtype=np.float64)
-    if np.any(hen != 0.0):
-        lat, lon, _ = ecef_to_geodetic(marker)
-        enu = np.array([hen[1], hen[2], hen[0]])
-        return marker + enu_rotation(lat, lon).T @ enu, "header APPROX POSITION XYZ + DELTA H/E/N"
-    return marker, "header APPROX POSITION XYZ"
-
-
-def _resolve_pair(
-    obs1: Observations, obs2: Observations, system: str, code: str, what: str
-) -> tuple[str, str]:
-    out, missing = [], []
-    for obs in (obs1, obs2):
-        try:
-            out.append(obs.resolve_code(system, code))
-        except InputError:
-            missing.append(obs)
-    if missing:
-        have = "; ".join(f"{o.path} has {' '.join(o.codes(system))}" for o in (obs1, obs2))
-        raise InputError(
-            f"{what} {code!r} missing from {' and '.join(o.path for o in missing)} "
-            f"(system {system}); {have}"
-        )
-    return out[0], out[1]
-
-
-def _span(obs: Observations) -> str:
-    if obs.t_gps_s.size == 0:
-        return "no epochs"
-    lab = gps_s_to_datetime64(obs.t_gps_s[[0, -1]]).astype("datetime64[ms]")
-    a, b = (str(x).replace("T", " ") for x in lab)
-    return f"{a} to {b} GPST"
-
-
-def _match_epochs(
-    obs1: Observations, obs2: Observations, files: str
-) -> tuple[NDArray[np.intp], NDArray[np.intp]]:
-    """Return the indices of the common epochs in both files (closer than 1 ms)."""
-    t1, t2 = obs1.t_gps_s, obs2.t_gps_s
-    i1 = i2 = np.zeros(0, dtype=np.intp)
-    if t1.size and t2.size:
-        order = np.argsort(t2, kind="stable")
-        ts = t2[order]
-        j = np.searchsorted(ts, t1)
-        jl = np.clip(j - 1, 0, ts.size - 1)
-        jr = np.clip(j, 0, ts.size - 1)
-        dl, dr = np.abs(t1 - ts[jl]), np.abs(ts[jr] - t1)
-        jb = np.where(dr < dl, jr, jl)
-        ok = np.minimum(dl, dr) <= EPOCH_TOLERANCE_S
-        i1 = np.flatnonzero(ok)
-        i2 = order[jb[ok]]
-        _, first = np.unique(i2, return_index=True)
-        keep = np.sort(first)
-        i1, i2 = i1[keep], i2[keep]
-    if i1.size == 0:
-        hint = ""
-        if t1.size and t2.size:
-            d1 = gps_s_to_datetime64(t1[[0, -1]]).astype("datetime64[D]")
-            d2 = gps_s_to_datetime64(t2[[0, -1]]).astype("datetime64[D]")
-            if d1[0] != d2[0] and d1[-1] != d2[-1]:
-                hint = " (files from different days)"
-        raise InputError(
-            f"no common epochs{hint}: {obs1.path} spans {_span(obs1)}, "
-            f"{obs2.path} spans {_span(obs2)}"
-        )
-    return i1, i2
-
-
-def _common_satellites(
-    obs1: Observations,
-    obs2: Observations,
-    system: str,
-    code1: str,
-    code2: str,
-    i1: NDArray[np.intp],
-    i2: NDArray[np.intp],
-    files: str,
-) -> list[str]:
-    b1, b2 = obs1.blocks[system], obs2.blocks[system]
-    k1, k2 = b1.codes.index(code1), b2.codes.index(code2)
-    out = []
-    for s in sorted(set(b1.sats) & set(b2.sats)):
-        v1 = b1.values[i1, b1.sats.index(s), k1]
-        v2 = b2.values[i2, b2.sats.index(s), k2]
-        if np.any(np.isfinite(v1) & np.isfinite(v2) & (v1 != 0.0) & (v2 != 0.0)):
-            out.append(s)
-    if not out:
-        raise InputError(
-            f"no common satellites tracked on {code1} at common epochs in {files}: "
-            f"{obs1.path} has {' '.join(b1.sats) or 'none'}, "
-            f"{obs2.path} has {' '.join(b2.sats) or 'none'}"
-        )
-    return out
-
-
-def _any_above(
-    obs: Observations,
-    sat: str,
-    code: str,
-    slip: str | None,
-    el: NDArray[np.float64],
-    mask_deg: float,
-) -> bool:
-    """Whether ``find_arcs`` would find any epoch of ``sat`` above the mask.
-
-    Works around a satellite whose tracked epochs are all below the mask.
-    """
-    ok = np.isfinite(obs.phase_m(sat, code))
-    if slip is not None:
-        ok &= np.isfinite(obs.phase_m(sat, slip))
-    return bool(ok.sum() >= 2 and np.any(el[ok] >= mask_deg))
-
-
-# --------------------------------------------------------------------------- geometry
-
-
-def _geometric_range_m(
-    orbit: OrbitSource, sat: str, t_rx_gps_s: NDArray[np.float64], rx_m: NDArray[np.float64]
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """Range (m), travel time (s) and transmit position (m); see :func:`signal_path`."""
-    return signal_path(orbit, sat, t_rx_gps_s, rx_m)
-
-
-def _geometry_all(
-    orbit: OrbitSource, sats: Sequence[str], t_gps_s: NDArray[np.float64], rx_m: NDArray[np.float64]
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """Range, travel time and elevation of every satellite at the nominal epochs."""
-    shape = (t_gps_s.size, len(sats))
-    rho, tau, el = np.empty(shape), np.empty(shape), np.empty(shape)
-    for k, s in enumerate(sats):
-        rho[:, k], tau[:, k], sv = _geometric_range_m(orbit, s, t_gps_s, rx_m)
-        el[:, k] = azimuth_elevation(rx_m, sv)[1]
-    return rho, tau, el
-
-
-def _clock_code(obs: Observations, system: str, phase_code: str) -> str:
-    """Pseudorange code for the clock estimate: same band, else C1C, P1, any."""
-    r3 = RINEX2_TO_RINEX3.get(phase_code, phase_code)
-    for c in (f"C{r3[1:]}", "C1C", "C1W", "C1P", "C1X"):
-        try:
-            return obs.resolve_code(system, c)
-        except InputError:
-            pass
-    for c in obs.codes(system):
-        if c[0] in "CP":
-            return c
-    raise InputError(
-        f"no pseudorange to estimate the receiver clock (codes: {' '.join(obs.codes(system))})",
-        path=obs.path,
-    )
-
-
-def _estimate_receiver_clock(
-    obs: Observations,
-    orbit: OrbitSource,
-    sats: Sequence[str],
-    phase_code: str,
-    rho_m: NDArray[np.float64],
-    tau_s: NDArray[np.float64],
-) -> tuple[NDArray[np.float64], str, int]:
-    """Receiver clock offset per epoch of ``obs``, seconds.
-
-    Median over satellites of ``(P - rho + c dT) / c``; epochs without any
-    usable pseudorange get the value interpolated linearly in time.
-
-    Returns
-    -------
-    dt_s : ndarray of float64, shape (n_epoch,)
-        Clock offset (receiver time minus GPS time), seconds.
-    code : str
-        The pseudorange code used.
-    n_interpolated : int
-        Number of epochs with an interpolated value.
-    """
-    system = sats[0][0]
-    code = _clock_code(obs, system, phase_code)
-    block = obs.blocks[system]
-    kc = block.codes.index(code)
-    pr = np.full(rho_m.shape, np.nan)
-    sat_clock = getattr(orbit, "satellite_clock_s", None)
-    for k, s in enumerate(sats):
-        if s not in block.sats:
-            continue
-        p = block.values[:, block.sats.index(s), kc]
-        pr[:, k] = np.where(p > 0.0, p, np.nan)
-        if sat_clock is not None:
-            pr[:, k] += SPEED_OF_LIGHT_M_S * sat_clock(s, obs.t_gps_s - tau_s[:, k])
-    x = (pr - rho_m) / SPEED_OF_LIGHT_M_S
-    good = np.isfinite(x)
-    dt = np.full(obs.t_gps_s.size, np.nan)
-    rows = good.any(axis=1)
-    if not rows.any():
-        raise InputError(
-            f"no usable pseudorange ({code}) to estimate the receiver clock", path=obs.path
-        )
-    dt[rows] = np.nanmedian(x[rows], axis=1)
-    n_interp = int((~rows).sum())
-    if n_interp:
-        dt[~rows] = np.interp(obs.t_gps_s[~rows], obs.t_gps_s[rows], dt[rows])
-    return dt, code, n_interp
-
-
-# --------------------------------------------------------------------------- reference
-
-
-def _reference_periods(sd_arcs: list[_SDArc]) -> list[tuple[_SDArc, int, int]]:
-    """Choose reference arcs and their periods (inclusive common-epoch indices)."""
-    starts = np.array([a.ci[0] for a in sd_arcs])
-    stops = np.array([a.ci[-1] for a in sd_arcs])
-    periods: list[tuple[_SDArc, int, int]] = []
-    k = int(starts.min())
-    last = int(stops.max())
-    while k <= last:
-        active = np.flatnonzero((starts <= k) & (stops >= k))
-        if active.size == 0:
-            later = starts[starts > k]
-            if later.size == 0:
-                break
-            k = int(later.min())
-            continue
-
-        def elevation_at(a: _SDArc, k: int = k) -> float:
-            j = min(int(np.searchsorted(a.ci, k)), a.ci.size - 1)
-            return float(a.el_deg[j])
-
-        ref = max((sd_arcs[j] for j in active), key=elevation_at)
-        periods.append((ref, k, int(ref.ci[-1])))
-        k = int(ref.ci[-1]) + 1
-    return periods

@@ -1,6 +1,7 @@
 """Frequency-domain safety check of the dual-frequency high-pass filter.
 
-For each arc, the Lomb-Scargle periodogram (astropy) of the unfiltered,
+For each arc, the Lomb-Scargle periodogram
+(:func:`psdbound.periodogram.tapered_lomb_scargle`) of the unfiltered,
 mean-removed DF difference is compared with that of the filtered one (both
 unscaled). A good cutoff removes nearly all the power below ``f_c`` (the
 ionosphere) and little above it (the multipath):
@@ -26,11 +27,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from astropy.timeseries import LombScargle
 from numpy.typing import NDArray
 
 from psdbound.errors import InputError
 from psdbound.isolation.series import MultipathSeries
+from psdbound.periodogram import tapered_lomb_scargle
 
 __all__ = ["SafetyCheck", "filter_safety_check"]
 
@@ -106,13 +107,8 @@ def filter_safety_check(series: MultipathSeries) -> SafetyCheck:
         t = arc.t_gps_s - arc.t_gps_s[0]
         span = max(t[-1], series.interval_s)
         f = np.arange(1.0 / span, 0.98 * nyq, 0.25 / span)
-        w = np.hanning(t.size)
-        w /= np.sqrt(np.mean(w**2))
-        raw = (arc.unfiltered_m - arc.unfiltered_m.mean()) * w
-        filt = arc.value_m / series.scaling * w
-        opts = {"fit_mean": False, "center_data": False, "normalization": "psd"}
-        p_raw = LombScargle(t, raw, **opts).power(f)
-        p_flt = LombScargle(t, filt, **opts).power(f)
+        p_raw = tapered_lomb_scargle(t, arc.unfiltered_m - arc.unfiltered_m.mean(), f)
+        p_flt = tapered_lomb_scargle(t, arc.value_m / series.scaling, f)
         below = f < fc
         removed = p_raw - p_flt
         pb.append(p_raw[below].sum())

@@ -110,7 +110,7 @@ class MultipathSeries:
 
     def arc(self, k: int) -> ArcView:
         """Return arc ``k`` as an :class:`ArcView`."""
-        lo, hi = self._bounds()[k]
+        lo, hi = self.arc_bounds()[k]
         return ArcView(
             arc_id=k,
             sats=self.arc_sats[k],
@@ -146,7 +146,8 @@ class MultipathSeries:
             )
         return "\n".join(lines)
 
-    def _bounds(self) -> list[tuple[int, int]]:
+    def arc_bounds(self) -> list[tuple[int, int]]:
+        """Return ``[(start, stop), ...]``: each arc's index range in the flat arrays."""
         edges = np.flatnonzero(np.diff(self.arc_id)) + 1
         starts = np.r_[0, edges]
         stops = np.r_[edges, self.arc_id.size]

@@ -11,6 +11,12 @@ Public surface:
   filter error covariance, step by step and in steady state, for a true
   multipath given as an :class:`ErrorProcess`, a :class:`SampledPSD` or
   :class:`ErrorSequences`
+
+Modules: :mod:`~psdbound.kalman.bound` (the bound and its state-space
+export), :mod:`~psdbound.kalman.augment`, :mod:`~psdbound.kalman.covariance`
+(the analysis front), :mod:`~psdbound.kalman.process` and
+:mod:`~psdbound.kalman.truth` (true errors), :mod:`~psdbound.kalman.analysis`
+(the result), :mod:`~psdbound.kalman.aviation`.
 * aviation utilities (:mod:`psdbound.kalman.aviation`): airborne sigma curves,
   iono-free factor, carrier-smoothing inflation, ``xi(tau)``, Gaussian
   overbound
@@ -18,6 +24,7 @@ Public surface:
 
 from __future__ import annotations
 
+from psdbound.kalman.analysis import CovarianceAnalysis
 from psdbound.kalman.augment import AugmentedModel, augment_gm_states
 from psdbound.kalman.aviation import (
     F_L1_HZ,
@@ -37,13 +44,9 @@ from psdbound.kalman.aviation import (
     smoothing_variance_factor,
 )
 from psdbound.kalman.bound import WHITE_NOISE_MODES, GaussMarkovBound, GMStateSpace
-from psdbound.kalman.covariance import (
-    CovarianceAnalysis,
-    ErrorProcess,
-    ErrorSequences,
-    SampledPSD,
-    analyze_covariance,
-)
+from psdbound.kalman.covariance import analyze_covariance
+from psdbound.kalman.process import ErrorProcess
+from psdbound.kalman.truth import ErrorSequences, SampledPSD
 
 __all__ = [
     "F_L1_HZ",

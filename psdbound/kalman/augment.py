@@ -177,7 +177,7 @@ def augment_gm_states(
     white_noise : {"psd", "per_sample", "conservative"}, default "conservative"
         How the bound's white noise becomes a per-sample variance when
         ``dt_s`` differs from the data interval (see
-        :mod:`psdbound.kalman.bound`).
+        :mod:`psdbound.spectra.models`).
 
     Returns
     -------

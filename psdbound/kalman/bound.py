@@ -1,9 +1,11 @@
 """The Gauss-Markov + white-noise bound as an object filter code can use.
 
-A :class:`GaussMarkovBound` holds the four numbers of a fitted bound
-(``sigma_gm_m``, ``tau_s``, ``sigma_wn_m`` and the data interval ``dt_s``
-they were fitted at), optionally the elevation mapping the bound was fitted
-under, and turns them into what a Kalman filter needs.
+A :class:`GaussMarkovBound` is the model
+:class:`~psdbound.spectra.models.GaussMarkovWhiteNoise` (the four numbers of
+a fitted bound: ``sigma_gm_m``, ``tau_s``, ``sigma_wn_m`` and the data
+interval ``dt_s`` they were fitted at, with its PSDs, autocovariance and
+variances) plus, optionally, the elevation mapping the bound was fitted
+under; it turns them into what a Kalman filter needs.
 
 Conventions (those of :mod:`psdbound.spectra.models`)
 ------------------------------------------------------
@@ -28,31 +30,16 @@ continuous autocorrelation ``sigma_gm^2 exp(-|k dt| / tau)`` at every lag
 stationary variance ``Qd / (1 - Phi^2) = sigma_gm^2`` is the initial state
 variance ``P0``.
 
-``R`` is the variance of the white part of **one filter measurement**. At the
-data interval (``dt == dt_s``) it is ``sigma_wn^2``, and then the sampled
+``R`` is the variance of the white part of **one filter measurement**,
+:meth:`~psdbound.spectra.models.GaussMarkovWhiteNoise.white_variance_m2`. At
+the data interval (``dt == dt_s``) it is ``sigma_wn^2``, and then the sampled
 state-space model has exactly the sampled bound PSD
 ``gm_psd_sampled(f, sigma_gm, tau, dt) + 2 sigma_wn^2 dt`` that
-:func:`psdbound.spectra.fit_bound` verified against the data (a white
-sequence of variance ``R`` has the flat one-sided PSD ``2 R dt``). When the
-filter runs at another interval, ``white_noise`` says what the filter's
-measurement is:
-
-``"psd"``
-    ``R = N_WN / dt = sigma_wn^2 dt_s / dt``. The white **PSD level**
-    ``2 N_WN`` is kept, i.e. the white noise is band-limited to the filter's
-    Nyquist frequency. Right when a filter sample is the average of the data
-    over ``dt`` (``dt`` a multiple of ``dt_s``: the mean of ``n`` white samples
-    has variance ``sigma_wn^2 / n``). For ``dt < dt_s`` it extrapolates the
-    flat level above the data's Nyquist frequency, where the bound was never
-    checked.
-``"per_sample"``
-    ``R = sigma_wn^2``. Right when the filter uses every ``n``-th data sample
-    unaveraged (decimation): decimating white noise keeps its per-sample
-    variance (its folded PSD is ``2 sigma_wn^2 dt``). With ``"psd"`` such a
-    filter would under-state the white noise by the factor ``dt / dt_s``.
-``"conservative"`` (default)
-    ``R = max(sigma_wn^2, N_WN / dt)``: safe for both readings; equal to both
-    at the data interval.
+:func:`psdbound.spectra.fit_bound` verified against the data. When the filter
+runs at another interval, ``white_noise`` (one of :data:`WHITE_NOISE_MODES`:
+``"psd"``, ``"per_sample"`` or the default ``"conservative"``) says what the
+filter's measurement is -- an average of the data over ``dt`` or a decimated
+data sample; the modes are described in :mod:`psdbound.spectra.models`.
 
 Elevation mapping
 -----------------
@@ -68,7 +55,6 @@ For a time-varying elevation, keep the normalised Gauss-Markov state and put
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass, replace
 from os import PathLike
@@ -80,19 +66,16 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.signal import lfilter
 
 from psdbound.errors import InputError
+from psdbound.results import read_document
 from psdbound.spectra.bound import BoundFit
-from psdbound.spectra.models import gm_psd_continuous, gm_psd_sampled
+from psdbound.spectra.models import WHITE_NOISE_MODES, GaussMarkovWhiteNoise
 from psdbound.stationarity.mapping import ElevationMapping
 
 __all__ = [
-    "RESULT_SCHEMA_VERSION",
     "WHITE_NOISE_MODES",
     "GaussMarkovBound",
     "GMStateSpace",
 ]
-
-RESULT_SCHEMA_VERSION = "1"
-WHITE_NOISE_MODES = ("psd", "per_sample", "conservative")
 
 _REL_TOL = 1e-6
 
@@ -118,27 +101,15 @@ class GMStateSpace(NamedTuple):
     r_m2: float | NDArray[np.float64]
 
 
-def _check_mode(white_noise: str) -> None:
-    if white_noise not in WHITE_NOISE_MODES:
-        raise InputError(
-            f"unknown white_noise mode {white_noise!r}; choose from {WHITE_NOISE_MODES}"
-        )
-
-
-def _check_dt(dt_s: float, what: str = "filter interval dt_s") -> float:
-    dt = float(dt_s)
-    if not (math.isfinite(dt) and dt > 0):
-        raise InputError(f"{what} must be a finite number > 0 s, got {dt_s!r}")
-    return dt
-
-
 @dataclass(frozen=True)
-class GaussMarkovBound:
+class GaussMarkovBound(GaussMarkovWhiteNoise):
     """A first-order Gauss-Markov + white-noise PSD bound of multipath.
 
     Build it with :meth:`from_params`, :meth:`from_fit` or
-    :meth:`from_result`. Conventions are in the module docstring of
-    :mod:`psdbound.kalman.bound`.
+    :meth:`from_result`. The model (PSDs, autocovariance, variances,
+    white-noise modes) is that of
+    :class:`~psdbound.spectra.models.GaussMarkovWhiteNoise`; conventions of
+    the filter export are in the module docstring of :mod:`psdbound.kalman.bound`.
 
     Parameters
     ----------
@@ -160,29 +131,11 @@ class GaussMarkovBound:
         file path); informational.
     """
 
-    sigma_gm_m: float
-    tau_s: float
-    sigma_wn_m: float
-    dt_s: float
     mapping: ElevationMapping | None = None
     source: str = "params"
 
     def __post_init__(self) -> None:
-        for name in ("sigma_gm_m", "tau_s", "sigma_wn_m", "dt_s"):
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, int | float | np.floating | np.integer):
-                raise InputError(f"bound parameter {name} must be a number, got {v!r}")
-            if not math.isfinite(float(v)):
-                raise InputError(f"bound parameter {name} must be finite, got {v!r}")
-            object.__setattr__(self, name, float(v))
-        if self.sigma_gm_m < 0:
-            raise InputError(f"sigma_gm_m must be >= 0 m, got {self.sigma_gm_m}")
-        if self.sigma_wn_m < 0:
-            raise InputError(f"sigma_wn_m must be >= 0 m, got {self.sigma_wn_m}")
-        if self.tau_s <= 0:
-            raise InputError(f"tau_s must be > 0 s, got {self.tau_s}")
-        if self.dt_s <= 0:
-            raise InputError(f"dt_s must be > 0 s, got {self.dt_s}")
+        super().__post_init__()
         if self.mapping is not None and not isinstance(self.mapping, ElevationMapping):
             raise InputError(
                 f"mapping must be an ElevationMapping or None, got {type(self.mapping).__name__}"
@@ -242,15 +195,16 @@ class GaussMarkovBound:
         -------
         GaussMarkovBound
         """
-        return cls(
-            fit.sigma_gm_m, fit.tau_s, fit.sigma_wn_m, fit.dt_s, mapping=mapping, source="fit"
-        )
+        m = fit.model
+        return cls(m.sigma_gm_m, m.tau_s, m.sigma_wn_m, m.dt_s, mapping=mapping, source="fit")
 
     @classmethod
     def from_result(cls, path: str | PathLike[str]) -> GaussMarkovBound:
         """Read the bound from a ``psdbound fit`` result file (``result.json``).
 
-        The file must hold ``schema_version == "1"`` and the sections::
+        The file is read and checked by :func:`psdbound.results.read_document`
+        (schema version ``"1"`` and its required fields). The bound is read
+        from the sections::
 
             "bound":    {"sigma_gm_m", "tau_s", "sigma_wn_m", "n_wn_two_sided_m2_hz", "dt_s"}
             "sampling": {"interval_s", "nyquist_hz"}
@@ -272,39 +226,14 @@ class GaussMarkovBound:
         Raises
         ------
         InputError
-            If the file cannot be read or is not JSON, the schema version is
-            not ``"1"``, a key is missing, a value is not a number, negative
-            (or zero for ``tau_s``, ``dt_s``) or inconsistent. The message
-            names the file and the key.
+            If the file is missing or not JSON, the schema version is not
+            ``"1"``, a field is missing (messages of
+            :func:`~psdbound.results.read_document`), or a bound value is not
+            a number, negative (or zero for ``tau_s``, ``dt_s``) or
+            inconsistent. The message names the file and the key.
         """
         p = Path(path)
-        try:
-            text = p.read_text(encoding="utf-8")
-        except OSError as exc:
-            raise InputError(f"cannot read result file: {exc.strerror or exc}", path=p) from None
-        except UnicodeDecodeError:
-            raise InputError("result file is not UTF-8 text (expected JSON)", path=p) from None
-        try:
-            doc = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise InputError(
-                f"result file is not valid JSON ({exc.msg} at line {exc.lineno}, "
-                f"column {exc.colno})",
-                path=p,
-                line=exc.lineno,
-            ) from None
-        if not isinstance(doc, dict):
-            raise InputError("result file must hold a JSON object at top level", path=p)
-        if "schema_version" not in doc:
-            raise InputError("missing key 'schema_version'", path=p)
-        if str(doc["schema_version"]) != RESULT_SCHEMA_VERSION or not isinstance(
-            doc["schema_version"], str
-        ):
-            raise InputError(
-                f"unsupported schema_version {doc['schema_version']!r}; this psdbound reads "
-                f"{RESULT_SCHEMA_VERSION!r}",
-                path=p,
-            )
+        doc = read_document(p)
 
         def section(name: str) -> dict[str, Any]:
             if name not in doc:
@@ -353,8 +282,6 @@ class GaussMarkovBound:
                 f"'sampling.nyquist_hz' = {nyq!r} disagrees with 1 / (2 dt_s) = {0.5 / dt!r}",
                 path=p,
             )
-        if "mapping" not in doc:
-            raise InputError("missing key 'mapping' (null when no elevation mapping)", path=p)
         mapping = None
         if doc["mapping"] is not None:
             m = section("mapping")
@@ -364,151 +291,7 @@ class GaussMarkovBound:
             mapping = ElevationMapping(a, bb, c, str(m.get("source", "fixed")))
         return cls(sigma_gm, tau, sigma_wn, dt, mapping=mapping, source=str(p))
 
-    # ------------------------------------------------------------- properties
-    @property
-    def n_wn_two_sided_m2_hz(self) -> float:
-        """Thesis's two-sided white level ``N_WN = sigma_wn^2 dt_s``, m^2/Hz."""
-        return self.sigma_wn_m**2 * self.dt_s
-
-    @property
-    def nyquist_hz(self) -> float:
-        """Nyquist frequency ``1 / (2 dt_s)`` of the data the bound was fitted on, Hz."""
-        return 0.5 / self.dt_s
-
-    @property
-    def total_variance_m2(self) -> float:
-        """Variance of the bound process at the data interval, ``sigma_gm^2 + sigma_wn^2``, m^2."""
-        return self.sigma_gm_m**2 + self.sigma_wn_m**2
-
-    def params(self) -> dict[str, float]:
-        """Return the parameters with units in their names (as in the result file)."""
-        return {
-            "sigma_gm_m": self.sigma_gm_m,
-            "tau_s": self.tau_s,
-            "sigma_wn_m": self.sigma_wn_m,
-            "n_wn_two_sided_m2_hz": self.n_wn_two_sided_m2_hz,
-            "dt_s": self.dt_s,
-        }
-
-    # ---------------------------------------------------------------- models
-    def white_variance_m2(
-        self, dt_s: float | None = None, *, white_noise: str = "conservative"
-    ) -> float:
-        """White-noise variance of one sample at interval ``dt_s`` (the ``R`` of the export), m^2.
-
-        Parameters
-        ----------
-        dt_s : float, optional
-            Filter interval, seconds; default the data interval.
-        white_noise : {"psd", "per_sample", "conservative"}, default "conservative"
-            How a filter sample relates to the data (module docstring):
-            ``N_WN / dt``, ``sigma_wn^2``, or the larger of the two.
-
-        Returns
-        -------
-        float
-        """
-        _check_mode(white_noise)
-        dt = self.dt_s if dt_s is None else _check_dt(dt_s)
-        psd_level = self.n_wn_two_sided_m2_hz / dt
-        if white_noise == "psd":
-            return psd_level
-        if white_noise == "per_sample":
-            return self.sigma_wn_m**2
-        return max(psd_level, self.sigma_wn_m**2)
-
-    def variance_m2(self, dt_s: float | None = None, *, white_noise: str = "conservative") -> float:
-        """Total variance of one sample at interval ``dt_s``: ``sigma_gm^2 + R``, m^2.
-
-        Parameters
-        ----------
-        dt_s : float, optional
-            Filter interval, seconds; default the data interval (then this is
-            :attr:`total_variance_m2`).
-        white_noise : {"psd", "per_sample", "conservative"}, default "conservative"
-            See :meth:`white_variance_m2`.
-
-        Returns
-        -------
-        float
-        """
-        return self.sigma_gm_m**2 + self.white_variance_m2(dt_s, white_noise=white_noise)
-
-    def psd(self, f_hz: ArrayLike) -> NDArray[np.float64]:
-        """Continuous-time one-sided bound PSD, m^2/Hz.
-
-        ``4 sigma_gm^2 tau / (1 + (2 pi f tau)^2) + 2 N_WN`` -- the thesis's
-        model (eq. 3.6, two-sided) doubled. This is the PSD before sampling;
-        the PSD the bound was checked against is :meth:`sampled_psd`.
-
-        Parameters
-        ----------
-        f_hz : array_like
-            Frequencies, Hz (>= 0).
-
-        Returns
-        -------
-        ndarray
-        """
-        f = np.asarray(f_hz, dtype=float)
-        return gm_psd_continuous(f, self.sigma_gm_m, self.tau_s) + 2.0 * self.n_wn_two_sided_m2_hz
-
-    def sampled_psd(
-        self, f_hz: ArrayLike, dt_s: float | None = None, *, white_noise: str = "conservative"
-    ) -> NDArray[np.float64]:
-        """One-sided PSD of the bound sampled at interval ``dt_s`` (aliases folded in), m^2/Hz.
-
-        ``gm_psd_sampled(f, sigma_gm, tau, dt) + 2 R dt`` on ``[0, 1/(2 dt)]``,
-        with ``R`` from :meth:`white_variance_m2`. At the data interval this
-        equals :meth:`psdbound.spectra.BoundFit.psd`; it is also the PSD of
-        the state-space model of :meth:`to_state_space`.
-
-        Parameters
-        ----------
-        f_hz : array_like
-            Frequencies, Hz, in ``[0, 1/(2 dt)]``.
-        dt_s : float, optional
-            Sampling interval, seconds; default the data interval.
-        white_noise : {"psd", "per_sample", "conservative"}, default "conservative"
-            See :meth:`white_variance_m2`.
-
-        Returns
-        -------
-        ndarray
-        """
-        dt = self.dt_s if dt_s is None else _check_dt(dt_s)
-        f = np.asarray(f_hz, dtype=float)
-        r = self.white_variance_m2(dt, white_noise=white_noise)
-        return gm_psd_sampled(f, self.sigma_gm_m, self.tau_s, dt) + 2.0 * r * dt
-
-    def acf(
-        self, lag_s: ArrayLike, dt_s: float | None = None, *, white_noise: str = "conservative"
-    ) -> NDArray[np.float64]:
-        """Autocovariance of the bound process sampled at ``dt_s``, m^2.
-
-        ``sigma_gm^2 exp(-|lag| / tau)``, plus the white variance ``R`` at
-        lag 0 (the white part of the continuous model is a delta function;
-        sampled at ``dt_s`` it is ``R`` at lag 0 and 0 elsewhere). Lags within
-        ``1e-9 dt_s`` of zero count as zero.
-
-        Parameters
-        ----------
-        lag_s : array_like
-            Lags, seconds.
-        dt_s : float, optional
-            Sampling interval, seconds; default the data interval.
-        white_noise : {"psd", "per_sample", "conservative"}, default "conservative"
-            See :meth:`white_variance_m2`.
-
-        Returns
-        -------
-        ndarray
-        """
-        dt = self.dt_s if dt_s is None else _check_dt(dt_s)
-        lag = np.abs(np.asarray(lag_s, dtype=float))
-        r = self.white_variance_m2(dt, white_noise=white_noise)
-        return self.sigma_gm_m**2 * np.exp(-lag / self.tau_s) + np.where(lag < 1e-9 * dt, r, 0.0)
-
+    # ------------------------------------------------------------ filter use
     def mapping_factor(self, elevation_deg: ArrayLike) -> NDArray[np.float64]:
         """Elevation factor ``m(el)`` by which the standard deviations scale (1 without mapping).
 
@@ -573,7 +356,7 @@ class GaussMarkovBound:
         ``x[k+1] = Phi x[k] + w[k]``, ``w ~ N(0, Qd)``, error sample
         ``e[k] = x[k] + v[k]``, ``v ~ N(0, R)``; initialise ``x`` with the
         stationary variance ``sigma_gm^2`` (times ``m(el)^2``). Definitions of
-        ``R`` for ``dt_s != self.dt_s`` are in the module docstring.
+        ``R`` for ``dt_s != self.dt_s`` are in :mod:`psdbound.spectra.models`.
 
         Parameters
         ----------
@@ -595,7 +378,7 @@ class GaussMarkovBound:
         InputError
             For a bad interval or mode, or an elevation without a mapping.
         """
-        dt = self.dt_s if dt_s is None else _check_dt(dt_s)
+        dt = self.checked_dt_s(dt_s)
         phi = math.exp(-dt / self.tau_s)
         # sigma^2 (1 - phi^2), written without cancellation for dt << tau
         qd = self.sigma_gm_m**2 * -math.expm1(-2.0 * dt / self.tau_s)

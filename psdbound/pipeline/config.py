@@ -1,9 +1,20 @@
 """Configuration of a ``fit`` run: every option, settable from TOML or the CLI.
 
-A :class:`FitConfig` is a tree of small frozen dataclasses, one per stage.
+A :class:`FitConfig` composes the small frozen options dataclasses that live
+next to their stages (:class:`~psdbound.io.ArcOptions`,
+:class:`~psdbound.ionosphere.CutoffOptions`,
+:class:`~psdbound.isolation.HighPass`,
+:class:`~psdbound.stationarity.MappingOptions`,
+:class:`~psdbound.stationarity.StationarityOptions`,
+:class:`~psdbound.spectra.SpectraOptions`,
+:class:`~psdbound.spectra.BoundOptions`,
+:class:`~psdbound.screening.ScreeningOptions`,
+:class:`~psdbound.validation.ValidationOptions`,
+:class:`~psdbound.pipeline.verdict.VerdictOptions`); the inputs and output
+sections are defined here.
 ``FitConfig.from_toml(path)`` reads the same names (sections ``[inputs]``,
-``[arcs]``, ``[cutoff]``, ``[filter]``, ``[mapping]``, ``[stationarity]``,
-``[spectra]``, ``[bound]``, ``[validation]``, ``[output]``); unknown names
+``[arcs]``, ``[cutoff]``, ``[filter]``, ``[screening]``, ``[mapping]``, ``[stationarity]``,
+``[spectra]``, ``[bound]``, ``[validation]``, ``[verdict]``, ``[output]``); unknown names
 are errors. The effective configuration is saved with every result.
 """
 
@@ -15,18 +26,18 @@ from pathlib import Path
 from typing import Any
 
 from psdbound.errors import InputError
+from psdbound.io.options import ArcOptions
+from psdbound.ionosphere.policy import CutoffOptions
+from psdbound.isolation import HighPass
+from psdbound.pipeline.verdict import VerdictOptions
+from psdbound.screening import ScreeningOptions
+from psdbound.spectra.options import BoundOptions, SpectraOptions
+from psdbound.stationarity.options import MappingOptions, StationarityOptions
+from psdbound.validation.options import ValidationOptions
 
 __all__ = [
     "FitConfig",
     "InputsConfig",
-    "ArcsConfig",
-    "CutoffConfig",
-    "FilterConfig",
-    "MappingConfig",
-    "StationarityConfig",
-    "SpectraConfig",
-    "BoundConfig",
-    "ValidationConfig",
     "OutputConfig",
 ]
 
@@ -52,86 +63,6 @@ class InputsConfig:
 
 
 @dataclass(frozen=True)
-class ArcsConfig:
-    """Arc building: minimum length (s), elevation mask (deg), slip threshold (m)."""
-
-    min_length_s: float = 1800.0
-    elevation_mask_deg: float = 10.0
-    slip_threshold_m: float = 0.04
-
-
-@dataclass(frozen=True)
-class CutoffConfig:
-    """Ionosphere high-pass cutoff.
-
-    ``source``: ``auto`` (``given`` if ``f_c_hz`` is set, else the thesis's
-    Chicago 2020 value 9.55e-4 Hz with a warning that also quotes the map),
-    ``given``, ``map`` (nearest of the 20 stations of the shipped 2020 map)
-    or ``computed`` (PyIRI at the receiver for the data's year, ~20 s).
-    """
-
-    f_c_hz: float | None = None
-    source: str = "auto"
-
-
-@dataclass(frozen=True)
-class FilterConfig:
-    """High-pass filter: kind (butter, cheby2, fir), IIR order, edge (trim, pad)."""
-
-    kind: str = "butter"
-    order: int = 4
-    edge: str = "trim"
-
-
-@dataclass(frozen=True)
-class MappingConfig:
-    """Elevation mapping: ``thesis`` (1, 29, 10 deg), ``fit``, or ``fixed`` with a, b, c."""
-
-    kind: str = "thesis"
-    a: float = 1.0
-    b: float = 29.0
-    c_deg: float = 10.0
-
-
-@dataclass(frozen=True)
-class StationarityConfig:
-    """Windowing: significance level, slide/trim coefficients, minimum window (s)."""
-
-    alpha: float = 0.05
-    p_slide: float = 1.2
-    p_trim: float = 0.8
-    min_window_s: float = 600.0
-    levene_center: str = "mean"
-
-
-@dataclass(frozen=True)
-class SpectraConfig:
-    """PSD estimator (multitaper, welch, blackman-tukey) and its options."""
-
-    estimator: str = "multitaper"
-    options: dict[str, Any] = field(default_factory=dict)
-
-
-@dataclass(frozen=True)
-class BoundConfig:
-    """Bound fit: objective (variance, area), target (point, upper), confidence level."""
-
-    objective: str = "variance"
-    target: str = "point"
-    level: float = 0.95
-
-
-@dataclass(frozen=True)
-class ValidationConfig:
-    """Cutoff validation: reflection geometries, amplitude ratio alpha, threshold."""
-
-    geometries: tuple[str, ...] = ("wall:d=25", "ground:h=1.5")
-    alpha: float = 0.1
-    threshold: float = 0.10
-    rate: str = "orbit"
-
-
-@dataclass(frozen=True)
 class OutputConfig:
     """Outputs: folder (default ``reports/<name>``), run name, PDF on/off."""
 
@@ -142,14 +73,16 @@ class OutputConfig:
 
 _SECTIONS = {
     "inputs": InputsConfig,
-    "arcs": ArcsConfig,
-    "cutoff": CutoffConfig,
-    "filter": FilterConfig,
-    "mapping": MappingConfig,
-    "stationarity": StationarityConfig,
-    "spectra": SpectraConfig,
-    "bound": BoundConfig,
-    "validation": ValidationConfig,
+    "arcs": ArcOptions,
+    "cutoff": CutoffOptions,
+    "filter": HighPass,
+    "screening": ScreeningOptions,
+    "mapping": MappingOptions,
+    "stationarity": StationarityOptions,
+    "spectra": SpectraOptions,
+    "bound": BoundOptions,
+    "validation": ValidationOptions,
+    "verdict": VerdictOptions,
     "output": OutputConfig,
 }
 
@@ -159,14 +92,16 @@ class FitConfig:
     """Every option of a ``fit`` run, by stage (see the module docstring)."""
 
     inputs: InputsConfig = field(default_factory=InputsConfig)
-    arcs: ArcsConfig = field(default_factory=ArcsConfig)
-    cutoff: CutoffConfig = field(default_factory=CutoffConfig)
-    filter: FilterConfig = field(default_factory=FilterConfig)
-    mapping: MappingConfig = field(default_factory=MappingConfig)
-    stationarity: StationarityConfig = field(default_factory=StationarityConfig)
-    spectra: SpectraConfig = field(default_factory=SpectraConfig)
-    bound: BoundConfig = field(default_factory=BoundConfig)
-    validation: ValidationConfig = field(default_factory=ValidationConfig)
+    arcs: ArcOptions = field(default_factory=ArcOptions)
+    cutoff: CutoffOptions = field(default_factory=CutoffOptions)
+    filter: HighPass = field(default_factory=HighPass)
+    screening: ScreeningOptions = field(default_factory=ScreeningOptions)
+    mapping: MappingOptions = field(default_factory=MappingOptions)
+    stationarity: StationarityOptions = field(default_factory=StationarityOptions)
+    spectra: SpectraOptions = field(default_factory=SpectraOptions)
+    bound: BoundOptions = field(default_factory=BoundOptions)
+    validation: ValidationOptions = field(default_factory=ValidationOptions)
+    verdict: VerdictOptions = field(default_factory=VerdictOptions)
     output: OutputConfig = field(default_factory=OutputConfig)
 
     def to_dict(self) -> dict[str, Any]:

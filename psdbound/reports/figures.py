@@ -25,6 +25,7 @@ __all__ = [
     "fig_tau_search",
     "fig_cutoff_envelope",
     "fig_jacobi_anger",
+    "fig_screening",
 ]
 
 
@@ -211,10 +212,45 @@ def fig_jacobi_anger(r: dict[str, Any]) -> Figure | None:
     return fig
 
 
+def fig_screening(r: dict[str, Any]) -> Figure | None:
+    """ROTI of every arc against time, the threshold, and the excluded spans shaded."""
+    d = r["figures"].get("screening")
+    if not d:
+        return None
+    t0 = _t0(r)
+    fig, ax = plt.subplots(figsize=(9, 3.6))
+    for a in d["roti"]:
+        t = (np.asarray(a["t_gps_s"], dtype=float) - t0) / 3600.0
+        y = np.asarray([np.nan if v is None else v for v in a["roti_tecu_min"]], dtype=float)
+        ax.plot(t, y, ".", ms=2, color="tab:blue", alpha=0.6)
+        if "threshold_tecu_min" in a:
+            ax.plot(t, np.asarray(a["threshold_tecu_min"], dtype=float), "-", color="tab:red",
+                    lw=0.5, alpha=0.5)  # fmt: skip
+    ax.plot([], [], "-", color="tab:red", lw=1,
+            label=f"threshold {d['threshold_tecu_min']:g} x m(el), capped")  # fmt: skip
+    colors = {"ionosphere": "tab:orange", "implausible": "tab:red", "short remainder": "0.7"}
+    seen = set()
+    for t_a, t_b, kind in d["excluded"]:
+        label = None if kind in seen else f"excluded: {kind}"
+        ax.axvspan((t_a - t0) / 3600.0, (t_b - t0) / 3600.0, color=colors.get(kind, "0.5"),
+                   alpha=0.25, lw=0, label=label)  # fmt: skip
+        seen.add(kind)
+    ax.set_yscale("log")
+    ax.set_xlabel("time since data start [h]")
+    ax.set_ylabel("ROTI [TECU/min]")
+    ax.set_title(f"Screening: 5-min ROTI per arc; carrier-multipath limit "
+                 f"{100 * d['limit_m']:.2f} cm", fontsize=10)  # fmt: skip
+    ax.legend(fontsize=7, loc="upper right")
+    ax.grid(alpha=0.3, which="both")
+    fig.tight_layout()
+    return fig
+
+
 #: (key, caption, function) of every report figure, in report order.
 FIGURES = (
     ("arcs", "Arc timeline", fig_arcs),
     ("df_filter", "Dual-frequency difference before and after filtering", fig_df_filter),
+    ("screening", "Ionosphere screening (ROTI) and excluded spans", fig_screening),
     ("mapped", "Mapped residuals and stationary windows", fig_mapped_windows),
     ("psds", "Every window PSD under the bound", fig_psds_bound),
     ("tau", "Tightness search over tau", fig_tau_search),

@@ -5,8 +5,6 @@ from __future__ import annotations
 import base64
 import io
 import os
-import shutil
-import tempfile
 import textwrap
 from pathlib import Path
 from typing import Any
@@ -18,8 +16,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.backends.backend_pdf import PdfPages  # noqa: E402
 
-from psdbound.pipeline.result import FitResult  # noqa: E402
+from psdbound.common import atomic_folder  # noqa: E402
 from psdbound.reports.figures import FIGURES  # noqa: E402
+from psdbound.results import write_document  # noqa: E402
 
 __all__ = ["render_html", "render_pdf", "write_report_folder"]
 
@@ -50,9 +49,9 @@ def _title(r: dict[str, Any]) -> str:
     return ", ".join(names) or "result"
 
 
-def render_html(result: FitResult) -> str:
-    """Return the self-contained HTML report (figures inline as PNG)."""
-    r = result.data
+def render_html(document: dict[str, Any]) -> str:
+    """Return the self-contained HTML report (figures inline as PNG) of a result document."""
+    r = document
     figs = []
     for caption, fig in _figures(r):
         buf = io.BytesIO()
@@ -80,6 +79,9 @@ def _summary_page(r: dict[str, Any]):
     b, s, c, w = r["bound"], r["sampling"], r["cutoff"], r["windows"]
     fc = "n/a" if c["f_c_hz"] is None else f"{c['f_c_hz']:.4g} Hz ({c['tau_c_min']:.1f} min)"
     rows = [
+        ("VERDICT", r["verdict"] + "".join(f"; {x}" for x in r["verdict_reasons"])),
+        ("screening excluded", f"{r['screening']['excluded_s'] / 3600:.2f} h "
+                               f"({100 * r['screening']['excluded_fraction']:.1f} %)"),
         ("sigma_GM", f"{100 * b['sigma_gm_m']:.3f} cm"),
         ("tau_GM", f"{b['tau_s']:.1f} s"),
         ("sigma_WN (per sample)", f"{100 * b['sigma_wn_m']:.3f} cm at {s['interval_s']:g} s"),
@@ -124,9 +126,9 @@ def _summary_page(r: dict[str, Any]):
     return fig
 
 
-def render_pdf(result: FitResult, path: str | os.PathLike[str]) -> Path:
-    """Write the PDF report (summary and caveats page, then every figure)."""
-    r = result.data
+def render_pdf(document: dict[str, Any], path: str | os.PathLike[str]) -> Path:
+    """Write the PDF report (summary and caveats page, then every figure) of a result document."""
+    r = document
     p = Path(path)
     with PdfPages(p, metadata={"Title": f"psdbound report: {_title(r)}", "Creator": "psdbound",
                                "CreationDate": None}) as pdf:  # fmt: skip
@@ -141,7 +143,7 @@ def render_pdf(result: FitResult, path: str | os.PathLike[str]) -> Path:
 
 
 def write_report_folder(
-    result: FitResult, out_dir: str | os.PathLike[str], *, pdf: bool = True
+    document: dict[str, Any], out_dir: str | os.PathLike[str], *, pdf: bool = True
 ) -> dict[str, Path]:
     """Write ``result.json``, ``report.html`` (and ``report.pdf``) atomically.
 
@@ -151,8 +153,8 @@ def write_report_folder(
 
     Parameters
     ----------
-    result : FitResult
-        The result to write and render.
+    document : dict
+        The result document to write and render.
     out_dir : str or path-like
         Destination folder.
     pdf : bool, default True
@@ -164,26 +166,11 @@ def write_report_folder(
         ``{"result": ..., "html": ..., "pdf": ...}``.
     """
     out = Path(out_dir)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}-", dir=out.parent))
-    mask = os.umask(0)
-    os.umask(mask)
-    os.chmod(tmp, 0o777 & ~mask)  # mkdtemp makes 0700; give the folder normal permissions
-    try:
-        result.to_json(tmp / "result.json")
-        (tmp / "report.html").write_text(render_html(result))
+    with atomic_folder(out) as tmp:
+        write_document(tmp / "result.json", document)
+        (tmp / "report.html").write_text(render_html(document))
         if pdf:
-            render_pdf(result, tmp / "report.pdf")
-        if out.exists():
-            old = out.with_name(f".{out.name}-old-{os.getpid()}")
-            os.replace(out, old)
-            os.replace(tmp, out)
-            shutil.rmtree(old, ignore_errors=True)
-        else:
-            os.replace(tmp, out)
-    finally:
-        if tmp.exists():
-            shutil.rmtree(tmp, ignore_errors=True)
+            render_pdf(document, tmp / "report.pdf")
     paths = {"result": out / "result.json", "html": out / "report.html"}
     if pdf:
         paths["pdf"] = out / "report.pdf"

@@ -18,9 +18,9 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
-from psdbound import __version__
 from psdbound.simulate.scenario import Scenario, preset
 from psdbound.simulate.simulator import simulate
+from psdbound.version import __version__
 
 __all__ = ["DemoData", "cache_dir", "demo_data", "SIMULATOR_FORMAT"]
 

@@ -38,16 +38,15 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.signal import lfilter
 
-from psdbound import __version__
 from psdbound.errors import InputError
-from psdbound.io._header import ObsHeader
 from psdbound.io.geometry import azimuth_elevation, enu_rotation, geodetic_to_ecef, signal_path
 from psdbound.io.nav import Navigation, read_nav
 from psdbound.io.nominal import nominal_navigation
-from psdbound.io.obs import Observations, SystemBlock
+from psdbound.io.obs import Observations, ObsHeader, SystemBlock
 from psdbound.io.signals import SPEED_OF_LIGHT_M_S, carrier_frequency_hz
 from psdbound.io.write import format_nav_v3, write_obs_v3
 from psdbound.simulate.scenario import Scenario
+from psdbound.version import __version__
 
 __all__ = ["SimulationResult", "simulate", "gauss_markov"]
 

@@ -7,6 +7,9 @@ Public surface:
   degrees of freedom and chi-square confidence intervals)
 * :func:`fit_bound` -> :class:`BoundFit` (tightest GMRP + white-noise bound)
 * :class:`BoundModel` / :class:`BoundResults` (windows -> PSDs -> bound)
+* the model: :class:`GaussMarkovWhiteNoise` (also the base of
+  :class:`psdbound.kalman.GaussMarkovBound`); options :class:`SpectraOptions`,
+  :class:`BoundOptions`
 * closed forms: :func:`gm_psd_sampled`, :func:`gm_psd_continuous`,
   :func:`white_psd`, :func:`gm_acf`
 """
@@ -16,12 +19,24 @@ from __future__ import annotations
 from psdbound.spectra.bound import OBJECTIVES, BoundFit, fit_bound
 from psdbound.spectra.estimators import METHODS, PSDEstimate, estimate_psd
 from psdbound.spectra.fitting import BoundModel, BoundResults
-from psdbound.spectra.models import gm_acf, gm_psd_continuous, gm_psd_sampled, white_psd
+from psdbound.spectra.models import (
+    WHITE_NOISE_MODES,
+    GaussMarkovWhiteNoise,
+    gm_acf,
+    gm_psd_continuous,
+    gm_psd_sampled,
+    white_psd,
+)
+from psdbound.spectra.options import BoundOptions, SpectraOptions
 
 __all__ = [
     "METHODS",
     "OBJECTIVES",
+    "WHITE_NOISE_MODES",
     "BoundFit",
+    "BoundOptions",
+    "GaussMarkovWhiteNoise",
+    "SpectraOptions",
     "BoundModel",
     "BoundResults",
     "PSDEstimate",

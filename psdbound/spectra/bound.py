@@ -37,7 +37,7 @@ from numpy.typing import NDArray
 from scipy.optimize import linprog, minimize_scalar
 
 from psdbound.errors import InputError
-from psdbound.spectra.models import gm_psd_sampled
+from psdbound.spectra.models import GaussMarkovWhiteNoise, gm_psd_sampled
 
 __all__ = ["BoundFit", "fit_bound", "OBJECTIVES"]
 
@@ -53,16 +53,16 @@ class _PSDLike(Protocol):
 class BoundFit:
     """A fitted GMRP + white-noise PSD bound (statsmodels-style results).
 
+    The four model numbers live in :attr:`model`; ``sigma_gm_m``, ``tau_s``,
+    ``sigma_wn_m``, ``dt_s`` and the derived quantities are read-only views of it.
+
     Attributes
     ----------
-    sigma_gm_m : float
-        Gauss-Markov standard deviation, metres.
-    tau_s : float
-        Gauss-Markov time constant, seconds.
-    sigma_wn_m : float
-        White-noise standard deviation per sample, metres.
-    dt_s : float
-        Sampling interval the bound is stated for, seconds.
+    model : GaussMarkovWhiteNoise
+        The bound: ``sigma_gm_m`` (Gauss-Markov standard deviation, metres),
+        ``tau_s`` (time constant, seconds), ``sigma_wn_m`` (white-noise
+        standard deviation per sample, metres) and ``dt_s`` (sampling
+        interval the bound is stated for, seconds).
     objective : str
         Tightness objective minimised.
     objective_value : float
@@ -87,10 +87,7 @@ class BoundFit:
         ``10 log10(S_model / S_data)`` (0 dB = touching).
     """
 
-    sigma_gm_m: float
-    tau_s: float
-    sigma_wn_m: float
-    dt_s: float
+    model: GaussMarkovWhiteNoise
     objective: str
     objective_value: float
     target: str
@@ -107,36 +104,53 @@ class BoundFit:
     meta: dict[str, Any] = field(default_factory=dict)
 
     @property
+    def sigma_gm_m(self) -> float:
+        """Gauss-Markov standard deviation, metres."""
+        return self.model.sigma_gm_m
+
+    @property
+    def tau_s(self) -> float:
+        """Gauss-Markov time constant, seconds."""
+        return self.model.tau_s
+
+    @property
+    def sigma_wn_m(self) -> float:
+        """White-noise standard deviation per sample, metres."""
+        return self.model.sigma_wn_m
+
+    @property
+    def dt_s(self) -> float:
+        """Sampling interval the bound is stated for, seconds."""
+        return self.model.dt_s
+
+    @property
     def nyquist_hz(self) -> float:
         """Nyquist frequency of the sampling, Hz."""
-        return 0.5 / self.dt_s
+        return self.model.nyquist_hz
 
     @property
     def total_variance_m2(self) -> float:
         """Variance of the bound process, ``sigma_gm^2 + sigma_wn^2``, m^2."""
-        return self.sigma_gm_m**2 + self.sigma_wn_m**2
+        return self.model.total_variance_m2
 
     @property
     def n_wn_two_sided_m2_hz(self) -> float:
         """Thesis's white-noise level ``N_WN`` (two-sided), ``sigma_wn^2 dt``, m^2/Hz."""
-        return self.sigma_wn_m**2 * self.dt_s
+        return self.model.n_wn_two_sided_m2_hz
 
     def psd(self, f_hz: NDArray[np.float64]) -> NDArray[np.float64]:
-        """One-sided sampled bound PSD at ``f_hz``, m^2/Hz."""
+        """One-sided sampled bound PSD at ``f_hz``, m^2/Hz.
+
+        ``gm_psd_sampled(f, sigma_gm, tau, dt) + 2 sigma_wn^2 dt`` at the data
+        interval ``dt = dt_s``.
+        """
+        m = self.model
         f = np.asarray(f_hz, dtype=float)
-        return gm_psd_sampled(f, self.sigma_gm_m, self.tau_s, self.dt_s) + 2.0 * (
-            self.sigma_wn_m**2 * self.dt_s
-        )
+        return gm_psd_sampled(f, m.sigma_gm_m, m.tau_s, m.dt_s) + 2.0 * m.n_wn_two_sided_m2_hz
 
     def params(self) -> dict[str, float]:
         """Parameters with units in their names."""
-        return {
-            "sigma_gm_m": self.sigma_gm_m,
-            "tau_s": self.tau_s,
-            "sigma_wn_m": self.sigma_wn_m,
-            "n_wn_two_sided_m2_hz": self.n_wn_two_sided_m2_hz,
-            "dt_s": self.dt_s,
-        }
+        return self.model.params()
 
     def summary(self) -> str:
         """Return a statsmodels-like text table of the bound."""
@@ -320,10 +334,12 @@ def fit_bound(
         else float(cost(best_tau) @ np.array([var_gm, var_wn]))
     )
     return BoundFit(
-        sigma_gm_m=float(np.sqrt(var_gm)),
-        tau_s=float(best_tau),
-        sigma_wn_m=float(np.sqrt(var_wn)),
-        dt_s=dt_s,
+        model=GaussMarkovWhiteNoise(
+            sigma_gm_m=float(np.sqrt(var_gm)),
+            tau_s=float(best_tau),
+            sigma_wn_m=float(np.sqrt(var_wn)),
+            dt_s=dt_s,
+        ),
         objective=objective,
         objective_value=float(obj),
         target=target,

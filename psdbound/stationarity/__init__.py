@@ -3,6 +3,12 @@
 from __future__ import annotations
 
 from psdbound.stationarity.mapping import THESIS_MAPPING, ElevationMapping, fit_mapping
+from psdbound.stationarity.options import (
+    MAPPING_KINDS,
+    MappingOptions,
+    StationarityOptions,
+    choose_mapping,
+)
 from psdbound.stationarity.tests import StationarityTest, test_stationarity
 from psdbound.stationarity.windowing import (
     Window,
@@ -12,7 +18,11 @@ from psdbound.stationarity.windowing import (
 )
 
 __all__ = [
+    "MAPPING_KINDS",
     "THESIS_MAPPING",
+    "MappingOptions",
+    "StationarityOptions",
+    "choose_mapping",
     "ElevationMapping",
     "StationarityTest",
     "Window",

@@ -251,7 +251,7 @@ def find_stationary_windows(
     uncovered: list[tuple[int, str, float, float]] = []
     n_tests = 0
     long_enough = 0
-    for k, (lo, hi) in enumerate(series._bounds()):
+    for k, (lo, hi) in enumerate(series.arc_bounds()):
         x = mapped[lo:hi]
         t = series.t_gps_s[lo:hi]
         if x.size >= L:

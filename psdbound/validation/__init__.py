@@ -12,7 +12,8 @@ threshold (default 10 %):
   (an aircraft attitude oscillation) -> :class:`ExpansionCheck`;
 * :func:`direct_check` -> :class:`DirectCheck`: the exact phase error
   simulated along a real satellite pass (:func:`satellite_passes`) or an
-  oscillation (:func:`oscillation_track`), its tapered periodogram and
+  oscillation (:func:`oscillation_track`), its tapered periodogram
+  (:func:`tapered_periodogram`, from :mod:`psdbound.periodogram`) and
   fraction, independent of the expansion;
 * :func:`rotating_harmonics`, :func:`oscillation_harmonics` ->
   :class:`Harmonics` with rigorous truncation bounds
@@ -22,12 +23,14 @@ threshold (default 10 %):
   lambda``) and ``"thesis"`` (``z = 2 D / lambda``);
 * aircraft modes (:data:`AIRCRAFT_MODES`, :func:`mode_table`,
   :func:`load_modes`) and orbit rates (:func:`resolve_rate`);
-* figures in :mod:`psdbound.validation.figures` (matplotlib, imported on
-  demand).
+* whole runs and files: :func:`run_validation` (what ``psdbound validate``
+  does), :func:`write_validation_outputs`, :func:`validation_csv`; figures
+  in :mod:`psdbound.validation.figures` (matplotlib, imported on demand).
 """
 
 from __future__ import annotations
 
+from psdbound.periodogram import tapered_periodogram
 from psdbound.validation.cutoff import (
     DEFAULT_THRESHOLD,
     check_oscillation,
@@ -41,7 +44,6 @@ from psdbound.validation.direct import (
     phase_error_rad,
     sampling_interval_s,
     satellite_passes,
-    tapered_periodogram,
 )
 from psdbound.validation.geometry import (
     CONVENTION_LABELS,
@@ -70,10 +72,14 @@ from psdbound.validation.modes import (
     mode_table,
     resolve_rate,
 )
+from psdbound.validation.options import ValidationOptions
+from psdbound.validation.outputs import validation_csv, write_validation_outputs
 from psdbound.validation.results import DirectCheck, ExpansionCheck, ValidationReport
 from psdbound.validation.validate import DEFAULT_THETA0_DEG, validate_cutoff
+from psdbound.validation.workflow import run_validation
 
 __all__ = [
+    "ValidationOptions",
     "AIRCRAFT_MODES",
     "CONVENTIONS",
     "CONVENTION_LABELS",
@@ -104,6 +110,7 @@ __all__ = [
     "power_fraction_below",
     "resolve_rate",
     "rotating_harmonics",
+    "run_validation",
     "sampling_interval_s",
     "satellite_passes",
     "series_coefficients",
@@ -111,4 +118,6 @@ __all__ = [
     "terms_for_tolerance",
     "truncation_bound",
     "validate_cutoff",
+    "validation_csv",
+    "write_validation_outputs",
 ]

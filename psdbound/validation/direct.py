@@ -4,8 +4,9 @@ Given the angle of arrival ``theta(t)`` on an even time grid, the simulation
 computes ``psi = s Delta(theta) / lambda`` and the exact phase error
 ``dphi = atan2(alpha sin psi, 1 + alpha cos psi)`` (thesis eq. 2.9), then
 its one-sided periodogram with a Hann taper after removing the
-taper-weighted mean, and the fraction of power in the bins ``0 < f < f_c``
-among all bins ``f > 0`` (:func:`~psdbound.validation.cutoff.power_fraction_below`).
+taper-weighted mean (:func:`psdbound.periodogram.tapered_periodogram`), and
+the fraction of power in the bins ``0 < f < f_c`` among all bins ``f > 0``
+(:func:`~psdbound.validation.cutoff.power_fraction_below`).
 
 Two sources of ``theta(t)``:
 
@@ -36,6 +37,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import CubicSpline
 
 from psdbound.errors import InputError, NoDataError
+from psdbound.periodogram import tapered_periodogram
 from psdbound.validation.cutoff import DEFAULT_THRESHOLD, power_fraction_below
 from psdbound.validation.geometry import GPS_L1_WAVELENGTH_M, Reflection
 from psdbound.validation.results import DirectCheck
@@ -47,7 +49,6 @@ __all__ = [
     "phase_error_rad",
     "sampling_interval_s",
     "satellite_passes",
-    "tapered_periodogram",
 ]
 
 _MAX_PHASE_STEP_RAD = math.pi / 4.0
@@ -87,41 +88,6 @@ def phase_error_rad(
     for m in range(1, int(order) + 1):
         out += (-1.0) ** (m + 1) * a**m / m * np.sin(m * psi)
     return out
-
-
-def tapered_periodogram(
-    x: ArrayLike, dt_s: float
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """One-sided Hann-tapered periodogram.
-
-    The taper-weighted mean is removed first, so the zero-frequency bin is
-    exactly zero and a constant offset does not leak into the low bins.
-
-    Parameters
-    ----------
-    x : array_like of float
-        Evenly sampled series (any unit ``u``).
-    dt_s : float
-        Sampling interval, s.
-
-    Returns
-    -------
-    f_hz : ndarray of float64
-        Frequencies ``0, 1/(N dt), ...``, Hz.
-    psd : ndarray of float64
-        One-sided PSD, ``u^2/Hz``; ``sum(psd) * df`` is the variance of the
-        tapered, rescaled series.
-    """
-    v = np.asarray(x, dtype=np.float64)
-    n = v.size
-    w = np.hanning(n + 2)[1:-1]  # strictly positive Hann taper
-    v = v - np.sum(w * v) / np.sum(w)
-    spec = np.abs(np.fft.rfft(w * v)) ** 2 * (dt_s / np.sum(w**2))
-    spec[1:] *= 2.0
-    if n % 2 == 0:
-        spec[-1] /= 2.0
-    spec[0] = 0.0
-    return np.fft.rfftfreq(n, dt_s), spec
 
 
 def sampling_interval_s(

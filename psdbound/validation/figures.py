@@ -15,8 +15,8 @@ writes it atomically.
 
 from __future__ import annotations
 
+import io
 import os
-import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -24,6 +24,7 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from psdbound.common import atomic_write_bytes
 from psdbound.validation.geometry import CONVENTION_LABELS
 from psdbound.validation.results import DirectCheck, ExpansionCheck
 
@@ -195,14 +196,8 @@ def plot_direct(checks: Sequence[DirectCheck], expansion: Sequence[ExpansionChec
     return fig
 
 
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
-
-
 def save_figure(fig: Figure, path: str | os.PathLike[str], *, dpi: int = 130) -> Path:
-    """Write a figure as PNG atomically (temporary file in the same folder, then rename).
+    """Write a figure as PNG atomically (:func:`psdbound.common.atomic_write_bytes`).
 
     Parameters
     ----------
@@ -218,14 +213,6 @@ def save_figure(fig: Figure, path: str | os.PathLike[str], *, dpi: int = 130) ->
     pathlib.Path
         The written path.
     """
-    dest = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{dest.name}.", suffix=".tmp", dir=dest.parent)
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fig.savefig(fh, format="png", dpi=dpi)
-        os.chmod(tmp, 0o666 & ~_umask())
-        os.replace(tmp, dest)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return dest
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=dpi)
+    return atomic_write_bytes(path, buf.getvalue())

@@ -11,8 +11,7 @@ from conftest import UPC1_OBS, UPC2_OBS, UPC_NAV, shared_file
 
 import psdbound.isolation.dual_antenna as da_mod
 from psdbound.errors import InputError, NoDataError
-from psdbound.io import read_obs, read_orbit
-from psdbound.io._header import ObsHeader
+from psdbound.io import ObsHeader, read_obs, read_orbit
 from psdbound.io.geometry import (
     OMEGA_E_RAD_S,
     SPEED_OF_LIGHT_M_S,
@@ -243,7 +242,7 @@ def test_receiver_clock_estimate_is_needed(scenario, monkeypatch):
     def no_clock(obs, orbit, sats, code, rho, tau):
         return np.zeros(obs.t_gps_s.size), "none", 0
 
-    monkeypatch.setattr(da_mod, "_estimate_receiver_clock", no_clock)
+    monkeypatch.setattr(da_mod, "estimate_receiver_clock", no_clock)
     without = isolate_dual_antenna(obs1, obs2, orbit)
     worst = max(rel for _, _, rel in arc_errors(without, mp1))
     print(f"worst RMS error / truth RMS: {with_clock:.3f} with clock estimate, {worst:.1f} without")

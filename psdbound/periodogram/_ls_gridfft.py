@@ -24,6 +24,8 @@ import numpy as np
 import scipy.fft
 from numpy.typing import NDArray
 
+__all__ = ["grid_indices", "lombscargle_gridfft"]
+
 
 def grid_indices(t_s: NDArray[np.float64], dt_s: float) -> NDArray[np.int64] | None:
     """Integer sample indices of ``t_s`` on a ``dt_s`` grid, or None if off-grid."""

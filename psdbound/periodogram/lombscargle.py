@@ -1,13 +1,13 @@
-"""Lomb-Scargle PSD of sidereally replicated gappy series (method.md section 2, steps 2-3).
+"""Lomb-Scargle PSD of gappy, optionally replicated series: the dispatching front.
 
-A small front over two implementations (one algorithm per private module):
+Two implementations, one algorithm per private module:
 
-* ``"gridfft"`` (:mod:`psdbound.ionosphere._ls_gridfft`): exact periodogram
+* ``"gridfft"`` (:mod:`psdbound.periodogram._ls_gridfft`): exact periodogram
   of a series on a regular time grid with gaps, replicated ``copies`` times at
   ``period_s``, on the frequency grid ``k / (M dt)``, by one FFT (the
   replication factorises out in closed form). Requires on-grid times and the
   grid of :func:`frequency_grid`.
-* ``"astropy"`` (:mod:`psdbound.ionosphere._ls_astropy`): astropy's
+* ``"astropy"`` (:mod:`psdbound.periodogram._ls_astropy`): astropy's
   ``LombScargle(...).power(f, normalization="psd")`` on the explicitly
   replicated series, any times and frequencies; ``astropy_method`` picks
   astropy's own algorithm (its default ``"auto"`` chooses ``"fast"``, a
@@ -33,13 +33,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from psdbound.errors import InputError
-from psdbound.ionosphere._ls_astropy import lombscargle_astropy
-from psdbound.ionosphere._ls_gridfft import grid_indices, lombscargle_gridfft
-from psdbound.ionosphere.constellation import SIDEREAL_DAY_S
+from psdbound.periodogram._ls_astropy import lombscargle_astropy
+from psdbound.periodogram._ls_gridfft import grid_indices, lombscargle_gridfft
 
 __all__ = [
     "LS_METHODS",
-    "REPLICAS",
+    "SIDEREAL_DAY_S",
     "frequency_grid",
     "lomb_scargle",
     "to_one_sided_density",
@@ -47,8 +46,10 @@ __all__ = [
 
 #: Lomb-Scargle implementations.
 LS_METHODS = ("auto", "gridfft", "astropy")
-#: Default number of sidereal-day copies (the one-day series and six replicas).
-REPLICAS = 7
+#: Default replication period: one sidereal day, s (2 pi / omega_E, WGS 84
+#: omega_E = 7.2921151467e-5 rad/s; the value of
+#: :data:`psdbound.ionosphere.SIDEREAL_DAY_S`, which this package cannot import).
+SIDEREAL_DAY_S = 2.0 * np.pi / 7.2921151467e-5
 
 
 def frequency_grid(

@@ -1,0 +1,47 @@
+"""Shared compute layer: Dask task runs with a content-hash disk cache.
+
+Generic building blocks for batch work (the ionosphere cutoff map, a
+campaign of station-days): nothing here knows what the tasks compute.
+
+* :func:`run_tasks` -> :class:`TaskRun`: map a module-level function over
+  task items on a Dask cluster (a local one of ``workers`` processes, a
+  running scheduler by address, or in-process with ``workers=0``), reading
+  cached results instead of recomputing them;
+* :func:`dask_client`: the client context manager behind it;
+* :class:`DiskCache` (a :class:`TaskCache`), :class:`ResultStore`,
+  :func:`cache_key`, :func:`default_cache_dir`: results on disk keyed by a
+  SHA-256 of their inputs, written atomically.
+
+Example::
+
+    from psdbound.compute import DiskCache, cache_key, run_tasks
+
+    cache = DiskCache("cache/", key=lambda item: cache_key({"task": "square", **item}))
+    run = run_tasks(square, [{"x": 1.0}, {"x": 2.0}], workers=2, cache=cache)
+    run.results, run.n_cached
+"""
+
+from __future__ import annotations
+
+from psdbound.compute.cache import (
+    CACHE_ENV,
+    DiskCache,
+    ResultStore,
+    TaskCache,
+    cache_key,
+    default_cache_dir,
+)
+from psdbound.compute.cluster import dask_client
+from psdbound.compute.runner import TaskRun, run_tasks
+
+__all__ = [
+    "CACHE_ENV",
+    "DiskCache",
+    "ResultStore",
+    "TaskCache",
+    "TaskRun",
+    "cache_key",
+    "dask_client",
+    "default_cache_dir",
+    "run_tasks",
+]

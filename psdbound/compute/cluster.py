@@ -1,0 +1,78 @@
+"""Dask ``distributed`` client: a local cluster by default, or a running scheduler.
+
+:func:`dask_client` opens what the run needs and closes what it opened:
+
+* no ``scheduler``: a :class:`~dask.distributed.LocalCluster` of ``workers``
+  single-threaded worker processes (no dashboard, quiet logs), closed on
+  exit with its client;
+* a ``scheduler`` address (``tcp://host:8786``): a client of that running
+  cluster (its workers need psdbound installed); only the client is closed.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+from collections.abc import Iterator
+from typing import Any
+
+from psdbound.errors import InputError
+
+__all__ = ["dask_client"]
+
+
+@contextlib.contextmanager
+def dask_client(
+    *,
+    workers: int = 2,
+    scheduler: str | None = None,
+    processes: bool = True,
+    timeout_s: float = 20.0,
+) -> Iterator[Any]:
+    """Open a Dask client for the duration of a ``with`` block.
+
+    Parameters
+    ----------
+    workers : int, default 2
+        Workers of the local cluster (ignored with ``scheduler``); at least 1.
+    scheduler : str, optional
+        Address of a running Dask scheduler to use instead of a local cluster.
+    processes : bool, default True
+        Local cluster workers are processes (True) or threads of this one.
+    timeout_s : float, default 20
+        How long to wait for the scheduler, s.
+
+    Yields
+    ------
+    dask.distributed.Client
+
+    Raises
+    ------
+    InputError
+        For fewer than one local worker, or a scheduler that cannot be reached.
+    """
+    from dask.distributed import Client, LocalCluster
+
+    cluster = None
+    if scheduler is None:
+        if workers < 1:
+            raise InputError(f"workers = {workers} must be >= 1 for a Dask cluster")
+        cluster = LocalCluster(
+            n_workers=workers,
+            threads_per_worker=1,
+            processes=processes,
+            dashboard_address=None,
+            silence_logs=logging.ERROR,
+        )
+        client = Client(cluster)
+    else:
+        try:
+            client = Client(scheduler, timeout=f"{timeout_s:g}s")
+        except (OSError, TimeoutError) as exc:
+            raise InputError(f"cannot reach the Dask scheduler at {scheduler!r}: {exc}") from None
+    try:
+        yield client
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()

@@ -1,0 +1,73 @@
+"""RINEX 2 navigation records: GPS Keplerian records, GLONASS and GEO/SBAS records counted.
+
+Layout (RINEX 2.11, table A4): the epoch line holds the PRN in columns 1-2,
+the time of clock ``yy mm dd hh mm ss.s`` in columns 3-22 and three fields
+from column 23; the orbit lines hold four fields from column 4. A GPS record
+has eight lines; GLONASS (file type ``G``) and GEO/SBAS (``H``) records have
+four and are only counted.
+"""
+
+from __future__ import annotations
+
+from psdbound.io._nav_records import KEPLER_LINES, Epoch, RecordParser
+
+__all__ = ["Rinex2Parser"]
+
+
+class Rinex2Parser(RecordParser):
+    """Parser of the body of a RINEX 2 navigation file (one system per file)."""
+
+    FIRST_COLUMN = 22
+    CONTINUATION_COLUMN = 3
+    EPOCH_COLUMNS = "columns 3-22"
+
+    def epoch(self, line0: str) -> Epoch:
+        """Calendar fields of the epoch line (two-digit year as written)."""
+        return (
+            int(line0[2:5]),
+            int(line0[5:8]),
+            int(line0[8:11]),
+            int(line0[11:14]),
+            int(line0[14:17]),
+            float(line0[17:22]),
+        )
+
+    def parse(self, start: int, system: str = "G") -> None:
+        """Read every record from line index ``start`` on; ``system`` from the file type.
+
+        ``"G"`` (GPS, file type N) records are parsed; GLONASS (``"R"``,
+        file type G) and SBAS (``"S"``, file type H) records are counted.
+        """
+        lines = self.lines
+        i = start
+        last = self.last_line(start)
+        need = KEPLER_LINES if system == "G" else 4
+        while i <= last:
+            if not lines[i].strip():
+                i += 1
+                continue
+            prn_text = lines[i][:2]
+            try:
+                prn = int(prn_text)
+            except ValueError:
+                raise self.error(
+                    f"cannot read the PRN {prn_text!r} in columns 1-2; expected the first "
+                    "line of a RINEX 2 navigation record",
+                    i,
+                ) from None
+            sat = f"{system}{prn:02d}"
+            if last - i + 1 < need:
+                raise self.truncated(sat, last - i + 1, need, last)
+            rec = list(range(i, i + need))
+            for k in rec[1:]:
+                if lines[k][:3].strip():
+                    raise self.error(
+                        f"incomplete navigation record of {sat}: line {k + 1} starts a new "
+                        f"record; expected {need} lines per record",
+                        k,
+                    )
+            if system == "G":
+                self.add_kepler(system, sat, rec)
+            else:
+                self.skipped[system] = self.skipped.get(system, 0) + 1
+            i += need

@@ -1,0 +1,106 @@
+"""RINEX 3 navigation records: Keplerian records of GPS, Galileo, BeiDou, QZSS; others counted.
+
+Layout (RINEX 3.0x): the epoch line holds the satellite id in columns 1-3,
+the time of clock ``yyyy mm dd hh mm ss`` in columns 5-23 and three fields
+from column 24; the orbit lines start with a blank and hold four fields from
+column 5. A record runs to the next line that starts with a satellite id.
+Keplerian records (:data:`KEPLER_SYSTEMS`) have eight lines; GLONASS, SBAS
+and NavIC records (:data:`SKIPPED_SYSTEMS`) are only counted.
+"""
+
+from __future__ import annotations
+
+from psdbound.io._nav_records import KEPLER_LINES, Epoch, RecordParser
+from psdbound.io.kepler import SAT_ID_RE
+
+__all__ = ["KEPLER_SYSTEMS", "SKIPPED_SYSTEMS", "SKIPPED_LINES", "Rinex3Parser"]
+
+#: Systems whose RINEX records are Keplerian broadcast ephemerides parsed here.
+KEPLER_SYSTEMS: tuple[str, ...] = ("G", "E", "C", "J")
+#: Systems whose records are recognised but skipped (only counted).
+SKIPPED_SYSTEMS: tuple[str, ...] = ("R", "S", "I")
+#: Minimum number of lines of the records that are only counted.
+SKIPPED_LINES = {"R": 4, "S": 4, "I": 8}
+
+
+class Rinex3Parser(RecordParser):
+    """Parser of the body of a RINEX 3 navigation file (single-system or mixed)."""
+
+    FIRST_COLUMN = 23
+    CONTINUATION_COLUMN = 4
+    EPOCH_COLUMNS = "columns 5-23"
+
+    def epoch(self, line0: str) -> Epoch:
+        """Calendar fields of the epoch line."""
+        return (
+            int(line0[3:8]),
+            int(line0[8:11]),
+            int(line0[11:14]),
+            int(line0[14:17]),
+            int(line0[17:20]),
+            float(line0[20:23]),
+        )
+
+    def parse(self, start: int) -> None:
+        """Read every record from line index ``start`` (the line after END OF HEADER) on."""
+        lines = self.lines
+        i = start
+        last = self.last_line(start)
+        while i <= last:
+            line = lines[i]
+            if not line.strip():
+                i += 1
+                continue
+            system = line[0]
+            if system == " " or not line[:3].strip():
+                raise self.error(
+                    "unexpected continuation line; expected the first line of a navigation "
+                    "record starting with a satellite id such as 'G01' in columns 1-3",
+                    i,
+                )
+            if system == ">":
+                raise self.error(
+                    "RINEX 4 record header ('> EPH ...') found; only RINEX 2 and 3 "
+                    "navigation files are supported",
+                    i,
+                )
+            sat = line[:3].replace(" ", "0")
+            if not SAT_ID_RE.match(sat):
+                raise self.error(
+                    f"cannot read the satellite id {line[:3]!r} in columns 1-3; expected "
+                    "a system letter and a 2-digit number such as 'G01'",
+                    i,
+                )
+            # collect continuation lines (those starting with a blank)
+            j = i + 1
+            while j <= last and lines[j][:1] == " " and lines[j].strip():
+                j += 1
+            rec = list(range(i, j))
+            if system in KEPLER_SYSTEMS:
+                if len(rec) < KEPLER_LINES:
+                    if j > last:
+                        raise self.truncated(sat, len(rec), KEPLER_LINES, j - 1)
+                    raise self.error(
+                        f"incomplete navigation record of {sat}: {len(rec)} lines found "
+                        f"before the next record; expected {KEPLER_LINES} lines",
+                        j - 1,
+                    )
+                if len(rec) > KEPLER_LINES:
+                    raise self.error(
+                        f"navigation record of {sat} has more than {KEPLER_LINES} lines; "
+                        "expected the next record to start with a satellite id",
+                        rec[KEPLER_LINES],
+                    )
+                self.add_kepler(system, sat, rec)
+            elif system in SKIPPED_SYSTEMS:
+                need = SKIPPED_LINES[system]
+                if len(rec) < need and j > last:
+                    raise self.truncated(sat, len(rec), need, j - 1)
+                self.skipped[system] = self.skipped.get(system, 0) + 1
+            else:
+                raise self.error(
+                    f"unknown satellite system letter {system!r} in satellite id {sat!r}; "
+                    "expected one of G, E, C, J, R, S, I",
+                    i,
+                )
+            i = j

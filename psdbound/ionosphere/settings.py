@@ -1,0 +1,225 @@
+"""Settings of a cutoff run, built and checked in one place.
+
+:class:`CutoffSettings` holds every setting besides station, dates and orbit
+source. It is built from keyword arguments, or from a mapping of setting
+names (a parsed command line, a cached task) by
+:meth:`CutoffSettings.from_mapping`, and hands each stage its options:
+:meth:`~CutoffSettings.simulation_options` to
+:func:`~psdbound.ionosphere.slant.simulate_slant_delay`,
+:meth:`~CutoffSettings.series_options` to
+:func:`~psdbound.ionosphere.cutoff.series_cutoff`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from psdbound.errors import InputError
+from psdbound.ionosphere.cutoff import (
+    CRITERIA,
+    DEFAULT_DROP_DB,
+    DEFAULT_VARIANCE_M2,
+    MIN_ARC_S,
+    MIN_SERIES_SAMPLES,
+    REFERENCES,
+)
+from psdbound.ionosphere.iri import DEFAULT_F107_SFU, IRI_MODELS
+from psdbound.ionosphere.slant import DEFAULT_SHELL_HEIGHT_KM, FREQUENCIES_HZ, METHODS
+
+__all__ = ["SETTING_OPTIONS", "CutoffSettings", "parse_carriers"]
+
+# settings handed to simulate_slant_delay under the same name
+_SIMULATION = (
+    "f107_sfu", "elevation_mask_deg", "method", "frequency_hz", "second_frequency_hz",
+    "sampling_s", "iri_model", "alt_range_km", "shell_height_km", "grid_size", "ut_step_h",
+    "ray_stride",
+)  # fmt: skip
+# settings handed to series_cutoff under the same name (plus sampling_s as dt_s)
+_SERIES = (
+    "copies", "oversample", "nyquist_fraction", "criterion", "drop_db", "reference",
+    "variance_m2", "degree", "quantile", "envelope_method", "bins_per_decade",
+)  # fmt: skip
+
+
+def parse_carriers(text: str) -> tuple[float, float | None]:
+    """Parse a carrier frequency, or a pair of carriers, from text.
+
+    Parameters
+    ----------
+    text : str
+        A name of :data:`~psdbound.ionosphere.slant.FREQUENCIES_HZ` (``L1``,
+        ``L2``, ``L5``, ``E1``, ``E5a``, ``E5b``), a value in MHz, or two of
+        them joined by ``-`` (``L1-L2``) for the dual-frequency difference.
+
+    Returns
+    -------
+    frequency_hz : float
+        First carrier, Hz.
+    second_frequency_hz : float or None
+        Second carrier, Hz, for a pair.
+
+    Raises
+    ------
+    InputError
+        For an unknown name, a value outside 100-10000 MHz, or a pair of
+        equal frequencies.
+    """
+
+    def one(tok: str) -> float:
+        tok = tok.strip()
+        if tok in FREQUENCIES_HZ:
+            return FREQUENCIES_HZ[tok]
+        try:
+            mhz = float(tok)
+        except ValueError:
+            raise InputError(
+                f"unknown carrier {tok!r}: use {', '.join(FREQUENCIES_HZ)} or a value in MHz"
+            ) from None
+        if not 100.0 <= mhz <= 10000.0:
+            raise InputError(f"carrier frequency {mhz} MHz is outside 100-10000 MHz")
+        return mhz * 1e6
+
+    parts = text.split("-") if text.count("-") == 1 and not text.startswith("-") else [text]
+    if len(parts) == 2:
+        f1, f2 = one(parts[0]), one(parts[1])
+        if f1 == f2:
+            raise InputError(f"the two carriers of {text!r} are the same frequency")
+        return f1, f2
+    return one(parts[0]), None
+
+
+@dataclass(frozen=True)
+class CutoffSettings:
+    """Every setting of a cutoff run besides station, dates and orbit source.
+
+    Simulation: ``f107_sfu``, ``elevation_mask_deg``, ``method``,
+    ``iri_model``, ``frequency_hz``, ``second_frequency_hz``, ``sampling_s``,
+    ``alt_range_km``, ``shell_height_km``, ``grid_size``, ``ut_step_h``,
+    ``ray_stride`` (see :func:`~psdbound.ionosphere.slant.simulate_slant_delay`).
+    Spectrum and criterion: ``copies``, ``oversample``, ``nyquist_fraction``,
+    ``criterion``, ``drop_db``, ``reference``, ``variance_m2``, ``degree``,
+    ``quantile``, ``envelope_method``, ``bins_per_decade``
+    (see :func:`~psdbound.ionosphere.cutoff.series_cutoff`). ``systems``
+    picks the nominal constellation when no orbit file is given;
+    ``min_arc_s`` drops shorter arcs from each one-day series and
+    ``min_samples`` is the shortest one-day series analysed (shorter ones are
+    listed as skipped); see :func:`~psdbound.ionosphere.cutoff.one_day_series`.
+    """
+
+    f107_sfu: float = DEFAULT_F107_SFU
+    elevation_mask_deg: float = 10.0
+    method: str = "line-of-sight"
+    iri_model: str = "ursi"
+    frequency_hz: float = FREQUENCIES_HZ["L1"]
+    second_frequency_hz: float | None = None
+    sampling_s: float = 12.0
+    alt_range_km: tuple[float, float] = (60.0, 2000.0)
+    shell_height_km: float = DEFAULT_SHELL_HEIGHT_KM
+    grid_size: int = 21
+    ut_step_h: float = 0.5
+    ray_stride: int = 5
+    systems: str = "G"
+    copies: int = 7
+    oversample: float = 1.0
+    nyquist_fraction: float = 0.99
+    criterion: str = "relative"
+    drop_db: float = DEFAULT_DROP_DB
+    reference: str = "psd"
+    variance_m2: float = DEFAULT_VARIANCE_M2
+    degree: int = 3
+    quantile: float = 0.99
+    envelope_method: str = "quantreg"
+    bins_per_decade: float = 20.0
+    min_samples: int = MIN_SERIES_SAMPLES
+    min_arc_s: float = MIN_ARC_S
+
+    @classmethod
+    def from_mapping(cls, options: Mapping[str, Any]) -> CutoffSettings:
+        """Build settings from a mapping of names to values; absent names keep their defaults.
+
+        Parameters
+        ----------
+        options : mapping
+            Field names (see the class notes) to values; None means "not
+            given". ``carrier`` (text, see :func:`parse_carriers`) sets
+            ``frequency_hz`` and ``second_frequency_hz``; ``systems`` is
+            upper-cased; ``alt_range_km`` may be a list. Every name must be
+            one of :data:`SETTING_OPTIONS`.
+
+        Returns
+        -------
+        CutoffSettings
+            Checked by :meth:`validate`.
+
+        Raises
+        ------
+        InputError
+            For an unknown name, carrier or setting value.
+        """
+        given = {k: v for k, v in options.items() if v is not None}
+        unknown = sorted(set(given) - set(SETTING_OPTIONS))
+        if unknown:
+            raise InputError(f"unknown cutoff setting(s) {', '.join(unknown)}")
+        carrier = given.pop("carrier", None)
+        if carrier is not None:
+            given["frequency_hz"], given["second_frequency_hz"] = parse_carriers(str(carrier))
+        if "systems" in given:
+            given["systems"] = str(given["systems"]).upper()
+        if "alt_range_km" in given:
+            lo, hi = given["alt_range_km"]
+            given["alt_range_km"] = (float(lo), float(hi))
+        settings = cls(**given)
+        settings.validate()
+        return settings
+
+    def validate(self) -> None:
+        """Raise :class:`InputError` for an unknown choice or an out-of-range number."""
+        checks = [
+            (self.method in METHODS, f"method {self.method!r} not in {METHODS}"),
+            (self.iri_model in IRI_MODELS, f"iri_model {self.iri_model!r} not in {IRI_MODELS}"),
+            (self.criterion in CRITERIA, f"criterion {self.criterion!r} not in {CRITERIA}"),
+            (self.reference in REFERENCES, f"reference {self.reference!r} not in {REFERENCES}"),
+            (
+                50.0 <= self.f107_sfu <= 400.0,
+                f"F10.7 = {self.f107_sfu} sfu is outside the plausible range 50-400 sfu",
+            ),
+            (
+                0.0 <= self.elevation_mask_deg < 90.0,
+                f"elevation mask {self.elevation_mask_deg} deg is out of range: expected "
+                "0 <= mask < 90",
+            ),
+            (self.copies >= 1, f"copies = {self.copies} must be at least 1"),
+            (self.drop_db > 0, f"drop_db = {self.drop_db} must be positive"),
+            (self.variance_m2 > 0, f"variance_m2 = {self.variance_m2} must be positive"),
+            (set(self.systems) <= {"G", "E"} and self.systems, "systems must be G, E or GE"),
+            (self.degree >= 0, f"envelope degree {self.degree} must be non-negative"),
+            (0.5 <= self.quantile <= 1.0, f"quantile {self.quantile} must be in [0.5, 1]"),
+            (self.min_arc_s >= 0, f"min_arc_s = {self.min_arc_s} must be non-negative"),
+        ]
+        for ok, message in checks:
+            if not ok:
+                raise InputError(message)
+
+    def simulation_options(self) -> dict[str, Any]:
+        """Return the keyword options of :func:`simulate_slant_delay` for these settings."""
+        return {name: getattr(self, name) for name in _SIMULATION}
+
+    def series_options(self) -> dict[str, Any]:
+        """Return the keyword options of :func:`series_cutoff` for these settings."""
+        return {"dt_s": self.sampling_s, **{name: getattr(self, name) for name in _SERIES}}
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict of the settings."""
+        d = dataclasses.asdict(self)
+        d["alt_range_km"] = list(self.alt_range_km)
+        return d
+
+
+#: Names :meth:`CutoffSettings.from_mapping` accepts: every field, and ``carrier``.
+SETTING_OPTIONS: tuple[str, ...] = (
+    *(f.name for f in dataclasses.fields(CutoffSettings)),
+    "carrier",
+)

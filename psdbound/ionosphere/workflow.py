@@ -1,0 +1,182 @@
+"""From options to output files: a whole cutoff run as one library call.
+
+:func:`run_cutoff` is what ``psdbound cutoff`` does: check the position,
+pick the days (:func:`~psdbound.ionosphere.batch.select_days`), build the
+settings (:meth:`~psdbound.ionosphere.settings.CutoffSettings.from_mapping`),
+load the orbit source (:func:`load_orbit`), run a station
+(:func:`~psdbound.ionosphere.batch.station_cutoffs`) or the station map
+(:func:`~psdbound.ionosphere.batch.map_cutoffs`), and write the outputs
+(:func:`~psdbound.ionosphere.outputs.write_cutoff_outputs`).
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import os
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from psdbound.errors import InputError
+from psdbound.io.timescales import calendar_to_gps_s
+from psdbound.ionosphere.almanac import read_yuma
+from psdbound.ionosphere.batch import map_cutoffs, select_days, station_cutoffs
+from psdbound.ionosphere.outputs import write_cutoff_outputs
+from psdbound.ionosphere.results import CutoffMap, StationCutoffs
+from psdbound.ionosphere.settings import CutoffSettings
+from psdbound.ionosphere.stations import validate_station
+
+__all__ = ["CutoffOutcome", "load_orbit", "run_cutoff"]
+
+
+@dataclass
+class CutoffOutcome:
+    """What :func:`run_cutoff` computed and wrote.
+
+    Attributes
+    ----------
+    result : StationCutoffs or CutoffMap
+        The station or map run.
+    days : list of datetime.date
+        Days simulated.
+    files : list of Path
+        Output files written, in order.
+    nearest : tuple of (dict, float) or None
+        For a map run with a position: the nearest station's summary and its
+        distance, degrees of arc.
+    """
+
+    result: StationCutoffs | CutoffMap
+    days: list[_dt.date]
+    files: list[Path] = field(default_factory=list)
+    nearest: tuple[dict[str, Any], float] | None = None
+
+
+def load_orbit(
+    *,
+    day: _dt.date,
+    nav: str | os.PathLike[str] | None = None,
+    sp3: str | os.PathLike[str] | None = None,
+    almanac: str | os.PathLike[str] | None = None,
+) -> Any:
+    """Orbit source from a file, or None for the nominal constellation.
+
+    Parameters
+    ----------
+    day : datetime.date
+        First day of the run (resolves a YUMA almanac's week rollover).
+    nav, sp3, almanac : str or path-like, optional
+        RINEX navigation, SP3 or YUMA almanac file; at most one.
+
+    Returns
+    -------
+    OrbitSource or None
+        None when no file is given.
+
+    Raises
+    ------
+    InputError
+        For more than one file, or a file that cannot be read.
+    """
+    if sum(x is not None for x in (nav, sp3, almanac)) > 1:
+        raise InputError("give at most one of a navigation, SP3 or almanac file")
+    if nav or sp3:
+        from psdbound.io import read_orbit
+
+        return read_orbit(nav or sp3)
+    if almanac:
+        near = float(calendar_to_gps_s(day.year, day.month, day.day, 0, 0, 0))
+        return read_yuma(almanac, near_gps_s=near)
+    return None
+
+
+def run_cutoff(
+    *,
+    lat_deg: float | None = None,
+    lon_deg: float | None = None,
+    station_map: bool = False,
+    year: int = 2020,
+    days: str = "first-monday-each-month",
+    name: str = "",
+    height_m: float = 0.0,
+    settings: CutoffSettings | Mapping[str, Any] | None = None,
+    nav: str | os.PathLike[str] | None = None,
+    sp3: str | os.PathLike[str] | None = None,
+    almanac: str | os.PathLike[str] | None = None,
+    workers: int = 2,
+    scheduler: str | None = None,
+    cache_dir: str | os.PathLike[str] | None = None,
+    use_cache: bool = True,
+    out_dir: str | os.PathLike[str] = ".",
+    figures: bool = True,
+    progress: Callable[[int, int], None] | None = None,
+) -> CutoffOutcome:
+    """Run a station (or the station map) and write its outputs.
+
+    Parameters
+    ----------
+    lat_deg, lon_deg : float, optional
+        Station position, degrees; with ``station_map``, the position whose
+        nearest map station is looked up.
+    station_map : bool, default False
+        Run the 20 map stations instead of one station.
+    year : int, default 2020
+        Year of a named day selection.
+    days : str, default "first-monday-each-month"
+        Day selection (see :func:`~psdbound.ionosphere.batch.select_days`).
+    name : str, optional
+        Station name for outputs.
+    height_m : float, default 0
+        Station height, m.
+    settings : CutoffSettings or mapping, optional
+        Settings, or a mapping of setting names for
+        :meth:`CutoffSettings.from_mapping`; default values otherwise.
+    nav, sp3, almanac : str or path-like, optional
+        Orbit file (see :func:`load_orbit`); default the nominal constellation.
+    workers, scheduler, cache_dir, use_cache, progress
+        Execution (see :func:`~psdbound.ionosphere.batch.station_cutoffs`).
+    out_dir : str or path-like, default "."
+        Output folder.
+    figures : bool, default True
+        Also write the PNG figures.
+
+    Returns
+    -------
+    CutoffOutcome
+
+    Raises
+    ------
+    InputError
+        For a bad position, day selection, setting or file.
+    NoDataError
+        If a station has no satellite series to analyse.
+    """
+    if (lat_deg is None) != (lon_deg is None):
+        raise InputError("latitude and longitude go together")
+    if not station_map and lat_deg is None:
+        raise InputError("give a station position, or run the station map")
+    if lat_deg is not None:
+        validate_station(lat_deg, lon_deg)
+    day_list = select_days(year, days)
+    if not isinstance(settings, CutoffSettings):
+        settings = CutoffSettings.from_mapping(settings or {})
+    settings.validate()
+    common = {
+        "orbit": load_orbit(day=day_list[0], nav=nav, sp3=sp3, almanac=almanac),
+        "settings": settings,
+        "workers": workers,
+        "scheduler": scheduler,
+        "cache_dir": cache_dir,
+        "use_cache": use_cache,
+        "progress": progress,
+    }
+    if station_map:
+        result: StationCutoffs | CutoffMap = map_cutoffs(day_list, **common)
+    else:
+        result = station_cutoffs(lat_deg, lon_deg, day_list, name=name, height_m=height_m, **common)
+    files = write_cutoff_outputs(result, out_dir, figures=figures)
+    nearest = None
+    if station_map and lat_deg is not None:
+        nearest = result.nearest(lat_deg, lon_deg)
+    return CutoffOutcome(result=result, days=day_list, files=files, nearest=nearest)

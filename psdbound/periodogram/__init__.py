@@ -1,0 +1,42 @@
+"""Periodograms: Lomb-Scargle of gappy (replicated) series, and tapered periodograms.
+
+The one owner of periodogram computations; a low-level package (it imports
+only NumPy, SciPy, astropy, :mod:`psdbound.errors` and :mod:`psdbound.common`)
+that the stages call:
+
+* Lomb-Scargle (:mod:`psdbound.periodogram.lombscargle`, a small front over
+  one algorithm per private module): :func:`lomb_scargle` with methods
+  :data:`LS_METHODS` (``"gridfft"``: exact, by FFT, for on-grid times;
+  ``"astropy"``: any times), :func:`frequency_grid`,
+  :func:`to_one_sided_density`, :func:`replicate_series`;
+* tapered (:mod:`psdbound.periodogram.tapered`): :func:`tapered_periodogram`
+  (one-sided Hann-tapered FFT periodogram), :func:`tapered_lomb_scargle`
+  and :func:`hann_taper`.
+
+The PSD *estimators* of the bound (Welch, multitaper, Blackman-Tukey) are in
+:mod:`psdbound.spectra`.
+"""
+
+from __future__ import annotations
+
+from psdbound.periodogram._ls_astropy import replicate_series
+from psdbound.periodogram.lombscargle import (
+    LS_METHODS,
+    SIDEREAL_DAY_S,
+    frequency_grid,
+    lomb_scargle,
+    to_one_sided_density,
+)
+from psdbound.periodogram.tapered import hann_taper, tapered_lomb_scargle, tapered_periodogram
+
+__all__ = [
+    "LS_METHODS",
+    "SIDEREAL_DAY_S",
+    "frequency_grid",
+    "hann_taper",
+    "lomb_scargle",
+    "replicate_series",
+    "tapered_lomb_scargle",
+    "tapered_periodogram",
+    "to_one_sided_density",
+]

@@ -1,0 +1,267 @@
+"""The library's front door: ``psdbound.fit`` -> :class:`FitResults`, ``psdbound.load``.
+
+statsmodels-style: :func:`fit` runs the stage chain of
+:mod:`psdbound.pipeline.stages` and returns a results object with the stage
+products, the result document, :meth:`FitResults.summary`,
+:meth:`FitResults.to_json` and :meth:`FitResults.report`. :func:`load`
+reads a ``result.json`` back into a :class:`FitResults` (document only).
+
+Examples
+--------
+>>> import psdbound
+>>> res = psdbound.fit()                     # doctest: +SKIP
+>>> print(res.summary())                     # doctest: +SKIP
+>>> res.report("reports/demo")               # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import fields
+from pathlib import Path
+from typing import Any
+
+from psdbound.errors import InputError
+from psdbound.pipeline import stages
+from psdbound.pipeline.config import FitConfig
+from psdbound.pipeline.document import build_document
+from psdbound.results import read_document, write_document
+
+__all__ = ["FitResults", "fit", "load"]
+
+Progress = Callable[[str], None]
+
+
+class FitResults:
+    """The result of a fit: stage products, the result document and its views.
+
+    Attributes
+    ----------
+    document : dict
+        The ``result.json`` content (schema 1).
+    config : FitConfig or None
+        The configuration that produced it (None when loaded from a file).
+    inputs, cutoff, isolated, screened, windowed, bounded, validated : stage results or None
+        The products of :mod:`psdbound.pipeline.stages` (None when loaded).
+    """
+
+    def __init__(self, document: dict[str, Any], *, config: FitConfig | None = None,
+                 **stage_results: Any) -> None:  # fmt: skip
+        self.document = document
+        self.config = config
+        self.inputs = stage_results.get("inputs")
+        self.cutoff = stage_results.get("cutoff")
+        self.isolated = stage_results.get("isolated")
+        self.screened = stage_results.get("screened")
+        self.windowed = stage_results.get("windowed")
+        self.bounded = stage_results.get("bounded")
+        self.validated = stage_results.get("validated")
+
+    # ------------------------------------------------------------- views
+    @property
+    def bound(self) -> Any:
+        """The fitted Gauss-Markov + white-noise model (sigma_gm_m, tau_s, sigma_wn_m, dt_s).
+
+        Returns
+        -------
+        psdbound.spectra.GaussMarkovWhiteNoise
+        """
+        from psdbound.spectra.models import GaussMarkovWhiteNoise
+
+        b = self.document["bound"]
+        return GaussMarkovWhiteNoise(b["sigma_gm_m"], b["tau_s"], b["sigma_wn_m"], b["dt_s"])
+
+    @property
+    def verdict(self) -> str:
+        """``"bounded"`` or ``"not-bounded"`` (see :mod:`psdbound.pipeline.verdict`)."""
+        return self.document["verdict"]
+
+    @property
+    def verdict_reasons(self) -> list[str]:
+        """Why the verdict is "not-bounded" (empty when bounded)."""
+        return list(self.document["verdict_reasons"])
+
+    @property
+    def series(self) -> Any:
+        """The screened multipath series the bound was fitted on (None when loaded)."""
+        return None if self.screened is None else self.screened.series
+
+    @property
+    def windows(self) -> Any:
+        """The stationary windows (None when loaded from a file)."""
+        return None if self.windowed is None else self.windowed.windows
+
+    @property
+    def validation(self) -> dict[str, Any]:
+        """The cutoff validation section (verdict, fractions)."""
+        return self.document["validation"]
+
+    @property
+    def warnings(self) -> list[str]:
+        """Every warning of the run, in pipeline order."""
+        return list(self.document["warnings"])
+
+    @property
+    def provenance(self) -> dict[str, Any]:
+        """Input files with SHA-256, versions, configuration, time, platform."""
+        return self.document["provenance"]
+
+    def summary(self) -> str:
+        """Return the console summary (bound, cutoff, sampling, windows, warnings)."""
+        d = self.document
+        b, c, s, w = d["bound"], d["cutoff"], d["sampling"], d["windows"]
+        fc = "n/a" if c["f_c_hz"] is None else f"{c['f_c_hz']:.4g} Hz ({c['source']})"
+        lines = [
+            f"verdict: {d['verdict'].upper()}"
+            + "".join(f"\n  reason: {x}" for x in d["verdict_reasons"]),
+            f"psdbound fit ({d['method']}): sigma_GM = {100 * b['sigma_gm_m']:.3f} cm, "
+            f"tau = {b['tau_s']:.1f} s, sigma_WN = {100 * b['sigma_wn_m']:.3f} cm "
+            f"(per sample at {s['interval_s']:g} s)",
+            f"  cutoff {fc}; Nyquist {s['nyquist_hz']:.4g} Hz; {w['count']} stationary windows "
+            f"({w['total_duration_s'] / 3600:.2f} h); validation: "
+            f"{d['validation'].get('verdict', 'n/a')}",
+        ]
+        if d["warnings"]:
+            lines.append(f"  {len(d['warnings'])} warning(s):")
+            lines += [f"  - {x}" for x in d["warnings"]]
+        return "\n".join(lines)
+
+    def __repr__(self) -> str:
+        b = self.document["bound"]
+        return (f"<FitResults {self.document['method']}: sigma_gm_m={b['sigma_gm_m']:.4g}, "
+                f"tau_s={b['tau_s']:.4g}, sigma_wn_m={b['sigma_wn_m']:.4g}>")  # fmt: skip
+
+    # ------------------------------------------------------------- output
+    def to_json(self, path: str | os.PathLike[str]) -> Path:
+        """Write ``result.json`` atomically; return its path."""
+        return write_document(path, self.document)
+
+    def report(self, out_dir: str | os.PathLike[str], *, pdf: bool = True) -> dict[str, Path]:
+        """Write ``result.json``, ``report.html`` and (optionally) ``report.pdf`` into a folder.
+
+        The folder is built under a temporary name and renamed when complete.
+
+        Parameters
+        ----------
+        out_dir : str or path-like
+            Destination folder.
+        pdf : bool, default True
+            Also write the PDF report.
+
+        Returns
+        -------
+        dict of str to Path
+            ``{"result": ..., "html": ..., "pdf": ...}``.
+        """
+        from psdbound.reports import write_report_folder
+
+        return write_report_folder(self.document, out_dir, pdf=pdf)
+
+
+def _config_from(obs: Sequence[str | os.PathLike[str]] | str | os.PathLike[str],
+                 nav: str | os.PathLike[str] | None, config: FitConfig | None,
+                 options: dict[str, Any]) -> FitConfig:  # fmt: skip
+    cfg = config if config is not None else FitConfig()
+    if isinstance(obs, str | os.PathLike):
+        obs = [obs]
+    if obs:
+        cfg = cfg.updated("inputs", obs=tuple(os.fspath(p) for p in obs))
+    if nav is not None:
+        cfg = cfg.updated("inputs", nav=os.fspath(nav))
+    sections = {f.name for f in fields(FitConfig)}
+    owners: dict[str, list[str]] = {}
+    for sec in sections:
+        for f in fields(getattr(cfg, sec)):
+            owners.setdefault(f.name, []).append(sec)
+    for key, value in options.items():
+        if key in sections:
+            if not isinstance(value, dict):
+                raise InputError(f"option {key}= must be a dict of {key} options")
+            cfg = cfg.updated(key, **value)
+        elif len(owners.get(key, [])) == 1:
+            cfg = cfg.updated(owners[key][0], **{key: value})
+        elif key in owners:
+            alts = " or ".join(f"{s}={{{key!r}: ...}}" for s in sorted(owners[key]))
+            raise InputError(f"option {key!r} is ambiguous: give it as {alts}")
+        else:
+            raise InputError(f"unknown option {key!r}; see psdbound.FitConfig for every option")
+    return cfg
+
+
+def fit(
+    obs: Sequence[str | os.PathLike[str]] | str | os.PathLike[str] = (),
+    nav: str | os.PathLike[str] | None = None,
+    *,
+    config: FitConfig | None = None,
+    progress: Progress | None = None,
+    **options: Any,
+) -> FitResults:
+    """Fit a Gauss-Markov + white-noise PSD bound to carrier-phase multipath.
+
+    Parameters
+    ----------
+    obs : path or sequence of paths, optional
+        One observation file (dual-frequency) or two (dual-antenna). None or
+        empty: the embedded demo (simulated, known truth).
+    nav : path, optional
+        Navigation (RINEX 2/3) or SP3 file.
+    config : FitConfig, optional
+        Every option; ``obs``, ``nav`` and ``options`` override it.
+    progress : callable, optional
+        Called with a short message at the start of each stage.
+    **options
+        Either a section of :class:`FitConfig` as a dict
+        (``cutoff={"f_c_hz": 1e-3}``) or an option whose name belongs to
+        one section only (``estimator="welch"``, ``f_c_hz=1e-3``).
+
+    Returns
+    -------
+    FitResults
+
+    Raises
+    ------
+    InputError
+        Bad input (files, options); :class:`~psdbound.errors.NoDataError`
+        when the data hold no usable arc or window.
+    """
+    cfg = _config_from(obs, nav, config, options)
+    say = progress or (lambda msg: None)
+    t0 = time.perf_counter()
+    inputs = stages.read_inputs(cfg.inputs, progress=say)
+    cfg = cfg.updated("inputs", method=inputs.method)  # the effective method (auto resolved)
+    cutoff = stages.choose_cutoff(inputs, cfg.cutoff)
+    isolated = stages.isolate(inputs, cutoff, arcs=cfg.arcs, highpass=cfg.filter,
+                              options=cfg.inputs, progress=say)  # fmt: skip
+    screened = stages.screen(isolated, options=cfg.screening, mapping=cfg.mapping,
+                             min_length_s=cfg.stationarity.min_window_s, progress=say)
+    windowed = stages.window(screened, mapping=cfg.mapping, options=cfg.stationarity,
+                             progress=say)  # fmt: skip
+    bounded = stages.bound(windowed, spectra=cfg.spectra, options=cfg.bound, progress=say)
+    validated = stages.validate(cutoff, inputs=inputs, isolated=isolated, arcs=cfg.arcs,
+                                options=cfg.validation, progress=say)
+    products = dict(inputs=inputs, cutoff=cutoff, isolated=isolated, screened=screened,
+                    windowed=windowed, bounded=bounded, validated=validated)  # fmt: skip
+    document = build_document(config=cfg, run_time_s=time.perf_counter() - t0, **products)
+    return FitResults(document, config=cfg, **products)
+
+
+def load(path: str | os.PathLike[str]) -> FitResults:
+    """Read a ``result.json`` written by psdbound.
+
+    Parameters
+    ----------
+    path : str or path-like
+
+    Returns
+    -------
+    FitResults
+        With the document only (stage products are None).
+
+    Raises
+    ------
+    InputError
+        Missing file, invalid JSON, unsupported schema or a missing field.
+    """
+    return FitResults(read_document(path))

@@ -1,0 +1,186 @@
+"""The data every report figure is drawn from, built from the stage results.
+
+The fit writes this into ``result.json`` (section ``figures``) so that a
+report can be redrawn from the file alone (``psdbound report``). Long series
+are decimated (at most ``MAX_POINTS`` per arc) and PSDs log-binned to their
+maxima (at most ``MAX_PSD_POINTS`` each: a faithful upper outline).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+__all__ = ["MAX_POINTS", "MAX_PSD_POINTS", "figure_data", "psd_outline"]
+
+MAX_POINTS = 1500
+MAX_PSD_POINTS = 300
+
+
+def _decimate(n: int, limit: int = MAX_POINTS) -> slice:
+    return slice(None, None, max(1, int(np.ceil(n / limit))))
+
+
+def psd_outline(
+    f_hz: NDArray[np.float64], psd_m2_hz: NDArray[np.float64], n: int = MAX_PSD_POINTS
+) -> tuple[list[float], list[float]]:
+    """Log-binned maxima of a PSD (an upper outline for plotting).
+
+    Parameters
+    ----------
+    f_hz : ndarray
+        Increasing frequencies, Hz (> 0).
+    psd_m2_hz : ndarray
+        PSD values, m^2/Hz.
+    n : int
+        Number of log-spaced bins.
+
+    Returns
+    -------
+    f_hz, psd_m2_hz : list of float
+        At most ``n`` points: in each bin, the frequency and value of the maximum.
+    """
+    f = np.asarray(f_hz, dtype=float)
+    s = np.asarray(psd_m2_hz, dtype=float)
+    if f.size <= n:
+        return f.tolist(), s.tolist()
+    edges = np.geomspace(f[0], f[-1] * (1 + 1e-12), n + 1)
+    idx = np.clip(np.searchsorted(edges, f, side="right") - 1, 0, n - 1)
+    ff, ss = [], []
+    for k in np.unique(idx):
+        sel = idx == k
+        j = np.argmax(s[sel])
+        ff.append(float(f[sel][j]))
+        ss.append(float(s[sel][j]))
+    return ff, ss
+
+
+def _arcs(series: Any, arcs: Any) -> list[dict[str, Any]]:
+    if arcs is not None:
+        return [
+            {"sat": a.sat, "t0": float(a.t_gps_s[0]), "t1": float(a.t_gps_s[-1]),
+             "kept": True, "start_reason": a.start_reason}
+            for a in arcs
+        ]  # fmt: skip
+    return [
+        {"sat": a.sats, "t0": float(a.t_gps_s[0]), "t1": float(a.t_gps_s[-1]),
+         "kept": True, "start_reason": ""}
+        for a in series.arcs()
+    ]  # fmt: skip
+
+
+def _df_filter(series: Any) -> dict[str, Any] | None:
+    """Return the DF difference before/after filtering, for the longest arc."""
+    if series.unfiltered_m is None or series.n_arcs == 0:
+        return None
+    k = int(np.argmax([a.duration_s for a in series.arcs()]))
+    av = series.arc(k)
+    sl = _decimate(av.t_gps_s.size)
+    return {
+        "sat": av.sats,
+        "t_gps_s": av.t_gps_s[sl],
+        "unfiltered_m": av.unfiltered_m[sl],
+        "filtered_m": (av.value_m / series.scaling)[sl],
+    }
+
+
+def _mapped(series: Any, windows: Any) -> list[dict[str, Any]]:
+    out = []
+    for k, (lo, hi) in enumerate(series.arc_bounds()):
+        sl = _decimate(hi - lo)
+        out.append(
+            {"arc": k, "sats": series.arc_sats[k],
+             "t_gps_s": series.t_gps_s[lo:hi][sl], "mapped_m": windows.mapped_m[lo:hi][sl],
+             "elevation_deg": series.elevation_deg[lo:hi][sl]}
+        )  # fmt: skip
+    return out
+
+
+def _jacobi_anger(expansion: Iterable[Any]) -> dict[str, Any]:
+    cases: dict[str, dict[str, Any]] = {}
+    for chk in expansion:
+        h = chk.second
+        f_hz = np.asarray(h.orders, dtype=float) * chk.rate.frequency_hz
+        keep = slice(0, 2000)
+        case = cases.setdefault(
+            chk.geometry.label,
+            {"label": f"{chk.geometry.label}, rate {chk.rate.name} "
+                      f"({chk.rate.frequency_hz:.3g} Hz), alpha {chk.alpha:g}"},
+        )  # fmt: skip
+        case[chk.convention] = {
+            "f_hz": f_hz[keep],
+            "power": np.asarray(h.power_rad2)[keep],
+            "fraction_below": chk.fraction_below_cutoff,
+            "z": chk.z,
+        }
+    return {"cases": list(cases.values())}
+
+
+def figure_data(
+    *,
+    series: Any,
+    arcs: Any,
+    windows: Any,
+    bound_results: Any,
+    t_ref_gps_s: float,
+    interval_s: float,
+    cutoff_info: dict[str, Any] | None = None,
+    validation_report: Any = None,
+    screening: Any = None,
+) -> dict[str, Any]:
+    """Build the ``figures`` section of a result document.
+
+    Parameters
+    ----------
+    series : MultipathSeries
+        The isolated multipath.
+    arcs : ArcSet or None
+        Tracking arcs (dual-frequency); None to draw the series' arcs.
+    windows : WindowSet
+        Stationary windows (with the mapped series).
+    bound_results : BoundResults
+        Window PSDs and the bound.
+    t_ref_gps_s : float
+        Time origin of the time axes, GPS seconds.
+    interval_s : float
+        Sampling interval, s (the bound curve stops at Nyquist).
+    cutoff_info : dict, optional
+        Cutoff details; its ``"figure"`` entry (Lomb-Scargle envelope) is used.
+    validation_report : ValidationReport, optional
+        Cutoff validation; its expansions give the Jacobi-Anger figure.
+    screening : Screening, optional
+        ROTI per arc, excluded spans and the plausibility limit.
+
+    Returns
+    -------
+    dict
+        Figure name -> plain data (arrays as numpy or lists).
+    """
+    figures: dict[str, Any] = {"arcs": _arcs(series, arcs), "t_ref_gps_s": float(t_ref_gps_s)}
+    df = _df_filter(series)
+    if df is not None:
+        figures["df_filter"] = df
+    figures["mapped"] = _mapped(series, windows)
+    psd_fig = []
+    for p in bound_results.psds:
+        ff, ss = psd_outline(np.asarray(p.f_hz), np.asarray(p.psd_m2_hz))
+        psd_fig.append({"f_hz": ff, "psd_m2_hz": ss})
+    figures["psds"] = psd_fig
+    b = bound_results.bound
+    f_grid = np.geomspace(b.f_min_hz, 0.5 / interval_s, 400)
+    figures["bound_curve"] = {"f_hz": f_grid, "psd_m2_hz": b.psd(f_grid)}
+    if cutoff_info and "figure" in cutoff_info:
+        figures["cutoff_envelope"] = cutoff_info["figure"]
+    if validation_report is not None:
+        figures["jacobi_anger"] = _jacobi_anger(validation_report.expansion)
+    if screening is not None:
+        figures["screening"] = {
+            "roti": screening.roti,
+            "threshold_tecu_min": screening.options.roti_threshold_tecu_min,
+            "limit_m": screening.limit_m,
+            "excluded": [[e.start_gps_s, e.stop_gps_s, e.kind] for e in screening.excluded],
+        }
+    return figures

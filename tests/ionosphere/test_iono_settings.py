@@ -1,0 +1,55 @@
+"""Cutoff settings built in one place: from a mapping, and handed to each stage."""
+
+from __future__ import annotations
+
+import inspect
+
+import pytest
+
+from psdbound.errors import InputError
+from psdbound.ionosphere import (
+    FREQUENCIES_HZ,
+    SETTING_OPTIONS,
+    CutoffSettings,
+    series_cutoff,
+    simulate_slant_delay,
+)
+
+
+def test_from_mapping_only_given_options_change():
+    s = CutoffSettings.from_mapping(
+        {"carrier": "L1-L2", "systems": "ge", "drop_db": 30.0, "degree": None}
+    )
+    assert s.frequency_hz == FREQUENCIES_HZ["L1"]
+    assert s.second_frequency_hz == FREQUENCIES_HZ["L2"]
+    assert s.systems == "GE" and s.drop_db == 30.0 and s.degree == CutoffSettings().degree
+    assert CutoffSettings.from_mapping({}) == CutoffSettings()
+    assert CutoffSettings.from_mapping({"carrier": "1500"}).frequency_hz == 1500e6
+    back = CutoffSettings.from_mapping(s.to_dict())
+    assert back == s and isinstance(back.alt_range_km, tuple)
+    assert "carrier" in SETTING_OPTIONS and "f107_sfu" in SETTING_OPTIONS
+
+
+@pytest.mark.parametrize(
+    ("options", "message"),
+    [
+        ({"f107": 70.0}, "unknown cutoff setting"),
+        ({"carrier": "L9"}, "unknown carrier 'L9'"),
+        ({"carrier": "L1-E1"}, "same frequency"),
+        ({"f107_sfu": 10.0}, "outside the plausible range"),
+        ({"systems": "R"}, "systems must be G, E or GE"),
+    ],
+)
+def test_from_mapping_bad_options(options, message):
+    with pytest.raises(InputError, match=message):
+        CutoffSettings.from_mapping(options)
+
+
+def test_stage_options_are_the_stage_keywords():
+    s = CutoffSettings()
+    sim = inspect.signature(simulate_slant_delay).parameters
+    ser = inspect.signature(series_cutoff).parameters
+    assert set(s.simulation_options()) <= set(sim)
+    assert set(s.series_options()) <= set(ser)
+    assert s.series_options()["dt_s"] == s.sampling_s
+    assert s.simulation_options()["grid_size"] == 21

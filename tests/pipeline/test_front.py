@@ -1,0 +1,102 @@
+"""The library front door: psdbound.fit / FitResults / psdbound.load, and the stage chain."""
+
+from __future__ import annotations
+
+import os
+import pickle
+import subprocess
+import sys
+
+import pytest
+
+import psdbound
+from psdbound.errors import InputError
+from psdbound.pipeline import FitConfig, stages
+from psdbound.pipeline.front import _config_from
+
+VOLATILE = ("created_utc", "run_time_s")
+
+
+def _stable(doc):
+    doc = dict(doc)
+    prov = {k: v for k, v in doc["provenance"].items() if k not in VOLATILE}
+    prov["configuration"] = {k: v for k, v in prov["configuration"].items() if k != "output"}
+    doc["provenance"] = prov
+    return doc
+
+
+@pytest.fixture(scope="module")
+def demo_fit():
+    return psdbound.fit()
+
+
+def test_library_and_cli_write_the_same_result(demo_fit, tmp_path):
+    r = subprocess.run(
+        [sys.executable, "-m", "psdbound", "fit", "--out", str(tmp_path / "cli"), "--no-pdf",
+         "--quiet"],
+        capture_output=True, text=True, timeout=600, env=dict(os.environ),
+    )  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    cli = psdbound.load(tmp_path / "cli" / "result.json").document
+    lib_path = demo_fit.to_json(tmp_path / "lib.json")
+    lib = psdbound.load(lib_path).document
+    assert _stable(lib) == _stable(cli)
+
+
+def test_results_object(demo_fit, tmp_path):
+    res = demo_fit
+    assert res.bound.sigma_gm_m == res.document["bound"]["sigma_gm_m"] > 0
+    assert res.bound.total_variance_m2 == pytest.approx(res.document["bound"]["total_variance_m2"])
+    assert res.series is not None and res.series.n_arcs > 0
+    assert len(res.windows) == res.document["windows"]["count"]
+    text = res.summary()
+    assert "sigma_GM" in text
+    for w in res.warnings:  # every warning reaches the console summary
+        assert w in text
+    paths = res.report(tmp_path / "rep", pdf=False)
+    assert sorted(p.name for p in (tmp_path / "rep").iterdir()) == ["report.html", "result.json"]
+    again = psdbound.load(paths["result"])
+    assert again.document == psdbound.load(paths["result"]).document
+    assert again.bound == res.bound and again.series is None
+    assert again.summary() == text
+
+
+def test_stage_products_pickle(demo_fit):
+    # campaigns ship the per-day stage results between Dask workers
+    for name in ("inputs", "cutoff", "isolated", "screened", "windowed", "bounded", "validated"):
+        obj = getattr(demo_fit, name)
+        back = pickle.loads(pickle.dumps(obj))
+        assert type(back) is type(obj)
+
+
+def test_stages_compose_like_fit(demo_fit):
+    cfg = demo_fit.config
+    inputs = stages.read_inputs(cfg.inputs)
+    cutoff = stages.choose_cutoff(inputs, cfg.cutoff)
+    assert cutoff.f_c_hz == demo_fit.document["cutoff"]["f_c_hz"]
+    iso = stages.isolate(inputs, cutoff, arcs=cfg.arcs, highpass=cfg.filter, options=cfg.inputs)
+    scr = stages.screen(iso, options=cfg.screening, mapping=cfg.mapping,
+                        min_length_s=cfg.stationarity.min_window_s)
+    win = stages.window(scr, mapping=cfg.mapping, options=cfg.stationarity)
+    res = stages.bound(win, spectra=cfg.spectra, options=cfg.bound)
+    assert res.bound.sigma_gm_m == demo_fit.bound.sigma_gm_m
+    val = stages.validate(cutoff, inputs=inputs, isolated=iso, arcs=cfg.arcs,
+                          options=cfg.validation)
+    assert val.summary["max_removed_rms_m"] == demo_fit.validation["max_removed_rms_m"]
+
+
+def test_options_by_section_or_unique_name():
+    cfg = _config_from([], None, None, {"estimator": "welch", "cutoff": {"f_c_hz": 1e-3}})
+    assert cfg.spectra.estimator == "welch" and cfg.cutoff.f_c_hz == 1e-3
+    cfg = _config_from("a.rnx", "n.rnx", FitConfig(), {"min_window_s": 900.0})
+    assert cfg.inputs.obs == ("a.rnx",) and cfg.stationarity.min_window_s == 900.0
+    with pytest.raises(InputError, match="'alpha' is ambiguous"):
+        _config_from([], None, None, {"alpha": 0.01})
+    with pytest.raises(InputError, match="unknown option 'frobnicate'"):
+        _config_from([], None, None, {"frobnicate": 1})
+
+
+def test_import_psdbound_is_light():
+    code = "import sys, psdbound; print('matplotlib' in sys.modules, 'scipy' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["False", "False"]

@@ -1,0 +1,113 @@
+"""The verdict: one test per rule, and the real cases that must not exit 0."""
+
+from __future__ import annotations
+
+import copy
+import subprocess
+import sys
+
+import hatanaka
+import pytest
+from conftest import ESBC_NAV, ESBC_OBS, NYA1_NAV, NYA1_OBS, shared_file
+
+import psdbound
+from psdbound.pipeline.verdict import VerdictOptions, judge
+
+GOOD = {
+    "bound": {"sigma_gm_m": 0.006, "tau_s": 58.0, "sigma_wn_m": 0.0,
+              "tau_grid_s": [15.0, 60.0, 2.0e5]},
+    "sampling": {"interval_s": 30.0, "nyquist_hz": 1 / 60},
+    "cutoff": {"f_c_hz": 9.55e-4},
+    "isolation": {"safety": {"removed_above_fc_median": 0.18}},
+    "screening": {"excluded_fraction": 0.02},
+    "validation": {"max_removed_rms_m": 0.0025, "geometries_used": ["ground:h=0.216"]},
+    "windows": {"per_window": [
+        {"arc": 0, "t_start_gps_s": 0.0, "t_stop_gps_s": 3570.0},
+        {"arc": 0, "t_start_gps_s": 1800.0, "t_stop_gps_s": 5370.0},
+        {"arc": 1, "t_start_gps_s": 0.0, "t_stop_gps_s": 1770.0},
+    ]},
+}  # fmt: skip
+
+
+def _with(path, value):
+    d = copy.deepcopy(GOOD)
+    *head, last = path.split(".")
+    cur = d
+    for k in head:
+        cur = cur[k]
+    cur[last] = value
+    return d
+
+
+def test_good_document_is_bounded():
+    assert judge(GOOD) == ("bounded", [])
+
+
+@pytest.mark.parametrize(
+    ("path", "value", "words", "n"),
+    [
+        ("bound.sigma_gm_m", 0.0, "sigma_GM = 0", 1),
+        ("bound.tau_s", 15.0, "end of its search grid", 1),
+        # tau at the top of the grid: also far more than the data can resolve
+        ("bound.tau_s", 2.0e5, "end of its search grid", 2),
+        ("bound.tau_s", 200.0, "too little stationary data", 1),  # 2 h covered < 50 x 200 s
+        ("isolation.safety", {"removed_above_fc_median": 0.875}, "filter loss", 1),
+        ("cutoff.f_c_hz", 9.5e-3, "below the Nyquist", 1),
+        ("screening.excluded_fraction", 0.62, "most data excluded", 1),
+        ("validation", {"max_removed_rms_m": 0.009, "geometries_used": ["ground:h=1.5"]},
+         "cutoff validation", 1),
+    ],
+)
+def test_each_rule_fires(path, value, words, n):
+    verdict, reasons = judge(_with(path, value))
+    assert verdict == "not-bounded"
+    assert len(reasons) == n and any(words in r for r in reasons), reasons
+
+
+def test_thresholds_are_options():
+    d = _with("screening.excluded_fraction", 0.62)
+    assert judge(d, VerdictOptions(max_excluded_fraction=0.7)) == ("bounded", [])
+
+
+def _one_hour_of_esbc(tmp_path):
+    text = hatanaka.decompress(shared_file(ESBC_OBS).read_bytes()).decode()
+    head, body = text.split("END OF HEADER", 1)
+    head += "END OF HEADER" + body[: body.index("\n") + 1]
+    out, keep = [], False
+    for line in body[body.index("\n") + 1 :].splitlines(keepends=True):
+        if line.startswith(">"):
+            keep = line[13:15] == "12"  # 12:00-12:59:30
+        if keep:
+            out.append(line)
+    p = tmp_path / "ESBC1H.rnx"
+    p.write_text(head + "".join(out))
+    return p
+
+
+@pytest.mark.realdata
+@pytest.mark.slow
+def test_one_hour_file_exits_3_with_outputs_and_reasons(tmp_path):
+    obs = _one_hour_of_esbc(tmp_path)
+    r = subprocess.run(
+        [sys.executable, "-m", "psdbound", "fit", str(obs), "--nav", str(shared_file(ESBC_NAV)),
+         "--cutoff-hz", "9.55e-4", "--out", str(tmp_path / "out"), "--no-pdf"],
+        capture_output=True, text=True, timeout=600,
+    )  # fmt: skip
+    assert r.returncode == 3, r.stderr
+    doc = psdbound.load(tmp_path / "out" / "result.json").document
+    assert doc["verdict"] == "not-bounded"
+    reasons = " ".join(doc["verdict_reasons"])
+    assert "filter loss" in reasons or "too little stationary data" in reasons
+    assert "NOT-BOUNDED" in r.stdout and "reason:" in r.stdout
+    html = (tmp_path / "out" / "report.html").read_text()
+    assert "not-bounded" in html[: html.index("<h2>Bound</h2>")]  # on the first page
+
+
+@pytest.mark.realdata
+@pytest.mark.slow
+def test_map_cutoff_on_nya1_never_gives_a_white_noise_bound_with_exit_0():
+    res = psdbound.fit(shared_file(NYA1_OBS), nav=shared_file(NYA1_NAV), cutoff={"source": "map"})
+    if res.bound.sigma_gm_m == 0.0:
+        assert res.verdict == "not-bounded"
+    assert res.verdict == "not-bounded"
+    assert any("below the Nyquist" in x for x in res.verdict_reasons)

@@ -1,0 +1,142 @@
+"""The package's shape: no import cycles, small modules, no private names across modules.
+
+These checks read the source (``ast``), they import nothing: a failure names
+the module and line to fix.
+"""
+
+from __future__ import annotations
+
+import ast
+import sys
+from pathlib import Path
+
+import pytest
+
+PKG = Path(__file__).resolve().parents[1] / "psdbound"
+MAX_LINES = 600
+NUMERIC = ("numpy", "scipy", "matplotlib", "astropy", "statsmodels")
+
+
+def _modules() -> dict[str, Path]:
+    out = {}
+    for p in sorted(PKG.rglob("*.py")):
+        rel = p.relative_to(PKG.parent).with_suffix("")
+        parts = list(rel.parts)
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        out[".".join(parts)] = p
+    return out
+
+
+MODULES = _modules()
+
+
+def _package_of(mod: str) -> str:
+    return mod if MODULES[mod].name == "__init__.py" else mod.rpartition(".")[0]
+
+
+def _imports(mod: str) -> list[tuple[int, str, list[str]]]:
+    """(line, imported module, imported names) for every psdbound import, at any depth."""
+    tree = ast.parse(MODULES[mod].read_text())
+    out = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            for a in node.names:
+                if a.name.startswith("psdbound"):
+                    out.append((node.lineno, a.name, []))
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = _package_of(mod).split(".")
+                base = base[: len(base) - node.level + 1]
+                target = ".".join([*base, node.module] if node.module else base)
+            else:
+                target = node.module or ""
+            if target.startswith("psdbound"):
+                out.append((node.lineno, target, [a.name for a in node.names]))
+    return out
+
+
+def _edges(mod: str) -> set[str]:
+    deps = set()
+    for _, target, names in _imports(mod):
+        for n in names or [None]:
+            sub = f"{target}.{n}" if n else None
+            dep = sub if sub in MODULES else target
+            if dep in MODULES and dep != mod:
+                deps.add(dep)
+    return deps
+
+
+def test_no_import_cycles():
+    graph = {m: _edges(m) for m in MODULES}
+    state: dict[str, int] = {}
+    stack: list[str] = []
+    cycles = []
+
+    def visit(m: str) -> None:
+        state[m] = 1
+        stack.append(m)
+        for d in sorted(graph[m]):
+            if state.get(d) == 1:
+                cycles.append(stack[stack.index(d):] + [d])
+            elif d not in state:
+                visit(d)
+        stack.pop()
+        state[m] = 2
+
+    for m in sorted(graph):
+        if m not in state:
+            visit(m)
+    assert not cycles, "import cycles:\n" + "\n".join(" -> ".join(c) for c in cycles)
+
+
+@pytest.mark.parametrize("mod", sorted(MODULES))
+def test_module_size(mod):
+    n = len(MODULES[mod].read_text().splitlines())
+    assert n <= MAX_LINES, f"{MODULES[mod]} has {n} lines (> {MAX_LINES}): split it by concern"
+
+
+def test_no_private_names_across_modules():
+    bad = []
+    for mod in MODULES:
+        pkg = _package_of(mod)
+        for line, target, names in _imports(mod):
+            parts = target.split(".")
+            private_mod = next((i for i, p in enumerate(parts) if p.startswith("_")), None)
+            if private_mod is not None:
+                owner = ".".join(parts[:private_mod])
+                if owner != pkg:
+                    bad.append(f"{MODULES[mod]}:{line} imports private module {target}")
+            for n in names:
+                if n.startswith("_") and not n.startswith("__"):
+                    bad.append(f"{MODULES[mod]}:{line} imports private name {target}.{n}")
+        tree = ast.parse(MODULES[mod].read_text())
+        for node in ast.walk(tree):
+            if (
+                isinstance(node, ast.Attribute)
+                and node.attr.startswith("_")
+                and not node.attr.startswith("__")
+                and isinstance(node.value, ast.Name)
+                and node.value.id not in ("self", "cls")
+                and node.value.id not in sys.stdlib_module_names
+                and node.value.id[0].islower()
+            ):
+                bad.append(f"{MODULES[mod]}:{node.lineno} uses {node.value.id}.{node.attr}")
+    assert not bad, "private names used across modules:\n" + "\n".join(bad)
+
+
+def test_cli_modules_do_no_numerical_work():
+    bad = []
+    for mod, path in MODULES.items():
+        if not mod.startswith("psdbound.cli"):
+            continue
+        for node in ast.walk(ast.parse(path.read_text())):
+            names = []
+            if isinstance(node, ast.Import):
+                names = [a.name for a in node.names]
+            elif isinstance(node, ast.ImportFrom) and not node.level:
+                names = [node.module or ""]
+            for n in names:
+                if n.split(".")[0] in NUMERIC:
+                    bad.append(f"{path}:{node.lineno} imports {n}")
+    assert not bad, "CLI modules only parse and print:\n" + "\n".join(bad)
