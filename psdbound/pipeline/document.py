@@ -122,7 +122,7 @@ def _screening_section(screened: Screened) -> dict[str, Any]:
             if sc.options.elevation_scaled else "flat threshold"
         ),
         "roti": "5-min blocks of ROT sampled at 30 s (Pi et al. 1997)",
-        "options": {"guard_s": sc.options.guard_s, "ionosphere": sc.options.ionosphere,
+        "options": {"guard_s": sc.guard_s, "ionosphere": sc.options.ionosphere,
                     "plausibility": sc.options.plausibility,
                     "elevation_scaled": sc.options.elevation_scaled},
         "notes": list(sc.notes),

@@ -28,6 +28,7 @@ from psdbound.pipeline import stages
 from psdbound.pipeline.config import FitConfig
 from psdbound.pipeline.document import build_document
 from psdbound.results import read_document, write_document
+from psdbound.stationarity import MappingOptions
 
 __all__ = ["FitResults", "fit", "load"]
 
@@ -231,6 +232,10 @@ def fit(
     t0 = time.perf_counter()
     inputs = stages.read_inputs(cfg.inputs, progress=say)
     cfg = cfg.updated("inputs", method=inputs.method)  # the effective method (auto resolved)
+    if inputs.demo is not None and cfg.mapping == MappingOptions():
+        # the demo's data follow the simulator's mapping: fit with it (known truth)
+        mp = inputs.demo["scenario"]["multipath"]
+        cfg = cfg.updated("mapping", kind="fixed", a=mp["a"], b=mp["b"], c_deg=mp["c_deg"])
     cutoff = stages.choose_cutoff(inputs, cfg.cutoff)
     isolated = stages.isolate(inputs, cutoff, arcs=cfg.arcs, highpass=cfg.filter,
                               options=cfg.inputs, progress=say)  # fmt: skip

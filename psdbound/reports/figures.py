@@ -213,35 +213,53 @@ def fig_jacobi_anger(r: dict[str, Any]) -> Figure | None:
 
 
 def fig_screening(r: dict[str, Any]) -> Figure | None:
-    """ROTI of every arc against time, the threshold, and the excluded spans shaded."""
+    """Screening: normalised ROTI and the largest isolated value per 5-min block.
+
+    Top: ROTI over its threshold (1 = the threshold); bottom: the largest
+    absolute isolated value of each block against the carrier-multipath
+    limit. Excluded blocks are orange, kept blocks blue; time in hours from
+    the data start.
+    """
     d = r["figures"].get("screening")
-    if not d:
+    if not d or not d.get("roti"):
         return None
+
+    def arr(x: Any) -> np.ndarray:
+        return np.asarray([np.nan if v is None else v for v in x], dtype=float)
+
     t0 = _t0(r)
-    fig, ax = plt.subplots(figsize=(9, 3.6))
-    for a in d["roti"]:
-        t = (np.asarray(a["t_gps_s"], dtype=float) - t0) / 3600.0
-        y = np.asarray([np.nan if v is None else v for v in a["roti_tecu_min"]], dtype=float)
-        ax.plot(t, y, ".", ms=2, color="tab:blue", alpha=0.6)
-        if "threshold_tecu_min" in a:
-            ax.plot(t, np.asarray(a["threshold_tecu_min"], dtype=float), "-", color="tab:red",
-                    lw=0.5, alpha=0.5)  # fmt: skip
-    ax.plot([], [], "-", color="tab:red", lw=1,
-            label=f"threshold {d['threshold_tecu_min']:g} x m(el), capped")  # fmt: skip
-    colors = {"ionosphere": "tab:orange", "implausible": "tab:red", "short remainder": "0.7"}
-    seen = set()
-    for t_a, t_b, kind in d["excluded"]:
-        label = None if kind in seen else f"excluded: {kind}"
-        ax.axvspan((t_a - t0) / 3600.0, (t_b - t0) / 3600.0, color=colors.get(kind, "0.5"),
-                   alpha=0.25, lw=0, label=label)  # fmt: skip
-        seen.add(kind)
-    ax.set_yscale("log")
+    t = np.concatenate([arr(a["t_gps_s"]) for a in d["roti"]])
+    t = (t - t0) / 3600.0
+    ratio = np.concatenate([arr(a["roti_tecu_min"]) / arr(a["threshold_tecu_min"])
+                            for a in d["roti"]])  # fmt: skip
+    vmax = np.concatenate([arr(a.get("value_max_m", [])) for a in d["roti"]])
+    exc = np.concatenate([np.asarray(a.get("excluded", []), dtype=bool) for a in d["roti"]])
+    has_roti = bool(np.any(np.isfinite(ratio)))
+    fig, axes = plt.subplots(2 if has_roti else 1, 1, figsize=(9, 5.2 if has_roti else 2.8),
+                             sharex=True, squeeze=False)  # fmt: skip
+    axes = axes[:, 0]
+    if has_roti:
+        ax = axes[0]
+        ax.semilogy(t[~exc], ratio[~exc], ".", ms=2.5, color="tab:blue", label="kept")
+        ax.semilogy(t[exc], ratio[exc], ".", ms=2.5, color="tab:orange", label="excluded")
+        ax.axhline(1.0, color="tab:red", lw=1,
+                   label=f"threshold {d['threshold_tecu_min']:g} TECU/min x m(el)")  # fmt: skip
+        ax.set_ylabel("ROTI / threshold [-]")
+        ax.legend(fontsize=7, loc="upper right", ncol=3)
+        ax.grid(alpha=0.3, which="both")
+    ax = axes[-1]
+    if vmax.size:
+        ax.semilogy(t[~exc], 100 * vmax[~exc], ".", ms=2.5, color="tab:blue")
+        ax.semilogy(t[exc], 100 * vmax[exc], ".", ms=2.5, color="tab:orange")
+    ax.axhline(100 * d["limit_m"], color="tab:red", lw=1,
+               label=f"carrier-multipath limit {100 * d['limit_m']:.2f} cm")  # fmt: skip
+    ax.set_ylabel("largest |isolated value| [cm]")
     ax.set_xlabel("time since data start [h]")
-    ax.set_ylabel("ROTI [TECU/min]")
-    ax.set_title(f"Screening: 5-min ROTI per arc; carrier-multipath limit "
-                 f"{100 * d['limit_m']:.2f} cm", fontsize=10)  # fmt: skip
-    ax.legend(fontsize=7, loc="upper right")
+    ax.legend(fontsize=7, loc="lower right")
     ax.grid(alpha=0.3, which="both")
+    n_exc = len(d["excluded"])
+    axes[0].set_title(f"Screening per satellite and 5-min block: {n_exc} excluded spans",
+                      fontsize=10)  # fmt: skip
     fig.tight_layout()
     return fig
 

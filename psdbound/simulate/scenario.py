@@ -9,7 +9,7 @@ from typing import Any
 
 from psdbound.errors import InputError
 
-__all__ = ["Reflection", "MultipathModel", "Scenario", "PRESETS", "preset"]
+__all__ = ["IonoDisturbance", "Reflection", "MultipathModel", "Scenario", "PRESETS", "preset"]
 
 
 @dataclass(frozen=True)
@@ -37,6 +37,41 @@ class Reflection:
             raise InputError(
                 f"reflection needs distance > 0 m and 0 <= alpha < 1; got {self.distance_m}, "
                 f"{self.alpha}"
+            )
+
+
+@dataclass(frozen=True)
+class IonoDisturbance:
+    """A span of fast ionospheric phase fluctuations (ground truth for the screening).
+
+    Inside the span the slant TEC of the chosen satellites gets a random walk
+    whose 30-s increments have the standard deviation ``0.5 roti_tecu_min``
+    TECU, so that ROT (TECU/min, 30 s) has the standard deviation
+    ``roti_tecu_min``: the span's ROTI (Pi et al. 1997). Outside the span
+    the walk is frozen, so the TEC stays continuous.
+
+    Parameters
+    ----------
+    start_s : float
+        Start, seconds after the scenario's start.
+    duration_s : float
+        Length of the span, s.
+    roti_tecu_min : float
+        ROTI of the fluctuations, TECU/min.
+    sats : tuple of str
+        Affected satellites (e.g. ``("G05", "G12")``); empty: every satellite.
+    """
+
+    start_s: float
+    duration_s: float
+    roti_tecu_min: float
+    sats: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        if not (self.start_s >= 0 and self.duration_s > 0 and self.roti_tecu_min > 0):
+            raise InputError(
+                "an ionospheric disturbance needs start_s >= 0 s, duration_s > 0 s and "
+                f"roti_tecu_min > 0; got {self.start_s}, {self.duration_s}, {self.roti_tecu_min}"
             )
 
 
@@ -100,6 +135,10 @@ class Scenario:
         Smooth diurnal vertical TEC (peak at 14 h local time), TECU.
     tid_amplitude_tecu, tid_period_s : float
         A travelling-disturbance term (per-satellite phase), TECU and seconds.
+    disturbances : tuple of IonoDisturbance
+        Spans of fast ionospheric fluctuations with a chosen ROTI (written to
+        the truth JSON; drawn from their own random stream, so adding them
+        changes nothing else).
     zenith_tropo_m : float
         Zenith tropospheric delay, metres (1/sin(el) mapping).
     slip_rate_per_h : float
@@ -138,6 +177,7 @@ class Scenario:
     vtec_night_tecu: float = 5.0
     tid_amplitude_tecu: float = 0.3
     tid_period_s: float = 3600.0
+    disturbances: tuple[IonoDisturbance, ...] = ()
     zenith_tropo_m: float = 2.4
     slip_rate_per_h: float = 0.2
     slip_lli_fraction: float = 0.5

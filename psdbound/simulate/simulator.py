@@ -145,6 +145,23 @@ def _reflection_m(kind: str, d_m: float, alpha: float, el_deg, lam_m: float):
     return np.arctan2(alpha * np.sin(psi), 1.0 + alpha * np.cos(psi)) * lam_m / (2.0 * np.pi)
 
 
+def _disturbance_tecu(sc: Scenario, t_rel_s: np.ndarray, sats: list[str]) -> np.ndarray:
+    """Slant-TEC random walks of the scenario's disturbances, TECU, shape (epochs, sats)."""
+    out = np.zeros((t_rel_s.size, len(sats)))
+    if not sc.disturbances:
+        return out
+    rng = np.random.default_rng([sc.seed, 0x10])  # own stream: other draws unchanged
+    for d in sc.disturbances:
+        inside = (t_rel_s >= d.start_s) & (t_rel_s < d.start_s + d.duration_s)
+        step = 0.5 * d.roti_tecu_min * np.sqrt(sc.interval_s / 30.0)
+        for j, sat in enumerate(sats):
+            if d.sats and sat not in d.sats:
+                continue
+            inc = np.where(inside, rng.normal(0.0, step, t_rel_s.size), 0.0)
+            out[:, j] += np.cumsum(inc)
+    return out
+
+
 def simulate(scenario: Scenario, out_dir: str | os.PathLike[str]) -> SimulationResult:
     """Simulate a data set and write it as real files.
 
@@ -245,6 +262,7 @@ def simulate(scenario: Scenario, out_dir: str | os.PathLike[str]) -> SimulationR
         + sc.tid_amplitude_tecu
         * np.sin(2.0 * np.pi * (t - t0)[None, :, None] / sc.tid_period_s + tid_phase[None, None, :])
     ) * _obliquity(el)
+    stec = stec + _disturbance_tecu(sc, t - t0, sats)[None, :, :]
     freqs = np.array([[carrier_frequency_hz(s, c) for c in SIGNALS[s[0]]] for s in sats])
     iono = 40.3e16 * stec[..., None] / freqs[None, None, :, :] ** 2
     tropo = sc.zenith_tropo_m / np.sin(np.radians(np.clip(el, 1.0, 90.0)))

@@ -13,6 +13,11 @@ screening on). History:
   demo 6.88 mm / 29.6 s / 2.72 mm / 37 -> 4.73 mm / 15.1 s / 1.94 mm / 17
   (low-elevation blocks of its synthetic multipath exceed the ROTI threshold
   with the thesis mapping the demo is fitted with).
+* issue 14: the ROTI threshold scales with the elevation mapping and the
+  excluded spans get the filter's memory (0.5/f_c) as guard: NYA1 2.28 cm /
+  45.8 s / 516 windows (45 % excluded); the demo is fitted with its own
+  mapping (1, 9, 15 deg): 4.26 mm / 21.8 s / 2.09 mm / 29 windows (4.7 %
+  excluded). ESBC and UPC unchanged.
 """
 
 from __future__ import annotations
@@ -33,9 +38,9 @@ import psdbound
 
 PINS = {
     # case: (sigma_gm_m, tau_s, sigma_wn_m, windows)
-    "demo": (0.00473345686746188, 15.084092738530641, 0.0019434275064980626, 17),
+    "demo": (0.004263423201907667, 21.768318182751372, 0.0020909141014370555, 29),
     "esbc": (0.005942846892401281, 58.323747563236246, 0.0, 877),
-    "nya1": (0.023811679313912634, 47.10398167490581, 0.0, 627),
+    "nya1": (0.022773997496005026, 45.77881020260252, 0.0, 516),
     "upc": (0.0019099387046276311, 30.662929516784192, 0.001072637977790812, 7),
 }
 

@@ -53,7 +53,7 @@ def test_quiet_series_is_untouched():
 @pytest.mark.parametrize("dt", [1.0, 30.0])
 def test_disturbed_span_is_excluded_and_listed(dt):
     s = _series(disturb=[(1, 3600.0, 5400.0)], dt=dt, hours=3.0 if dt == 1.0 else 4.0)
-    sc = screen_series(s, ScreeningOptions())
+    sc = screen_series(s, ScreeningOptions(guard_s=0.0))
     iono = [e for e in sc.excluded if e.kind == "ionosphere"]
     assert len(iono) == 1 and iono[0].sat == "G02"
     t0 = s.t_gps_s[s.arc_id == 1][0]
@@ -78,7 +78,7 @@ def test_implausible_values_are_excluded_with_the_limit():
 def test_short_remainders_are_excluded_not_dropped_silently():
     # two disturbances 8 min apart leave a remainder shorter than a 10-min window
     s = _series(disturb=[(0, 1800.0, 3000.0), (0, 3480.0, 4800.0)])
-    sc = screen_series(s, min_length_s=600.0)
+    sc = screen_series(s, ScreeningOptions(guard_s=0.0), min_length_s=600.0)
     kinds = {e.kind for e in sc.excluded}
     assert "short remainder" in kinds
     kept = sc.series.t_gps_s.size * s.interval_s
@@ -115,6 +115,17 @@ def test_threshold_scales_with_the_multipath_mapping():
     flat = screen_series(low, ScreeningOptions(elevation_scaled=False))
     scaled = screen_series(low, mapping=_Mapping())
     assert flat.excluded_fraction > 0.5  # a flat 0.15 would throw away low-elevation multipath
-    assert scaled.excluded_fraction == 0.0  # 0.15 x m(12 deg) is capped at 0.5
+    assert scaled.excluded_fraction == 0.0  # 0.15 x m(12 deg) = 2.3 TECU/min
     high = _low_elevation_roughness(70.0)  # the same roughness at 70 deg is not multipath-like
     assert screen_series(high, mapping=_Mapping()).excluded_fraction > 0.5
+
+
+def test_default_guard_is_half_a_cutoff_period():
+    s = _series(disturb=[(1, 3600.0, 5400.0)])
+    no_guard = screen_series(s, ScreeningOptions(guard_s=0.0))
+    auto = screen_series(s)
+    assert auto.guard_s == pytest.approx(0.5 / 9.55e-4)
+    span = [e for e in auto.excluded if e.kind == "ionosphere"][0]
+    span0 = [e for e in no_guard.excluded if e.kind == "ionosphere"][0]
+    assert span.start_gps_s == pytest.approx(span0.start_gps_s - 540.0, abs=30.0)
+    assert span.stop_gps_s == pytest.approx(span0.stop_gps_s + 540.0, abs=30.0)
