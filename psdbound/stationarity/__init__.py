@@ -9,6 +9,7 @@ from psdbound.stationarity.options import (
     StationarityOptions,
     choose_mapping,
 )
+from psdbound.stationarity.spectral import SpectralHomogeneityTest, test_spectral_homogeneity
 from psdbound.stationarity.tests import StationarityTest, test_stationarity
 from psdbound.stationarity.windowing import (
     Window,
@@ -24,11 +25,13 @@ __all__ = [
     "StationarityOptions",
     "choose_mapping",
     "ElevationMapping",
+    "SpectralHomogeneityTest",
     "StationarityTest",
     "Window",
     "WindowSet",
     "find_stationary_windows",
     "fit_mapping",
+    "test_spectral_homogeneity",
     "test_stationarity",
     "window_arc",
 ]
