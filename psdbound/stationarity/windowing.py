@@ -32,9 +32,13 @@ from numpy.typing import NDArray
 from psdbound.errors import InputError, NoDataError
 from psdbound.isolation.series import MultipathSeries
 from psdbound.stationarity.mapping import THESIS_MAPPING, ElevationMapping
-from psdbound.stationarity.tests import test_stationarity
+from psdbound.stationarity.spectral import test_spectral_homogeneity
+from psdbound.stationarity.tests import StationarityTest, test_stationarity
 
-__all__ = ["Window", "WindowSet", "window_arc", "find_stationary_windows"]
+__all__ = ["STATIONARITY_TESTS", "Window", "WindowSet", "window_arc", "find_stationary_windows"]
+
+#: Stationarity tests :func:`window_arc` can use.
+STATIONARITY_TESTS = ("thesis", "spectral")
 
 
 @dataclass(frozen=True)
@@ -148,6 +152,7 @@ def window_arc(
     p_slide: float = 1.2,
     p_trim: float = 0.8,
     center: str = "mean",
+    test: str = "thesis",
 ) -> tuple[list[tuple[int, int, float, float]], int]:
     """Run the slide/trim algorithm on one arc.
 
@@ -165,11 +170,17 @@ def window_arc(
         Trim coefficient (in (0, 1)).
     center : str, default "mean"
         Levene centre.
+    test : {"thesis", "spectral"}, default "thesis"
+        Levene then K-S (:func:`~psdbound.stationarity.test_stationarity`), or
+        the spectral-homogeneity test valid for correlated samples
+        (:func:`~psdbound.stationarity.test_spectral_homogeneity`).
 
     Returns
     -------
-    windows : list of (start, stop, levene_p, ks_p)
-        0-based inclusive indices of the stationary windows.
+    windows : list of (start, stop, p1, p2)
+        0-based inclusive indices of the stationary windows and the tests'
+        p-values (Levene and K-S; for ``test="spectral"`` both are the
+        spectral test's p-value).
     n_tests : int
         Number of tests run.
     """
@@ -177,6 +188,8 @@ def window_arc(
         raise InputError(f"need p_slide > 1 and 0 < p_trim < 1; got {p_slide}, {p_trim}")
     if min_length < 8:
         raise InputError(f"minimum window length must be >= 8 samples, got {min_length}")
+    if test not in STATIONARITY_TESTS:
+        raise InputError(f"unknown stationarity test {test!r}; use {', '.join(STATIONARITY_TESTS)}")
     last = x.size - 1
     s, e = 0, last
     out: list[tuple[int, int, float, float]] = []
@@ -185,7 +198,11 @@ def window_arc(
         return out, 0
     while True:
         n_w = e - s + 1
-        res = test_stationarity(x[s : e + 1], alpha=alpha, center=center)
+        if test == "spectral":
+            sp = test_spectral_homogeneity(x[s : e + 1], alpha=alpha)
+            res = StationarityTest(sp.stationary, sp.p_value, sp.p_value, alpha)
+        else:
+            res = test_stationarity(x[s : e + 1], alpha=alpha, center=center)
         n_tests += 1
         end_reached = e == last
         s_slid = s + math.ceil((p_slide - 1.0) * n_w)
@@ -215,6 +232,7 @@ def find_stationary_windows(
     p_trim: float = 0.8,
     min_length_s: float = 600.0,
     center: str = "mean",
+    test: str = "thesis",
 ) -> WindowSet:
     """Map a multipath series by elevation and window every arc into stationary pieces.
 
@@ -233,6 +251,8 @@ def find_stationary_windows(
         Minimum window length ``L``, seconds.
     center : str, default "mean"
         Levene centre ("mean": Levene 1960; "median": Brown-Forsythe).
+    test : {"thesis", "spectral"}, default "thesis"
+        Stationarity test of each candidate window (see :func:`window_arc`).
 
     Returns
     -------
@@ -256,7 +276,8 @@ def find_stationary_windows(
         t = series.t_gps_s[lo:hi]
         if x.size >= L:
             long_enough += 1
-        found, nt = window_arc(x, L, alpha=alpha, p_slide=p_slide, p_trim=p_trim, center=center)
+        found, nt = window_arc(x, L, alpha=alpha, p_slide=p_slide, p_trim=p_trim, center=center,
+                               test=test)  # fmt: skip
         n_tests += nt
         covered = np.zeros(x.size, dtype=bool)
         for s, e, lp, kp in found:
@@ -286,6 +307,7 @@ def find_stationary_windows(
             "min_length_s": min_length_s,
             "min_length_samples": L,
             "center": center,
+            "test": test,
         },
         n_tests=n_tests,
         uncovered=tuple(uncovered),
