@@ -1,17 +1,23 @@
-"""The ``cutoff`` subcommand: ionosphere high-pass cutoff for a station or the station map.
+"""The ``cutoff`` subcommand: ionosphere high-pass cutoff for a station, or the world map.
 
 Examples::
 
     python -m psdbound cutoff --lat 41.84 --lon -87.63 --year 2020 --out out/
-    python -m psdbound cutoff --map --year 2020 --workers 2 --out out/
+    python -m psdbound cutoff --lat 41.84 --lon -87.63 --year 2020 --legacy --out out/
+    python -m psdbound cutoff --map --workers 2 --out out/ [--install]
+    python -m psdbound cutoff --map --scheduler tcp://host:8786 --out out/
     python -m psdbound cutoff --lat 41.84 --lon -87.63 --days 2020-01-06 --almanac a.yuma
 
-Parses the options and calls :func:`psdbound.ionosphere.run_cutoff`, which
-writes, into ``--out``, a CSV table, a JSON file (summary, settings, orbit
-source, per-series rows) and PNG figures, each atomically; then prints the
-summary. Options named like a
-:class:`~psdbound.ionosphere.CutoffSettings` field (``dest``) are the run's
-settings (:meth:`~psdbound.ionosphere.CutoffSettings.from_mapping`). Bad
+A station run calls :func:`psdbound.ionosphere.run_cutoff`, which writes,
+into ``--out``, a CSV table, a JSON file (summary, settings, orbit source,
+per-series rows) and PNG figures, each atomically; then prints the summary.
+``--map`` calls :func:`psdbound.ionosphere.workflow.run_world_map`: the
+world map (20 reference stations and a grid, a solar-minimum and a
+solar-maximum layer) on a local Dask cluster or ``--scheduler``, written to
+``--out`` and, with ``--install``, over the shipped package data. Options
+named like a :class:`~psdbound.ionosphere.CutoffSettings` field (``dest``)
+are the run's settings (:meth:`~psdbound.ionosphere.CutoffSettings.from_mapping`;
+not given = the default, or the issue-#4 settings with ``--legacy``). Bad
 input raises :class:`psdbound.errors.InputError`, which the command line
 turns into exit code 2.
 """
@@ -27,7 +33,8 @@ from psdbound.errors import InputError
 __all__ = ["add_parser", "run"]
 
 _DAYS_HELP = (
-    "days: first-monday-each-month (default), first-monday-of-MM, or YYYY-MM-DD[,YYYY-MM-DD...]"
+    "days: first-monday-each-month (default), first-monday-of-MM[,MM...], "
+    "first-monday-quarterly, or YYYY-MM-DD[,YYYY-MM-DD...]"
 )
 
 
@@ -42,9 +49,10 @@ def add_parser(subparsers: Any) -> None:
     p = subparsers.add_parser(
         "cutoff",
         help="select the ionosphere high-pass cutoff frequency (station or station map)",
-        description="Simulate slant ionospheric delays (PyIRI) of every satellite in view, "
-        "take the Lomb-Scargle PSD of each 7-sidereal-day replicated series, fit its upper "
-        "envelope and find the cutoff by the 40 dB relative (or the absolute) criterion. "
+        description="Simulate slant ionospheric delays (PyIRI) of every satellite in view and "
+        "find, per satellite-day, the lowest cutoff above which the fit's high-pass leaves the "
+        "ionosphere MARGIN_DB (40) below MP_SIGMA_M (1 mm) (the residual criterion; the "
+        "thesis's 40 dB Lomb-Scargle criterion with --criterion relative or --legacy). "
         "Recommended cutoff = maximum over all series.",
     )
     where = p.add_argument_group("station or map")
@@ -55,73 +63,95 @@ def add_parser(subparsers: Any) -> None:
     where.add_argument(
         "--map",
         action="store_true",
-        help="run the 20 reference stations of method.md and write the cutoff map "
-        "(with --lat/--lon also print the nearest station's cutoff)",
+        help="compute the world cutoff map (20 reference stations + grid, solar-minimum "
+        "2020 and solar-maximum 2024 layers); with --lat/--lon also print its cutoff there",
+    )
+    where.add_argument(
+        "--grid-step",
+        metavar="LAT,LON",
+        help="map grid steps, degrees (20,90)",
+    )
+    where.add_argument(
+        "--install",
+        action="store_true",
+        help="with --map: also replace the shipped map (psdbound/ionosphere/data/cutoff_map.json)",
     )
     when = p.add_argument_group("days")
     when.add_argument("--year", type=int, default=2020, help="year of the day selection (2020)")
-    when.add_argument("--days", default="first-monday-each-month", help=_DAYS_HELP)
+    when.add_argument("--days", help=_DAYS_HELP + " (--map: first-monday-quarterly)")
     sim = p.add_argument_group("simulation")
     sim.add_argument(
         "--f107",
         dest="f107_sfu",
         metavar="F107",
         type=float,
-        default=70.0,
-        help="F10.7 solar flux, sfu (70)",
+        help="F10.7 solar flux, sfu (70; the map uses each layer's year)",
     )
     sim.add_argument(
         "--mask-deg",
         dest="elevation_mask_deg",
         metavar="MASK_DEG",
         type=float,
-        default=10.0,
         help="elevation mask, deg (10)",
     )
     sim.add_argument(
         "--method",
         choices=("line-of-sight", "thin-shell"),
-        default="line-of-sight",
         help="slant TEC by line-of-sight integral (default) or thin shell at 350 km",
     )
-    sim.add_argument(
-        "--iri-model", choices=("ursi", "ccir", "sh"), default="ursi", help="PyIRI model (ursi)"
-    )
+    sim.add_argument("--iri-model", choices=("ursi", "ccir", "sh"), help="PyIRI model (ursi)")
     sim.add_argument(
         "--frequency",
         dest="carrier",
         metavar="FREQUENCY",
-        default="L1",
         help="carrier: L1, L2, L5, E1, E5a, E5b, a value in MHz, or a pair like L1-L2 "
-        "for the dual-frequency difference (L1)",
+        "for the dual-frequency difference (L1-L2, what the fit filters; --legacy: L1)",
     )
     orbit = sim.add_mutually_exclusive_group()
     orbit.add_argument("--nav", help="RINEX navigation file covering the days")
     orbit.add_argument("--sp3", help="SP3 precise orbit file covering the days")
     orbit.add_argument("--almanac", help="YUMA almanac file")
     sim.add_argument(
+        "--sampling-s",
+        type=float,
+        help="sampling interval of the simulated delays, s (30; --legacy: 12)",
+    )
+    sim.add_argument(
         "--systems",
-        default="G",
         help="nominal constellation when no orbit file: G (GPS 24-slot), E (Galileo "
         "Walker 24/3/1) or GE (G)",
     )
     crit = p.add_argument_group("criterion")
-    crit.add_argument("--criterion", choices=("relative", "absolute"), default="relative")
-    crit.add_argument("--drop-db", type=float, default=40.0, help="relative criterion, dB (40)")
+    crit.add_argument(
+        "--criterion",
+        choices=("residual", "relative", "absolute"),
+        help="residual (default): the ionosphere the fit's high-pass leaves, MARGIN_DB below "
+        "MP_SIGMA_M; relative/absolute: the thesis's Lomb-Scargle criteria",
+    )
+    crit.add_argument(
+        "--legacy",
+        action="store_true",
+        help="the issue-#4 settings: 40 dB Lomb-Scargle criterion at L1, 12 s, fine grids",
+    )
+    crit.add_argument(
+        "--mp-sigma-m", type=float, help="residual criterion: reference multipath sigma, m (1e-3)"
+    )
+    crit.add_argument(
+        "--margin-db", type=float, help="residual criterion: margin below it, dB (40)"
+    )
+    crit.add_argument("--drop-db", type=float, help="relative criterion, dB (40)")
     crit.add_argument(
         "--reference",
         choices=("psd", "envelope"),
-        default="psd",
         help="relative criterion's reference: PSD maximum (default) or envelope peak",
     )
     crit.add_argument(
         "--variance-m2",
         type=float,
-        default=1e-6,
         help="absolute criterion: allowed residual variance, m^2 (1e-6)",
     )
-    crit.add_argument("--degree", type=int, default=3, help="envelope polynomial degree (3)")
-    crit.add_argument("--quantile", type=float, default=0.99, help="envelope quantile (0.99)")
+    crit.add_argument("--degree", type=int, help="envelope polynomial degree (3)")
+    crit.add_argument("--quantile", type=float, help="envelope quantile (0.99)")
     run_ = p.add_argument_group("execution and output")
     run_.add_argument("--workers", type=int, default=2, help="local Dask workers (2; 0: no Dask)")
     run_.add_argument("--scheduler", metavar="ADDRESS", help="use a running Dask scheduler")
@@ -157,48 +187,84 @@ def run(args: argparse.Namespace) -> int:
         For bad input (position, dates, options, files); the caller maps it
         to exit code 2.
     """
-    from psdbound.ionosphere import SETTING_OPTIONS, run_cutoff
+    from psdbound.ionosphere import SETTING_OPTIONS, CutoffSettings, run_cutoff
 
     if (args.lat is None) != (args.lon is None):
         raise InputError("--lat and --lon go together")
     if not args.map and args.lat is None:
-        raise InputError("give --lat and --lon for a station, or --map for the station map")
+        raise InputError("give --lat and --lon for a station, or --map for the world map")
     if args.workers < 0:
         raise InputError(f"--workers {args.workers} must be >= 0")
+    given = {k: v for k, v in vars(args).items() if k in SETTING_OPTIONS and v is not None}
+    settings = CutoffSettings.from_mapping(given)
+    if args.legacy:
+        legacy = CutoffSettings.legacy()
+        settings = CutoffSettings.from_mapping({**legacy.to_dict(), **given})
+    execution = {
+        "workers": args.workers,
+        "scheduler": args.scheduler,
+        "cache_dir": args.cache_dir,
+        "use_cache": not args.no_cache,
+        "progress": _progress,
+    }
+    if args.map:
+        from psdbound.ionosphere.workflow import run_world_map
+
+        outcome = run_world_map(
+            settings=settings,
+            grid_step_deg=_grid_step(args.grid_step),
+            days=args.days,
+            lat_deg=args.lat,
+            lon_deg=args.lon,
+            year=args.year,
+            out_dir=args.out,
+            figures=not args.no_figures,
+            install=args.install,
+            **execution,
+        )
+        _print_world_map(args, outcome)
+        return 0
     outcome = run_cutoff(
         lat_deg=args.lat,
         lon_deg=args.lon,
-        station_map=args.map,
         year=args.year,
-        days=args.days,
+        days=args.days or "first-monday-each-month",
         name=args.name,
         height_m=args.height_m,
-        settings={k: v for k, v in vars(args).items() if k in SETTING_OPTIONS},
+        settings=settings,
         nav=args.nav,
         sp3=args.sp3,
         almanac=args.almanac,
-        workers=args.workers,
-        scheduler=args.scheduler,
-        cache_dir=args.cache_dir,
-        use_cache=not args.no_cache,
         out_dir=args.out,
         figures=not args.no_figures,
-        progress=_progress,
+        **execution,
     )
-    if args.map:
-        _print_map(args, outcome)
-    else:
-        _print_station(outcome)
+    _print_station(outcome)
     return 0
+
+
+def _grid_step(text: str | None) -> tuple[float, float] | None:
+    if text is None:
+        return None
+    try:
+        lat, lon = (float(v) for v in text.split(","))
+    except ValueError:
+        raise InputError(f"--grid-step {text!r}: expected LAT,LON in degrees, e.g. 20,60") from None
+    return lat, lon
 
 
 def _print_station(outcome: Any) -> None:
     res = outcome.result
     s = res.summary()
-    print(
-        f"{res.name}: {s['n_series']} series on {s['n_days']} days ({res.orbit_description}), "
-        f"{res.settings.criterion} criterion"
-    )
+    st = res.settings
+    how = f"{st.criterion} criterion"
+    if st.criterion == "residual":
+        how += (
+            f": residual ionosphere after the fit's high-pass {st.margin_db:g} dB below "
+            f"{1e3 * st.mp_sigma_m:g} mm ({1e3 * s['threshold_m']:.3g} mm)"
+        )
+    print(f"{res.name}: {s['n_series']} series on {s['n_days']} days ({res.orbit_description})")
+    print(f"  {how}, F10.7 {st.f107_sfu:g} sfu")
     print(
         f"  f_c mean {s['mean_f_c_hz']:.3e} Hz, min {s['min_f_c_hz']:.3e} Hz, "
         f"max {s['max_f_c_hz']:.3e} Hz"
@@ -213,20 +279,34 @@ def _print_station(outcome: Any) -> None:
         print(f"  wrote {f}")
 
 
-def _print_map(args: argparse.Namespace, outcome: Any) -> None:
-    rows = outcome.result.rows()
-    n_days = len(outcome.days)
-    print(f"cutoff map: {len(rows)} stations, {n_days} days each")
-    for r in rows:
+def _print_world_map(args: argparse.Namespace, outcome: Any) -> None:
+    doc = outcome.doc
+    g = doc["grid"]
+    c = doc["criterion"]
+    print(
+        f"cutoff map: {len(doc['layers'][0]['stations'])} reference stations + "
+        f"{len(g['lat_deg'])} x {len(g['lon_deg'])} grid, {c['name']} criterion "
+        f"({c['margin_db']:g} dB below {1e3 * c['mp_sigma_m']:g} mm), "
+        f"{doc['compute']['n_station_days']} station-days in {doc['compute']['elapsed_s']:.0f} s"
+    )
+    for layer in doc["layers"]:
+        print(f"  {layer['name']} ({layer['year']}, F10.7 {layer['f107_sfu']:.1f} sfu):")
+        for st in layer["stations"]:
+            print(
+                f"    {st['name']:6s} {st['lat_deg']:7.2f} {st['lon_deg']:8.2f}  "
+                f"recommended f_c {st['recommended_f_c_hz']:.3e} Hz"
+            )
+    for v in doc["validation"]:
         print(
-            f"  {r['name']:8s} {r['lat_deg']:7.2f} {r['lon_deg']:8.2f}  "
-            f"recommended f_c {r['recommended_f_c_hz']:.3e} Hz  ({r['n_series']} series)"
+            f"  grid interpolation at the stations ({v['name']}): median error "
+            f"{100 * v['median_abs_rel_error']:.1f} %, worst {100 * v['worst_rel_error']:+.1f} % "
+            f"({v['worst_station']})"
         )
-    if outcome.nearest is not None:
-        near, dist = outcome.nearest
+    if outcome.at_position is not None:
+        f_c, info = outcome.at_position
         print(
-            f"nearest station to ({args.lat}, {args.lon}): {near['name']} at "
-            f"{dist * 111.195:.0f} km, f_c {near['recommended_f_c_hz']:.3e} Hz"
+            f"at ({args.lat}, {args.lon}), F10.7 {info['f107_sfu']:.1f} sfu ({args.year}): "
+            f"f_c {f_c:.3e} Hz"
         )
     for f in outcome.files:
         print(f"  wrote {f}")

@@ -31,11 +31,12 @@ from psdbound.compute.cache import (
     cache_key,
     default_cache_dir,
 )
-from psdbound.compute.cluster import dask_client
+from psdbound.compute.cluster import START_METHODS, dask_client, default_start_method
 from psdbound.compute.runner import TaskRun, run_tasks
 
 __all__ = [
     "CACHE_ENV",
+    "START_METHODS",
     "DiskCache",
     "ResultStore",
     "TaskCache",
@@ -43,5 +44,6 @@ __all__ = [
     "cache_key",
     "dask_client",
     "default_cache_dir",
+    "default_start_method",
     "run_tasks",
 ]

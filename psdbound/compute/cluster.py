@@ -4,7 +4,12 @@
 
 * no ``scheduler``: a :class:`~dask.distributed.LocalCluster` of ``workers``
   single-threaded worker processes (no dashboard, quiet logs), closed on
-  exit with its client;
+  exit with its client. On Linux the worker processes are **forked** from
+  this one (``start_method="fork"``), so they inherit its imports: the
+  cluster is ready in about 0.6 s instead of 6-8 s with Python's "spawn"
+  (every worker re-importing SciPy, PyIRI and matplotlib), which is most of
+  a station-year's time. ``start_method="spawn"`` restores Dask's default
+  (use it if this process runs threads that hold locks while forking);
 * a ``scheduler`` address (``tcp://host:8786``): a client of that running
   cluster (its workers need psdbound installed); only the client is closed.
 """
@@ -13,12 +18,21 @@ from __future__ import annotations
 
 import contextlib
 import logging
+import sys
 from collections.abc import Iterator
 from typing import Any
 
 from psdbound.errors import InputError
 
-__all__ = ["dask_client"]
+__all__ = ["START_METHODS", "dask_client", "default_start_method"]
+
+#: How local worker processes start: forked from this process, or fresh interpreters.
+START_METHODS = ("fork", "spawn", "forkserver")
+
+
+def default_start_method() -> str:
+    """Return ``"fork"`` on Linux, else ``"spawn"`` (Dask's default)."""
+    return "fork" if sys.platform.startswith("linux") else "spawn"
 
 
 @contextlib.contextmanager
@@ -28,6 +42,7 @@ def dask_client(
     scheduler: str | None = None,
     processes: bool = True,
     timeout_s: float = 20.0,
+    start_method: str | None = None,
 ) -> Iterator[Any]:
     """Open a Dask client for the duration of a ``with`` block.
 
@@ -41,6 +56,8 @@ def dask_client(
         Local cluster workers are processes (True) or threads of this one.
     timeout_s : float, default 20
         How long to wait for the scheduler, s.
+    start_method : {"fork", "spawn", "forkserver"}, optional
+        How local worker processes start (default :func:`default_start_method`).
 
     Yields
     ------
@@ -51,19 +68,24 @@ def dask_client(
     InputError
         For fewer than one local worker, or a scheduler that cannot be reached.
     """
+    import dask
     from dask.distributed import Client, LocalCluster
 
     cluster = None
     if scheduler is None:
         if workers < 1:
             raise InputError(f"workers = {workers} must be >= 1 for a Dask cluster")
-        cluster = LocalCluster(
-            n_workers=workers,
-            threads_per_worker=1,
-            processes=processes,
-            dashboard_address=None,
-            silence_logs=logging.ERROR,
-        )
+        method = start_method or default_start_method()
+        if method not in START_METHODS:
+            raise InputError(f"start_method {method!r} not in {START_METHODS}")
+        with dask.config.set({"distributed.worker.multiprocessing-method": method}):
+            cluster = LocalCluster(
+                n_workers=workers,
+                threads_per_worker=1,
+                processes=processes,
+                dashboard_address=None,
+                silence_logs=logging.ERROR,
+            )
         client = Client(cluster)
     else:
         try:

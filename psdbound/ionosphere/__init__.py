@@ -1,11 +1,15 @@
 """Ionosphere high-pass cutoff selection (method.md section 2).
 
 Pipeline: satellite geometry (navigation, SP3, YUMA almanac, or a nominal
-constellation) -> slant ionospheric delay from PyIRI electron density every
-12 s -> one-day series per satellite replicated over 7 sidereal days ->
-Lomb-Scargle PSD -> upper envelope (local maxima + high-quantile regression
-in log-log) -> cutoff by the 40 dB relative or the absolute criterion ->
-per-station summary (recommended = max) and a worldwide station map.
+constellation) -> slant ionospheric delay from PyIRI electron density (the
+L1-L2 difference every 30 s by default) -> one-day series per satellite ->
+cutoff by the time-domain **residual** criterion (default, issue #16: the
+lowest f_c above which the fit's own high-pass leaves the ionosphere 40 dB
+below a 1 mm multipath reference) or by the thesis's periodogram criteria
+(7-sidereal-day replication, Lomb-Scargle PSD, upper envelope, 40 dB
+relative or absolute) -> per-station summary (recommended = max) -> the
+world map (20 reference stations + a grid, solar-minimum and solar-maximum
+layers) that ``fit`` uses by default.
 
 Public surface:
 
@@ -17,7 +21,10 @@ Public surface:
   :mod:`~psdbound.ionosphere.iri`)
 * spectrum (from :mod:`psdbound.periodogram`): :func:`lomb_scargle`,
   :func:`frequency_grid`, :func:`to_one_sided_density`
-* envelope and criteria: :func:`fit_envelope` -> :class:`Envelope`,
+* residual criterion (:mod:`~psdbound.ionosphere.residual`):
+  :func:`residual_cutoffs` / :func:`residual_cutoff` -> :class:`ResidualCutoff`,
+  :func:`residual_rms`, :func:`residual_threshold_m`
+* periodogram criteria: :func:`fit_envelope` -> :class:`Envelope`,
   :func:`relative_cutoff`, :func:`absolute_cutoff`, :func:`one_day_series`,
   :func:`series_cutoff` -> :class:`SeriesCutoff`
 * batch: :class:`CutoffSettings` and :data:`SETTING_OPTIONS`
@@ -32,6 +39,9 @@ Public surface:
   figures in :mod:`psdbound.ionosphere.figures`
 * stations: :data:`MAP_STATIONS`, :data:`CHICAGO`, :func:`nearest_station`,
   :func:`validate_station`
+* world map (:mod:`~psdbound.ionosphere.worldmap`): :func:`compute_world_map`,
+  :func:`load_map`, :func:`interpolate_map`, :class:`MapLayer`; solar flux of a
+  date in :mod:`~psdbound.ionosphere.solar`
 * cutoff policy for a fit (:mod:`~psdbound.ionosphere.policy`):
   :func:`choose_cutoff`, :class:`CutoffOptions` -> :class:`CutoffChoice`,
   :func:`cutoff_from_map`, :func:`cutoff_computed`,
@@ -67,17 +77,31 @@ from psdbound.ionosphere.policy import (
     cutoff_computed,
     cutoff_from_map,
 )
+from psdbound.ionosphere.residual import (
+    ResidualCutoff,
+    residual_cutoff,
+    residual_cutoffs,
+    residual_rms,
+    residual_threshold_m,
+)
 from psdbound.ionosphere.results import CutoffMap, StationCutoffs
 from psdbound.ionosphere.settings import SETTING_OPTIONS, CutoffSettings
 from psdbound.ionosphere.slant import FREQUENCIES_HZ, SlantDelay, simulate_slant_delay
 from psdbound.ionosphere.stations import (
     CHICAGO,
     MAP_STATIONS,
+    THESIS_CHICAGO_2020_HZ,
     Station,
     nearest_station,
     validate_station,
 )
-from psdbound.ionosphere.workflow import CutoffOutcome, run_cutoff
+from psdbound.ionosphere.workflow import CutoffOutcome, run_cutoff, run_world_map
+from psdbound.ionosphere.worldmap import (
+    MapLayer,
+    compute_world_map,
+    interpolate_map,
+    load_map,
+)
 from psdbound.periodogram import frequency_grid, lomb_scargle, to_one_sided_density
 
 __all__ = [
@@ -89,6 +113,7 @@ __all__ = [
     "MAP_STATIONS",
     "SETTING_OPTIONS",
     "SIDEREAL_DAY_S",
+    "THESIS_CHICAGO_2020_HZ",
     "THESIS_CUTOFF_HZ",
     "Almanac",
     "CutoffChoice",
@@ -97,7 +122,9 @@ __all__ = [
     "CutoffOutcome",
     "CutoffSettings",
     "Envelope",
+    "MapLayer",
     "NominalConstellation",
+    "ResidualCutoff",
     "SeriesCutoff",
     "SlantDelay",
     "Station",
@@ -105,11 +132,14 @@ __all__ = [
     "absolute_cutoff",
     "almanac_from_navigation",
     "choose_cutoff",
+    "compute_world_map",
     "cutoff_computed",
     "cutoff_from_map",
     "default_cache_dir",
     "fit_envelope",
     "frequency_grid",
+    "interpolate_map",
+    "load_map",
     "local_maxima",
     "lomb_scargle",
     "map_cutoffs",
@@ -118,7 +148,12 @@ __all__ = [
     "one_day_series",
     "read_yuma",
     "relative_cutoff",
+    "residual_cutoff",
+    "residual_cutoffs",
+    "residual_rms",
+    "residual_threshold_m",
     "run_cutoff",
+    "run_world_map",
     "select_days",
     "series_cutoff",
     "simulate_slant_delay",

@@ -47,6 +47,8 @@ from psdbound.ionosphere.tasks import (
 __all__ = [
     "default_cache_dir",
     "map_cutoffs",
+    "prepare_orbit",
+    "run_groups",
     "select_days",
     "station_cutoffs",
 ]
@@ -67,7 +69,9 @@ def select_days(year: int, spec: str = "first-monday-each-month") -> list[_dt.da
     spec : str, default "first-monday-each-month"
         ``"first-monday-each-month"``: the Monday of the first full
         (Monday-Sunday) week of each month, i.e. the first Monday (the
-        thesis's choice); ``"first-monday-of-MM"`` for one month; or a
+        thesis's choice); ``"first-monday-of-MM[,MM...]"`` for some months;
+        ``"first-monday-quarterly"`` for March, June, September and December
+        (equinoxes and solstices, the cutoff map's days); or a
         comma-separated list of ``YYYY-MM-DD`` dates (any year).
 
     Returns
@@ -81,17 +85,20 @@ def select_days(year: int, spec: str = "first-monday-each-month") -> list[_dt.da
         supported range.
     """
     text = spec.strip()
+    if text == "first-monday-quarterly":
+        text = "first-monday-of-03,06,09,12"
     if text == "first-monday-each-month" or text.startswith("first-monday-of-"):
         if not isinstance(year, int) or isinstance(year, bool):
             raise InputError(f"year {year!r} must be an integer")
         months = range(1, 13)
         if text.startswith("first-monday-of-"):
             try:
-                months = [int(text.rsplit("-", 1)[1])]
+                months = [int(m) for m in text[len("first-monday-of-") :].split(",")]
             except ValueError:
                 raise InputError(f"cannot read the month in {text!r}") from None
-            if not 1 <= months[0] <= 12:
-                raise InputError(f"month {months[0]} in {text!r} is not 1-12")
+            for m in months:
+                if not 1 <= m <= 12:
+                    raise InputError(f"month {m} in {text!r} is not 1-12")
         days = []
         for m in months:
             first = _dt.date(year, m, 1) if 1 <= year <= 9999 else None
@@ -109,24 +116,40 @@ def select_days(year: int, spec: str = "first-monday-each-month") -> list[_dt.da
     return [parse_date(p) for p in parts]
 
 
-def _prepare_orbit(orbit: Any, settings: CutoffSettings) -> Any:
+def prepare_orbit(orbit: Any, settings: CutoffSettings) -> Any:
+    """Return ``orbit``, or the nominal constellation of ``settings.systems`` when None."""
     return nominal_constellation(settings.systems) if orbit is None else orbit
 
 
-def _execute(
-    groups: list[tuple[Station, float, list[dict[str, Any]]]],
+def run_groups(
+    groups: list[tuple[Station, float, list[dict[str, Any]], CutoffSettings]],
     *,
     orbit: Any,
-    settings: CutoffSettings,
     workers: int,
     scheduler: str | None,
     cache_dir: str | os.PathLike[str] | None,
     use_cache: bool,
     progress: Callable[[int, int], None] | None,
 ) -> list[StationCutoffs]:
-    """Run every station-day of every group; assemble one result per group."""
+    """Run every station-day of every group on one cluster; assemble one result per group.
+
+    Parameters
+    ----------
+    groups : list of (Station, float, list of dict, CutoffSettings)
+        Per group: station, height (m), its station-day specs
+        (:func:`~psdbound.ionosphere.tasks.day_specs`) and their settings.
+    orbit : OrbitSource
+        The orbit source of the specs.
+    workers, scheduler, cache_dir, use_cache, progress
+        As for :func:`station_cutoffs`.
+
+    Returns
+    -------
+    list of StationCutoffs
+        One per group, in order.
+    """
     source, description = orbit_identity(orbit)
-    flat = [(g, spec) for g, (_, _, specs) in enumerate(groups) for spec in specs]
+    flat = [(g, spec) for g, (_, _, specs, _) in enumerate(groups) for spec in specs]
     cache = None
     if use_cache:
         cache = day_cache(Path(cache_dir) if cache_dir is not None else default_cache_dir())
@@ -140,7 +163,7 @@ def _execute(
     )
     results = run.results
     out = []
-    for g, (station, height_m, specs) in enumerate(groups):
+    for g, (station, height_m, specs, settings) in enumerate(groups):
         idx = [i for i, (gg, _) in enumerate(flat) if gg == g]
         rows, skipped = [], []
         for i in idx:
@@ -186,7 +209,7 @@ def station_cutoffs(
     scheduler: str | None = None,
     cache_dir: str | os.PathLike[str] | None = None,
     use_cache: bool = True,
-    keep_series: bool = True,
+    keep_series: bool | None = None,
     progress: Callable[[int, int], None] | None = None,
 ) -> StationCutoffs:
     """Cutoff of every satellite series on every day at one station.
@@ -216,8 +239,12 @@ def station_cutoffs(
         Cache directory (default :func:`default_cache_dir`).
     use_cache : bool, default True
         Read and write the cache.
-    keep_series : bool, default True
-        Keep (and cache) the simulated delays, for figures.
+    keep_series : bool, optional
+        Keep (and cache) the simulated delays, for figures; default only for
+        the periodogram criteria, whose figures redraw a series' PSD (the
+        residual criterion's figure uses the rows' curves; moving and
+        compressing 0.8 MB of delays per day costs about 10 % of a
+        station-year).
     progress : callable, optional
         ``progress(done, total)`` after each computed task.
 
@@ -238,13 +265,14 @@ def station_cutoffs(
     day_list = [parse_date(d) for d in days]
     if not day_list:
         raise InputError("no day selected")
-    orbit = _prepare_orbit(orbit, settings)
+    orbit = prepare_orbit(orbit, settings)
     station = Station(name or f"{lat:.2f},{lon:.2f}", lat, lon)
+    if keep_series is None:
+        keep_series = settings.criterion != "residual"
     specs = day_specs(station, height_m, day_list, orbit, satellites, settings, keep_series)
-    (res,) = _execute(
-        [(station, height_m, specs)],
+    (res,) = run_groups(
+        [(station, height_m, specs, settings)],
         orbit=orbit,
-        settings=settings,
         workers=workers,
         scheduler=scheduler,
         cache_dir=cache_dir,
@@ -293,16 +321,15 @@ def map_cutoffs(
         raise InputError("no day selected")
     if not stations:
         raise InputError("no station in the map")
-    orbit = _prepare_orbit(orbit, settings)
+    orbit = prepare_orbit(orbit, settings)
     t0 = time.perf_counter()
     groups = [
-        (st, 0.0, day_specs(st, 0.0, day_list, orbit, satellites, settings, False))
+        (st, 0.0, day_specs(st, 0.0, day_list, orbit, satellites, settings, False), settings)
         for st in stations
     ]
-    res = _execute(
+    res = run_groups(
         groups,
         orbit=orbit,
-        settings=settings,
         workers=workers,
         scheduler=scheduler,
         cache_dir=cache_dir,

@@ -4,8 +4,13 @@
   envelope, reference and 40 dB lines and f_c (like thesis figure 4.9).
 * :func:`plot_station_envelopes`: every series' envelope of a station-year,
   with the mean and maximum f_c (like thesis figure 4.10, right).
+* :func:`plot_residual_curves`: the residual criterion of a station-year:
+  every series' residual ionosphere after the fit's high-pass against the
+  cutoff, the threshold, the mean and maximum f_c.
 * :func:`plot_cutoff_map`: recommended f_c of each station on a plain
   latitude/longitude plot (no coastlines).
+* :func:`plot_world_map`: the cutoff map document, one panel per solar
+  activity layer (grid cells and reference stations).
 
 Each function writes a PNG atomically (:func:`psdbound.common.atomic_write_bytes`)
 and returns its path.
@@ -24,7 +29,13 @@ from psdbound.common import atomic_write_bytes
 from psdbound.ionosphere.cutoff import SeriesCutoff
 from psdbound.ionosphere.envelope import Envelope, local_maxima
 
-__all__ = ["plot_cutoff_map", "plot_series_psd", "plot_station_envelopes"]
+__all__ = [
+    "plot_cutoff_map",
+    "plot_residual_curves",
+    "plot_series_psd",
+    "plot_station_envelopes",
+    "plot_world_map",
+]
 
 
 def _figure(size: tuple[float, float]):  # noqa: ANN202
@@ -154,6 +165,57 @@ def plot_station_envelopes(
     return _save(fig, path)
 
 
+def plot_residual_curves(
+    curves: Sequence[tuple[Sequence[float], Sequence[float]]],
+    f_c_hz: Sequence[float],
+    threshold_m: float,
+    path: str | os.PathLike[str],
+    *,
+    reference_hz: float | None = None,
+    title: str = "",
+) -> Path:
+    """Residual ionosphere after the fit's high-pass against the cutoff, every series.
+
+    Parameters
+    ----------
+    curves : sequence of (frequencies, residuals)
+        Per series, the scanned cutoffs (Hz) and residual RMS (m).
+    f_c_hz : sequence of float
+        Per series, its cutoff, Hz (the mean and maximum are drawn).
+    threshold_m : float
+        The criterion's threshold, m.
+    path : str or path-like
+        PNG to write.
+    reference_hz : float, optional
+        A cutoff to mark for comparison (e.g. the thesis's 9.55e-4 Hz).
+    title : str, optional
+        Figure title.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
+    fig = _figure((8.0, 5.0))
+    ax = fig.add_subplot()
+    for f, r in curves:
+        r = np.asarray(r, dtype=float)
+        ok = r > 0
+        ax.loglog(np.asarray(f, dtype=float)[ok], 1e3 * r[ok], color="0.6", lw=0.5, alpha=0.5)
+    ax.axhline(1e3 * threshold_m, color="r", lw=1.2, label=f"threshold {1e3 * threshold_m:.3g} mm")
+    fc = np.asarray(f_c_hz, dtype=float)
+    ax.axvline(fc.mean(), color="b", ls="--", lw=1, label=f"mean f_c {fc.mean():.3g} Hz")
+    ax.axvline(fc.max(), color="b", lw=1.5, label=f"max f_c {fc.max():.3g} Hz (recommended)")
+    if reference_hz is not None:
+        ax.axvline(reference_hz, color="k", ls=":", lw=1, label=f"thesis {reference_hz:.3g} Hz")
+    ax.set_xlabel("high-pass cutoff f_c (Hz)")
+    ax.set_ylabel("residual ionosphere RMS in the fit's series (mm)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(title or "Residual criterion")
+    return _save(fig, path)
+
+
 def plot_cutoff_map(
     names: Sequence[str],
     lat_deg: Sequence[float],
@@ -213,4 +275,56 @@ def plot_cutoff_map(
     if ok.any():
         fig.colorbar(sc, ax=ax, label="recommended f_c (Hz)", shrink=0.8)
     ax.set_title(title or "Ionosphere high-pass cutoff by station")
+    return _save(fig, path)
+
+
+def plot_world_map(doc: dict, path: str | os.PathLike[str]) -> Path:
+    """Plot the cutoff map: one panel per layer, grid nodes shaded, stations marked.
+
+    Parameters
+    ----------
+    doc : dict
+        A map document (:func:`psdbound.ionosphere.worldmap.load_map`).
+    path : str or path-like
+        PNG to write.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
+    from matplotlib.colors import LogNorm
+
+    layers = doc["layers"]
+    lat = np.asarray(doc["grid"]["lat_deg"], dtype=float)
+    lon = np.asarray(doc["grid"]["lon_deg"], dtype=float)
+    dlat, dlon = doc["grid"]["lat_step_deg"], doc["grid"]["lon_step_deg"]
+    fields = [np.array(la["grid"]["recommended_f_c_hz"], dtype=float) for la in layers]
+    every = np.concatenate([f[np.isfinite(f)] for f in fields])
+    norm = LogNorm(vmin=every.min(), vmax=every.max())
+    fig = _figure((10.0, 4.6 * len(layers)))
+    for k, (layer, f) in enumerate(zip(layers, fields, strict=True)):
+        ax = fig.add_subplot(len(layers), 1, k + 1)
+        # cells are centred on the nodes; repeat the first column past 180 deg (periodic)
+        lon_w = np.append(lon, lon[0] + 360.0)
+        f_w = np.hstack([f, f[:, :1]])
+        edges_lon = np.append(lon_w - dlon / 2, lon_w[-1] + dlon / 2)
+        edges_lat = np.append(lat - dlat / 2, lat[-1] + dlat / 2)
+        mesh = ax.pcolormesh(edges_lon, edges_lat, f_w, norm=norm, cmap="viridis", shading="flat")
+        for st in layer["stations"]:
+            v = st["recommended_f_c_hz"]
+            ax.scatter([st["lon_deg"]], [st["lat_deg"]], c=[v], norm=norm, cmap="viridis",
+                       edgecolors="w", s=45)  # fmt: skip
+            ax.annotate(st["name"], (st["lon_deg"], st["lat_deg"]), xytext=(3, 3),
+                        textcoords="offset points", fontsize=6, color="w")  # fmt: skip
+        ax.set_xlim(-180, 180)
+        ax.set_ylim(-90, 90)
+        ax.set_aspect("equal")
+        ax.set_ylabel("latitude (deg)")
+        ax.set_title(
+            f"{layer['name']} ({layer['year']}, F10.7 {layer['f107_sfu']:.0f} sfu): recommended "
+            f"f_c, {doc['criterion']['name']} criterion"
+        )
+        fig.colorbar(mesh, ax=ax, label="f_c (Hz)", shrink=0.85)
+    ax.set_xlabel("longitude (deg)")
     return _save(fig, path)

@@ -3,11 +3,17 @@
 For a station (:class:`~psdbound.ionosphere.results.StationCutoffs`), in
 ``out_dir``: ``cutoff_<name>.csv`` (one row per series),
 ``cutoff_<name>.json`` (summary, settings, orbit source, rows) and, with
-figures, ``cutoff_<name>_psd.png`` (the series with the largest f_c: PSD,
-envelope, criterion) and ``cutoff_<name>_envelopes.png`` (every envelope).
-For the station map (:class:`~psdbound.ionosphere.results.CutoffMap`):
-``cutoff_map.csv``, ``cutoff_map.json`` and ``cutoff_map.png``. Every file
-is written atomically (:mod:`psdbound.common`).
+figures, for the residual criterion ``cutoff_<name>_residual.png`` (every
+series' residual against the cutoff), for a periodogram criterion
+``cutoff_<name>_psd.png`` (the series with the largest f_c: PSD, envelope,
+criterion) and ``cutoff_<name>_envelopes.png`` (every envelope).
+For the 20-station map of one year
+(:class:`~psdbound.ionosphere.results.CutoffMap`): ``cutoff_map.csv``,
+``cutoff_map.json`` and ``cutoff_map.png``. For the world map document
+(:mod:`~psdbound.ionosphere.worldmap`, :func:`write_world_map_outputs`):
+``cutoff_map.json`` (the document), ``cutoff_map.csv`` (one row per site and
+layer) and ``cutoff_map.png``. Every file is written atomically
+(:mod:`psdbound.common`).
 """
 
 from __future__ import annotations
@@ -21,8 +27,15 @@ import numpy as np
 
 from psdbound.common import atomic_write_text
 from psdbound.ionosphere.cutoff import one_day_series, series_cutoff
-from psdbound.ionosphere.figures import plot_cutoff_map, plot_series_psd, plot_station_envelopes
+from psdbound.ionosphere.figures import (
+    plot_cutoff_map,
+    plot_residual_curves,
+    plot_series_psd,
+    plot_station_envelopes,
+    plot_world_map,
+)
 from psdbound.ionosphere.results import CutoffMap, StationCutoffs
+from psdbound.ionosphere.stations import THESIS_CHICAGO_2020_HZ
 
 __all__ = [
     "file_tag",
@@ -30,6 +43,8 @@ __all__ = [
     "write_cutoff_outputs",
     "write_map_outputs",
     "write_station_outputs",
+    "world_map_csv",
+    "write_world_map_outputs",
 ]
 
 
@@ -83,8 +98,19 @@ def write_station_outputs(
 
 
 def _station_figures(res: StationCutoffs, out: Path, tag: str) -> list[Path]:
-    files = []
     rows = res.rows
+    if res.settings.criterion == "residual":
+        path = plot_residual_curves(
+            [(r["curve_f_hz"], r["curve_rms_m"]) for r in rows],
+            res.f_c_hz,
+            res.settings.thresholds_m()[0],
+            out / f"cutoff_{tag}_residual.png",
+            reference_hz=THESIS_CHICAGO_2020_HZ["max"],
+            title=f"{res.name}: residual ionosphere after the fit's high-pass, {len(rows)} "
+            f"series on {len(res.days)} days",
+        )
+        return [path]
+    files = []
     top = max(rows, key=lambda r: r["f_c_hz"])
     series = res.series_by_date.get(top["date"])
     if series is not None:
@@ -183,3 +209,62 @@ def write_cutoff_outputs(
     if isinstance(result, CutoffMap):
         return write_map_outputs(result, out_dir, figures=figures)
     return write_station_outputs(result, out_dir, figures=figures)
+
+
+def world_map_csv(doc: dict[str, Any]) -> str:
+    """Return one CSV row per site (reference stations, then grid nodes) and layer."""
+    lines = ["layer,f107_sfu,site,lat_deg,lon_deg,recommended_f_c_hz,mean_f_c_hz,min_f_c_hz"]
+    lat, lon = doc["grid"]["lat_deg"], doc["grid"]["lon_deg"]
+    for layer in doc["layers"]:
+        head = f"{layer['name']},{layer['f107_sfu']:g}"
+        for st in layer["stations"]:
+            lines.append(
+                f"{head},{st['name']},{st['lat_deg']:g},{st['lon_deg']:g},"
+                f"{st['recommended_f_c_hz']},{st['mean_f_c_hz']},{st['min_f_c_hz']}"
+            )
+        g = layer["grid"]
+        for i, a in enumerate(lat):
+            for j, o in enumerate(lon):
+                lines.append(
+                    f"{head},grid,{a:g},{o:g},{g['recommended_f_c_hz'][i][j]},"
+                    f"{g['mean_f_c_hz'][i][j]},{g['min_f_c_hz'][i][j]}"
+                )
+    return "\n".join(lines) + "\n"
+
+
+def write_world_map_outputs(
+    doc: dict[str, Any],
+    out_dir: str | os.PathLike[str],
+    *,
+    figures: bool = True,
+    install_path: str | os.PathLike[str] | None = None,
+) -> list[Path]:
+    """Write the world map document, its table and (optionally) its figure.
+
+    Parameters
+    ----------
+    doc : dict
+        The map document (:func:`psdbound.ionosphere.worldmap.compute_world_map`).
+    out_dir : str or path-like
+        Output folder (created if missing).
+    figures : bool, default True
+        Also write ``cutoff_map.png``.
+    install_path : str or path-like, optional
+        Also write the document there (e.g. the package data file).
+
+    Returns
+    -------
+    list of Path
+        The files written, in order.
+    """
+    out = Path(out_dir)
+    text = json.dumps(doc, separators=(",", ":")) + "\n"
+    files = [
+        atomic_write_text(out / "cutoff_map.json", text),
+        atomic_write_text(out / "cutoff_map.csv", world_map_csv(doc)),
+    ]
+    if figures:
+        files.append(plot_world_map(doc, out / "cutoff_map.png"))
+    if install_path is not None:
+        files.append(atomic_write_text(Path(install_path), text))
+    return files

@@ -35,9 +35,12 @@ class StationCutoffs:
         Station position.
     rows : list of dict
         One per analysed series: ``date``, ``sat``, ``f_c_hz``,
-        ``tau_c_min``, ``reached``, ``n_samples``, ``peak_hz``,
-        ``peak_psd_m2_hz``, ``threshold_m2_hz``, ``residual_m2``,
-        ``variance_m2`` and the ``envelope`` (dict).
+        ``tau_c_min``, ``reached``, ``n_samples``, ``variance_m2`` and, for
+        the residual criterion, ``floor``, ``threshold_m``, ``scale``,
+        ``n_arcs``, ``f_c_by_threshold`` and the scanned curve
+        (``curve_f_hz``, ``curve_rms_m``); for a periodogram criterion
+        ``peak_hz``, ``peak_psd_m2_hz``, ``threshold_m2_hz``,
+        ``residual_m2`` and the ``envelope`` (dict).
     skipped : list of dict
         Series not analysed (``date``, ``sat``, ``reason``), and days
         without any satellite above the mask.
@@ -77,8 +80,34 @@ class StationCutoffs:
 
     @property
     def envelopes(self) -> list[Envelope]:
-        """Envelopes of all series."""
-        return [Envelope.from_dict(r["envelope"]) for r in self.rows]
+        """Envelopes of all series (periodogram criteria; empty for the residual criterion)."""
+        return [Envelope.from_dict(r["envelope"]) for r in self.rows if "envelope" in r]
+
+    def by_margin(self) -> list[dict[str, Any]]:
+        """Cutoffs at every recorded margin (residual criterion; empty otherwise).
+
+        Returns
+        -------
+        list of dict
+            Per margin (dB below ``settings.mp_sigma_m``): ``margin_db``,
+            ``threshold_m``, ``mean_f_c_hz``, ``max_f_c_hz`` (= the
+            recommended cutoff at that margin).
+        """
+        if not self.rows or "f_c_by_threshold" not in self.rows[0]:
+            return []
+        out = []
+        margins = self.settings.margins_db()
+        for k, (m, thr) in enumerate(zip(margins, self.settings.thresholds_m(), strict=True)):
+            fc = np.array([r["f_c_by_threshold"][k][1] for r in self.rows], dtype=float)
+            out.append(
+                {
+                    "margin_db": m,
+                    "threshold_m": thr,
+                    "mean_f_c_hz": float(fc.mean()),
+                    "max_f_c_hz": float(fc.max()),
+                }
+            )
+        return sorted(out, key=lambda d: d["margin_db"])
 
     def summary(self) -> dict[str, Any]:
         """Mean, min, max and recommended (= max) f_c, with counts and provenance."""
@@ -101,7 +130,15 @@ class StationCutoffs:
                 recommended_f_c_hz=float(fc.max()),
                 recommended_tau_c_min=float(1.0 / fc.max() / 60.0),
                 n_not_reached=int(sum(not r["reached"] for r in self.rows)),
+                n_floor=int(sum(bool(r.get("floor", False)) for r in self.rows)),
             )
+            if self.settings.criterion == "residual":
+                out.update(
+                    mp_sigma_m=self.settings.mp_sigma_m,
+                    margin_db=self.settings.margin_db,
+                    threshold_m=self.settings.thresholds_m()[0],
+                    by_margin=self.by_margin(),
+                )
         else:
             out.update(
                 mean_f_c_hz=float("nan"),
@@ -110,15 +147,22 @@ class StationCutoffs:
                 recommended_f_c_hz=float("nan"),
                 recommended_tau_c_min=float("nan"),
                 n_not_reached=0,
+                n_floor=0,
             )
         return out
 
     def table_csv(self) -> str:
         """Per-series table as CSV text."""
-        cols = [
-            "date", "sat", "f_c_hz", "tau_c_min", "reached", "n_samples", "peak_hz",
-            "peak_psd_m2_hz", "threshold_m2_hz", "residual_m2", "variance_m2",
-        ]  # fmt: skip
+        if self.settings.criterion == "residual":
+            cols = [
+                "date", "sat", "f_c_hz", "tau_c_min", "reached", "floor", "n_samples",
+                "n_arcs", "threshold_m", "scale", "variance_m2",
+            ]  # fmt: skip
+        else:
+            cols = [
+                "date", "sat", "f_c_hz", "tau_c_min", "reached", "n_samples", "peak_hz",
+                "peak_psd_m2_hz", "threshold_m2_hz", "residual_m2", "variance_m2",
+            ]  # fmt: skip
         buf = io.StringIO()
         w = csv.writer(buf, lineterminator="\n")
         w.writerow(cols)

@@ -7,7 +7,19 @@ names (a parsed command line, a cached task) by
 :meth:`~CutoffSettings.simulation_options` to
 :func:`~psdbound.ionosphere.slant.simulate_slant_delay`,
 :meth:`~CutoffSettings.series_options` to
-:func:`~psdbound.ionosphere.cutoff.series_cutoff`.
+:func:`~psdbound.ionosphere.cutoff.series_cutoff` (the periodogram
+criteria), :meth:`~CutoffSettings.residual_options` to
+:func:`~psdbound.ionosphere.residual.residual_cutoffs` (the default
+time-domain criterion).
+
+Defaults (issue #16): the ``"residual"`` criterion on the L1-L2 difference
+the fit filters, sampled at 30 s (the usual RINEX rate), rays every 2 min,
+an 11 x 11 horizontal grid, 1 h UT nodes and the coarse altitude nodes, at
+a fifth of the cost of 12 s sampling, 1 min rays, 21 x 21 nodes, 30 min
+and fine altitudes. On Chicago 2020 they move the station's mean cutoff by
+1 % and its maximum by -12 % (docs/cutoff.md gives the table; the maximum
+of ~300 series is the statistic most sensitive to the interpolation). :meth:`CutoffSettings.legacy`
+gives the issue-#4 defaults (40 dB Lomb-Scargle criterion at L1, 12 s).
 """
 
 from __future__ import annotations
@@ -26,16 +38,29 @@ from psdbound.ionosphere.cutoff import (
     MIN_SERIES_SAMPLES,
     REFERENCES,
 )
-from psdbound.ionosphere.iri import DEFAULT_F107_SFU, IRI_MODELS
+from psdbound.ionosphere.iri import ALT_RESOLUTIONS, DEFAULT_F107_SFU, IRI_MODELS
+from psdbound.ionosphere.residual import (
+    DEFAULT_MARGIN_DB,
+    DEFAULT_MP_SIGMA_M,
+    F_MIN_HZ,
+    MIN_KEPT_S,
+    residual_threshold_m,
+)
 from psdbound.ionosphere.slant import DEFAULT_SHELL_HEIGHT_KM, FREQUENCIES_HZ, METHODS
+from psdbound.isolation import DF_SCALING, FILTER_KINDS, HighPass
 
-__all__ = ["SETTING_OPTIONS", "CutoffSettings", "parse_carriers"]
+__all__ = ["ALL_CRITERIA", "LEVELS_DB", "SETTING_OPTIONS", "CutoffSettings", "parse_carriers"]
+
+#: Every cutoff criterion: the time-domain residual (default) and the periodogram ones.
+ALL_CRITERIA = ("residual", *CRITERIA)
+#: Margins (dB below the reference multipath) whose cutoffs every residual run also records.
+LEVELS_DB = (20.0, 30.0, 40.0, 50.0)
 
 # settings handed to simulate_slant_delay under the same name
 _SIMULATION = (
     "f107_sfu", "elevation_mask_deg", "method", "frequency_hz", "second_frequency_hz",
-    "sampling_s", "iri_model", "alt_range_km", "shell_height_km", "grid_size", "ut_step_h",
-    "ray_stride",
+    "sampling_s", "iri_model", "alt_range_km", "alt_resolution", "shell_height_km", "grid_size",
+    "ut_step_h", "ray_stride",
 )  # fmt: skip
 # settings handed to series_cutoff under the same name (plus sampling_s as dt_s)
 _SERIES = (
@@ -97,13 +122,21 @@ class CutoffSettings:
 
     Simulation: ``f107_sfu``, ``elevation_mask_deg``, ``method``,
     ``iri_model``, ``frequency_hz``, ``second_frequency_hz``, ``sampling_s``,
-    ``alt_range_km``, ``shell_height_km``, ``grid_size``, ``ut_step_h``,
-    ``ray_stride`` (see :func:`~psdbound.ionosphere.slant.simulate_slant_delay`).
-    Spectrum and criterion: ``copies``, ``oversample``, ``nyquist_fraction``,
-    ``criterion``, ``drop_db``, ``reference``, ``variance_m2``, ``degree``,
-    ``quantile``, ``envelope_method``, ``bins_per_decade``
-    (see :func:`~psdbound.ionosphere.cutoff.series_cutoff`). ``systems``
-    picks the nominal constellation when no orbit file is given;
+    ``alt_range_km``, ``alt_resolution``, ``shell_height_km``, ``grid_size``,
+    ``ut_step_h``, ``ray_stride`` (see
+    :func:`~psdbound.ionosphere.slant.simulate_slant_delay`). Criterion:
+    ``criterion`` (``"residual"``, default, or the periodogram criteria
+    ``"relative"`` and ``"absolute"``). Residual criterion
+    (:mod:`~psdbound.ionosphere.residual`): ``mp_sigma_m`` (reference
+    multipath sigma per carrier, m), ``margin_db`` (how far below it the
+    residual must stay), ``filter_kind``, ``filter_order``, ``filter_edge``
+    (the fit's :class:`~psdbound.isolation.HighPass`), ``min_kept_s``,
+    ``search_top_fraction`` (top of the search, fraction of Nyquist),
+    ``points_per_decade``. Periodogram criteria: ``copies``,
+    ``oversample``, ``nyquist_fraction``, ``drop_db``, ``reference``,
+    ``variance_m2``, ``degree``, ``quantile``, ``envelope_method``,
+    ``bins_per_decade`` (see :func:`~psdbound.ionosphere.cutoff.series_cutoff`).
+    ``systems`` picks the nominal constellation when no orbit file is given;
     ``min_arc_s`` drops shorter arcs from each one-day series and
     ``min_samples`` is the shortest one-day series analysed (shorter ones are
     listed as skipped); see :func:`~psdbound.ionosphere.cutoff.one_day_series`.
@@ -114,18 +147,27 @@ class CutoffSettings:
     method: str = "line-of-sight"
     iri_model: str = "ursi"
     frequency_hz: float = FREQUENCIES_HZ["L1"]
-    second_frequency_hz: float | None = None
-    sampling_s: float = 12.0
+    second_frequency_hz: float | None = FREQUENCIES_HZ["L2"]
+    sampling_s: float = 30.0
     alt_range_km: tuple[float, float] = (60.0, 2000.0)
+    alt_resolution: str = "coarse"
     shell_height_km: float = DEFAULT_SHELL_HEIGHT_KM
-    grid_size: int = 21
-    ut_step_h: float = 0.5
-    ray_stride: int = 5
+    grid_size: int = 11
+    ut_step_h: float = 1.0
+    ray_stride: int = 4
     systems: str = "G"
+    criterion: str = "residual"
+    mp_sigma_m: float = DEFAULT_MP_SIGMA_M
+    margin_db: float = DEFAULT_MARGIN_DB
+    filter_kind: str = "butter"
+    filter_order: int = 4
+    filter_edge: str = "trim"
+    min_kept_s: float = MIN_KEPT_S
+    search_top_fraction: float = 0.5
+    points_per_decade: int = 16
     copies: int = 7
     oversample: float = 1.0
     nyquist_fraction: float = 0.99
-    criterion: str = "relative"
     drop_db: float = DEFAULT_DROP_DB
     reference: str = "psd"
     variance_m2: float = DEFAULT_VARIANCE_M2
@@ -133,8 +175,31 @@ class CutoffSettings:
     quantile: float = 0.99
     envelope_method: str = "quantreg"
     bins_per_decade: float = 20.0
-    min_samples: int = MIN_SERIES_SAMPLES
+    min_samples: int = 60
     min_arc_s: float = MIN_ARC_S
+
+    @classmethod
+    def legacy(cls, **changes: Any) -> CutoffSettings:
+        """Return the issue-#4 defaults: 40 dB Lomb-Scargle criterion, L1, 12 s, fine grids.
+
+        The benchmark times these side by side with the defaults; they also
+        reproduce the periodogram numbers quoted in docs/cutoff.md.
+
+        Parameters
+        ----------
+        **changes
+            Fields to change from those settings.
+
+        Returns
+        -------
+        CutoffSettings
+        """
+        base = {
+            "criterion": "relative", "second_frequency_hz": None, "sampling_s": 12.0,
+            "alt_resolution": "fine", "grid_size": 21, "ut_step_h": 0.5, "ray_stride": 5,
+            "min_samples": MIN_SERIES_SAMPLES,
+        }  # fmt: skip
+        return cls(**{**base, **changes})
 
     @classmethod
     def from_mapping(cls, options: Mapping[str, Any]) -> CutoffSettings:
@@ -180,7 +245,26 @@ class CutoffSettings:
         checks = [
             (self.method in METHODS, f"method {self.method!r} not in {METHODS}"),
             (self.iri_model in IRI_MODELS, f"iri_model {self.iri_model!r} not in {IRI_MODELS}"),
-            (self.criterion in CRITERIA, f"criterion {self.criterion!r} not in {CRITERIA}"),
+            (
+                self.alt_resolution in ALT_RESOLUTIONS,
+                f"alt_resolution {self.alt_resolution!r} not in {ALT_RESOLUTIONS}",
+            ),
+            (
+                self.criterion in ALL_CRITERIA,
+                f"criterion {self.criterion!r} not in {ALL_CRITERIA}",
+            ),
+            (self.mp_sigma_m > 0, f"mp_sigma_m = {self.mp_sigma_m} m must be positive"),
+            (self.margin_db >= 0, f"margin_db = {self.margin_db} dB must be non-negative"),
+            (
+                self.filter_kind in FILTER_KINDS,
+                f"filter_kind {self.filter_kind!r} not in {FILTER_KINDS}",
+            ),
+            (
+                0.0 < self.search_top_fraction <= 1.0,
+                f"search_top_fraction = {self.search_top_fraction} must be in (0, 1]",
+            ),
+            (self.points_per_decade >= 2, "points_per_decade must be at least 2"),
+            (self.sampling_s > 0, f"sampling_s = {self.sampling_s} s must be positive"),
             (self.reference in REFERENCES, f"reference {self.reference!r} not in {REFERENCES}"),
             (
                 50.0 <= self.f107_sfu <= 400.0,
@@ -192,6 +276,7 @@ class CutoffSettings:
                 "0 <= mask < 90",
             ),
             (self.copies >= 1, f"copies = {self.copies} must be at least 1"),
+            (self.filter_edge in ("trim", "pad"), f"filter_edge {self.filter_edge!r} not trim/pad"),
             (self.drop_db > 0, f"drop_db = {self.drop_db} must be positive"),
             (self.variance_m2 > 0, f"variance_m2 = {self.variance_m2} must be positive"),
             (set(self.systems) <= {"G", "E"} and self.systems, "systems must be G, E or GE"),
@@ -209,7 +294,45 @@ class CutoffSettings:
 
     def series_options(self) -> dict[str, Any]:
         """Return the keyword options of :func:`series_cutoff` for these settings."""
-        return {"dt_s": self.sampling_s, **{name: getattr(self, name) for name in _SERIES}}
+        opts = {name: getattr(self, name) for name in _SERIES}
+        if self.criterion not in CRITERIA:
+            opts["criterion"] = "relative"
+        return {"dt_s": self.sampling_s, **opts}
+
+    def highpass(self) -> HighPass:
+        """Return the fit's high-pass filter these settings describe."""
+        return HighPass(kind=self.filter_kind, order=self.filter_order, edge=self.filter_edge)
+
+    @property
+    def residual_scale(self) -> float:
+        """Factor from the simulated delay to the fit's series.
+
+        :data:`psdbound.isolation.DF_SCALING` (1/sqrt(2)) for a carrier pair
+        (the fit's per-carrier scaling of the DF difference); 1 for one
+        carrier (conservative by 6.8 dB at L1 for an L1-L2 fit).
+        """
+        return float(DF_SCALING) if self.second_frequency_hz is not None else 1.0
+
+    def margins_db(self) -> list[float]:
+        """Return the margins a residual run records: ``margin_db``, then :data:`LEVELS_DB`."""
+        return [self.margin_db, *(m for m in LEVELS_DB if m != self.margin_db)]
+
+    def thresholds_m(self) -> list[float]:
+        """Return the allowed residuals of :meth:`margins_db`, m."""
+        return [residual_threshold_m(self.mp_sigma_m, m) for m in self.margins_db()]
+
+    def residual_options(self) -> dict[str, Any]:
+        """Return the keyword options of :func:`residual_cutoffs` for these settings."""
+        return {
+            "dt_s": self.sampling_s,
+            "thresholds_m": self.thresholds_m(),
+            "scale": self.residual_scale,
+            "highpass": self.highpass(),
+            "min_kept_s": self.min_kept_s,
+            "nyquist_fraction": self.search_top_fraction,
+            "f_min_hz": F_MIN_HZ,
+            "points_per_decade": self.points_per_decade,
+        }
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict of the settings."""

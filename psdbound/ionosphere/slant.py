@@ -194,6 +194,7 @@ def simulate_slant_delay(
     duration_s: float = SIDEREAL_DAY_S + DEFAULT_MARGIN_S,
     iri_model: str = "ursi",
     alt_range_km: tuple[float, float] = (60.0, 2000.0),
+    alt_resolution: str = "fine",
     shell_height_km: float = DEFAULT_SHELL_HEIGHT_KM,
     grid_size: int = 21,
     ut_step_h: float = DEFAULT_UT_STEP_H,
@@ -240,6 +241,9 @@ def simulate_slant_delay(
         PyIRI model (see module notes).
     alt_range_km : (float, float), default (60, 2000)
         Altitude range of the density integral, km.
+    alt_resolution : {"fine", "coarse"}
+        Altitude nodes of the integral (see
+        :func:`~psdbound.ionosphere.iri.altitude_nodes_km`).
     shell_height_km : float, default 350
         Thin-shell height, km (``method="thin-shell"`` only).
     grid_size : int, default 21
@@ -306,7 +310,7 @@ def simulate_slant_delay(
     az_deg = np.array(azs)
     visible = el_deg >= elevation_mask_deg
 
-    alt_km = altitude_nodes_km(*alt_range_km)
+    alt_km = altitude_nodes_km(*alt_range_km, resolution=alt_resolution)
     mask_eff = np.radians(max(min(elevation_mask_deg, float(np.nanmin(el_deg[visible]))), 0.0))
     h_top = alt_km[-1] if method == "line-of-sight" else shell_height_km
     psi_max = np.degrees(central_angle_rad(radius_m, np.array(h_top * 1e3), np.array(mask_eff)))
@@ -363,6 +367,7 @@ def simulate_slant_delay(
         "sampling_s": float(sampling_s),
         "duration_s": float(duration_s),
         "alt_range_km": [float(alt_range_km[0]), float(alt_range_km[1])],
+        "alt_resolution": alt_resolution,
         "shell_height_km": float(shell_height_km) if method == "thin-shell" else None,
         "grid_size": int(grid_size),
         "ut_step_h": float(ut_step_h),

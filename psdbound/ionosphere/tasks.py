@@ -2,7 +2,10 @@
 
 One **task** is one station-day (method.md section 2, steps 6-7): the slant
 delays of every satellite (one PyIRI grid per day), then one cutoff per
-satellite series (one day, replicated over 7 sidereal days).
+satellite series: by the time-domain residual criterion (all series of the
+day at once, :func:`~psdbound.ionosphere.residual.residual_cutoffs`) or by
+a periodogram criterion (one day replicated over 7 sidereal days,
+:func:`~psdbound.ionosphere.cutoff.series_cutoff`).
 :func:`station_day` runs it on a Dask worker from a plain dict
 (:func:`day_specs`), and returns a dict: ``date``, ``rows`` (one per
 analysed series), ``skipped`` and, when the delays are kept, ``t_gps_s``,
@@ -27,6 +30,7 @@ from typing import Any
 from psdbound.compute import DiskCache, cache_key
 from psdbound.errors import NoDataError
 from psdbound.ionosphere.cutoff import one_day_series, series_cutoff
+from psdbound.ionosphere.residual import ResidualCutoff, residual_cutoffs
 from psdbound.ionosphere.settings import CutoffSettings
 from psdbound.ionosphere.slant import simulate_slant_delay
 from psdbound.ionosphere.stations import Station, validate_station
@@ -39,11 +43,12 @@ __all__ = [
     "day_key",
     "day_specs",
     "orbit_identity",
+    "residual_row",
     "station_day",
 ]
 
 #: Version of the cache entry layout; bump when results change meaning or layout.
-CACHE_SCHEMA = 3
+CACHE_SCHEMA = 4
 #: Array fields of a task result that keeps the simulated delays.
 SERIES_ARRAYS = ("delay_m", "t_gps_s")
 
@@ -156,6 +161,31 @@ def day_cache(directory: str | Path) -> DiskCache:
     return DiskCache(directory, key=day_key, arrays=_wanted_arrays)
 
 
+def residual_row(date: str, sat: str, r: ResidualCutoff) -> dict[str, Any]:
+    """Return the result row of one series cut off by the residual criterion.
+
+    Parameters
+    ----------
+    date, sat : str
+        Day and satellite.
+    r : ResidualCutoff
+        Its cutoff.
+
+    Returns
+    -------
+    dict
+        ``date``, ``sat``, the scalar fields of :meth:`ResidualCutoff.to_dict`
+        and the scanned curve (``curve_f_hz``, ``curve_rms_m`` as lists).
+    """
+    return {
+        "date": date,
+        "sat": sat,
+        **r.to_dict(),
+        "curve_f_hz": [float(v) for v in r.curve_f_hz],
+        "curve_rms_m": [float(v) for v in r.curve_rms_m],
+    }
+
+
 def station_day(spec: dict[str, Any]) -> dict[str, Any]:
     """Simulate one station-day and compute every satellite's cutoff (runs on a worker).
 
@@ -185,6 +215,7 @@ def station_day(spec: dict[str, Any]) -> dict[str, Any]:
     except NoDataError as exc:
         out["skipped"].append({"date": spec["date"], "sat": "*", "reason": exc.reason})
         return out
+    kept = []
     for j, sat in enumerate(sd.sats):
         t, y = one_day_series(sd.t_gps_s, sd.delay_m[j], min_arc_s=s.min_arc_s)
         if t.size < s.min_samples:
@@ -197,13 +228,18 @@ def station_day(spec: dict[str, Any]) -> dict[str, Any]:
                 }
             )
             continue
-        r = series_cutoff(t, y, **s.series_options())
-        row = {"date": spec["date"], "sat": sat}
-        d = r.to_dict()
-        d.pop("settings")
-        d.pop("criterion")
-        row.update(d)
-        out["rows"].append(row)
+        kept.append((sat, t, y))
+    if s.criterion == "residual":
+        found = residual_cutoffs([(t, y) for _, t, y in kept], **s.residual_options())
+        out["rows"] = [
+            residual_row(spec["date"], sat, r) for (sat, _, _), r in zip(kept, found, strict=True)
+        ]
+    else:
+        for sat, t, y in kept:
+            d = series_cutoff(t, y, **s.series_options()).to_dict()
+            d.pop("settings")
+            d.pop("criterion")
+            out["rows"].append({"date": spec["date"], "sat": sat, **d})
     if spec.get("keep_series"):
         out.update(t_gps_s=sd.t_gps_s, sats=list(sd.sats), delay_m=sd.delay_m)
     return out

@@ -4,9 +4,11 @@
 pick the days (:func:`~psdbound.ionosphere.batch.select_days`), build the
 settings (:meth:`~psdbound.ionosphere.settings.CutoffSettings.from_mapping`),
 load the orbit source (:func:`load_orbit`), run a station
-(:func:`~psdbound.ionosphere.batch.station_cutoffs`) or the station map
-(:func:`~psdbound.ionosphere.batch.map_cutoffs`), and write the outputs
+(:func:`~psdbound.ionosphere.batch.station_cutoffs`), and write the outputs
 (:func:`~psdbound.ionosphere.outputs.write_cutoff_outputs`).
+:func:`run_world_map` is ``psdbound cutoff --map``: the world cutoff map
+(:func:`~psdbound.ionosphere.worldmap.compute_world_map`), its files, and
+optionally the package data file it replaces.
 """
 
 from __future__ import annotations
@@ -27,7 +29,7 @@ from psdbound.ionosphere.results import CutoffMap, StationCutoffs
 from psdbound.ionosphere.settings import CutoffSettings
 from psdbound.ionosphere.stations import validate_station
 
-__all__ = ["CutoffOutcome", "load_orbit", "run_cutoff"]
+__all__ = ["CutoffOutcome", "WorldMapOutcome", "load_orbit", "run_cutoff", "run_world_map"]
 
 
 @dataclass
@@ -180,3 +182,102 @@ def run_cutoff(
     if station_map and lat_deg is not None:
         nearest = result.nearest(lat_deg, lon_deg)
     return CutoffOutcome(result=result, days=day_list, files=files, nearest=nearest)
+
+
+@dataclass
+class WorldMapOutcome:
+    """What :func:`run_world_map` computed and wrote.
+
+    Attributes
+    ----------
+    doc : dict
+        The map document.
+    files : list of Path
+        Files written.
+    at_position : tuple of (float, dict) or None
+        The cutoff interpolated at the requested position and its details.
+    """
+
+    doc: dict[str, Any]
+    files: list[Path] = field(default_factory=list)
+    at_position: tuple[float, dict[str, Any]] | None = None
+
+
+def run_world_map(
+    *,
+    settings: CutoffSettings | Mapping[str, Any] | None = None,
+    grid_step_deg: tuple[float, float] | None = None,
+    days: str | None = None,
+    lat_deg: float | None = None,
+    lon_deg: float | None = None,
+    year: int = 2020,
+    workers: int = 2,
+    scheduler: str | None = None,
+    cache_dir: str | os.PathLike[str] | None = None,
+    use_cache: bool = True,
+    out_dir: str | os.PathLike[str] = ".",
+    figures: bool = True,
+    install: bool = False,
+    progress: Callable[[int, int], None] | None = None,
+) -> WorldMapOutcome:
+    """Compute the world cutoff map, write it, and optionally install it as package data.
+
+    Parameters
+    ----------
+    settings : CutoffSettings or mapping, optional
+        Criterion and simulation settings (``f107_sfu`` is each layer's).
+    grid_step_deg : (float, float), optional
+        Grid steps, default :data:`~psdbound.ionosphere.worldmap.DEFAULT_GRID_STEP_DEG`.
+    days : str, optional
+        Day selection within each layer's year (default quarterly).
+    lat_deg, lon_deg : float, optional
+        A position to interpolate the new map at (with the F10.7 of ``year``).
+    year : int, default 2020
+        Year of that position's data.
+    workers, scheduler, cache_dir, use_cache, progress
+        Execution (see :func:`~psdbound.ionosphere.batch.station_cutoffs`).
+    out_dir : str or path-like, default "."
+        Output folder.
+    figures : bool, default True
+        Also write ``cutoff_map.png``.
+    install : bool, default False
+        Also replace the shipped map (``psdbound/ionosphere/data/cutoff_map.json``).
+
+    Returns
+    -------
+    WorldMapOutcome
+    """
+    from importlib import resources
+
+    from psdbound.ionosphere.outputs import write_world_map_outputs
+    from psdbound.ionosphere.solar import annual_f107
+    from psdbound.ionosphere.worldmap import (
+        DEFAULT_GRID_STEP_DEG,
+        MAP_DAYS,
+        MAP_FILE,
+        compute_world_map,
+        interpolate_map,
+    )
+
+    if not isinstance(settings, CutoffSettings):
+        settings = CutoffSettings.from_mapping(settings or {})
+    doc = compute_world_map(
+        grid_step_deg=grid_step_deg or DEFAULT_GRID_STEP_DEG,
+        days=days or MAP_DAYS,
+        settings=settings,
+        workers=workers,
+        scheduler=scheduler,
+        cache_dir=cache_dir,
+        use_cache=use_cache,
+        progress=progress,
+    )
+    target = None
+    if install:
+        target = Path(str(resources.files("psdbound.ionosphere").joinpath(MAP_FILE)))
+    files = write_world_map_outputs(doc, out_dir, figures=figures, install_path=target)
+    at = None
+    if lat_deg is not None and lon_deg is not None:
+        lat, lon = validate_station(lat_deg, lon_deg)
+        f107 = annual_f107(year) or max(la["f107_sfu"] for la in doc["layers"])
+        at = interpolate_map(doc, lat, lon, f107)
+    return WorldMapOutcome(doc=doc, files=files, at_position=at)

@@ -146,8 +146,9 @@ def choose_cutoff(inputs: InputData, options: CutoffOptions) -> CutoffChoice | N
     """
     if inputs.method == "da":
         return None
+    date = str(inputs.observations[0].times[0])[:10]
     return _choose_cutoff(options, lat_deg=inputs.lat_deg, lon_deg=inputs.lon_deg,
-                          year=inputs.year)  # fmt: skip
+                          year=inputs.year, date=date, interval_s=inputs.interval_s)  # fmt: skip
 
 
 def _xyz(rx: tuple[float, float, float] | None) -> np.ndarray | None:

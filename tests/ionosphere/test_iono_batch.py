@@ -48,6 +48,7 @@ def test_dask_two_workers_and_cache(tmp_path):
         "settings": settings,
         "workers": 2,
         "cache_dir": tmp_path / "cache",
+        "keep_series": True,
     }
     days = ["2020-01-06", "2020-07-06"]
     first = station_cutoffs(41.84, -87.63, days, name="CHI", **kw)
@@ -64,7 +65,7 @@ def test_dask_two_workers_and_cache(tmp_path):
     # any change of input is a different cache entry
     third = station_cutoffs(
         41.84, -87.63, days[:1], name="CHI", **{**kw, "workers": 0,
-        "settings": CutoffSettings(grid_size=15, ut_step_h=1.0, drop_db=30.0)},
+        "settings": CutoffSettings(grid_size=15, ut_step_h=1.0, margin_db=30.0)},
     )  # fmt: skip
     assert third.from_cache == [False]
     assert third.rows[0]["f_c_hz"] < first.rows[0]["f_c_hz"]

@@ -11,9 +11,11 @@ from psdbound.ionosphere import (
     FREQUENCIES_HZ,
     SETTING_OPTIONS,
     CutoffSettings,
+    residual_cutoffs,
     series_cutoff,
     simulate_slant_delay,
 )
+from psdbound.isolation import HighPass
 
 
 def test_from_mapping_only_given_options_change():
@@ -52,4 +54,26 @@ def test_stage_options_are_the_stage_keywords():
     assert set(s.simulation_options()) <= set(sim)
     assert set(s.series_options()) <= set(ser)
     assert s.series_options()["dt_s"] == s.sampling_s
-    assert s.simulation_options()["grid_size"] == 21
+    assert s.simulation_options()["grid_size"] == 11
+    res = inspect.signature(residual_cutoffs).parameters
+    assert set(s.residual_options()) <= set(res)
+
+
+def test_defaults_and_the_legacy_settings():
+    s = CutoffSettings()
+    assert s.criterion == "residual" and s.sampling_s == 30.0
+    assert s.second_frequency_hz == FREQUENCIES_HZ["L2"] and s.residual_scale == pytest.approx(
+        2**-0.5
+    )
+    assert s.thresholds_m()[0] == pytest.approx(1e-5) and s.margins_db()[0] == 40.0
+    assert s.highpass() == HighPass()
+    old = CutoffSettings.legacy()
+    assert (old.criterion, old.sampling_s, old.grid_size, old.second_frequency_hz) == (
+        "relative", 12.0, 21, None,
+    )  # fmt: skip
+    assert old.residual_scale == 1.0 and old.series_options()["criterion"] == "relative"
+    assert CutoffSettings.legacy(drop_db=30.0).drop_db == 30.0
+    with pytest.raises(InputError, match="criterion"):
+        CutoffSettings.from_mapping({"criterion": "median"})
+    with pytest.raises(InputError, match="mp_sigma_m"):
+        CutoffSettings.from_mapping({"mp_sigma_m": 0.0})

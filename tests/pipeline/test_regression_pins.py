@@ -4,7 +4,7 @@ Refactors must not move these numbers. Work that changes a number on purpose
 updates the pin here and says why in its commit message.
 
 Pins (sigma_GM m, tau s, sigma_WN m, windows), measured with the defaults
-(cutoff: thesis value 9.55e-4 Hz, multitaper, point target, thesis mapping,
+(cutoff from the map, multitaper, point target, thesis mapping,
 screening on). History:
 
 * issue 13 (stage chain): ESBC and UPC unchanged; the screening stage of
@@ -18,6 +18,10 @@ screening on). History:
   45.8 s / 516 windows (45 % excluded); the demo is fitted with its own
   mapping (1, 9, 15 deg): 4.26 mm / 21.8 s / 2.09 mm / 29 windows (4.7 %
   excluded). ESBC and UPC unchanged.
+* issue 16: the default cutoff comes from the shipped world map (time-domain
+  residual criterion, interpolated in position and F10.7): ESBC 1.52e-3 Hz ->
+  2.73 mm / 41.0 s / 993 windows; NYA1 2.06e-3 Hz -> 9.04 mm / 23.2 s / 829;
+  demo 4.08 mm / 18.5 s / 2.02 mm / 36. UPC (dual-antenna, no cutoff) unchanged.
 """
 
 from __future__ import annotations
@@ -38,9 +42,9 @@ import psdbound
 
 PINS = {
     # case: (sigma_gm_m, tau_s, sigma_wn_m, windows)
-    "demo": (0.004263423201907667, 21.768318182751372, 0.0020909141014370555, 29),
-    "esbc": (0.005942846892401281, 58.323747563236246, 0.0, 877),
-    "nya1": (0.022773997496005026, 45.77881020260252, 0.0, 516),
+    "demo": (0.004081932841231078, 18.51427106758498, 0.0020240926798721806, 36),
+    "esbc": (0.0027265804380741166, 40.97426284355802, 0.0, 993),
+    "nya1": (0.009036616040047235, 23.161414259715645, 0.0, 829),
     "upc": (0.0019099387046276311, 30.662929516784192, 0.001072637977790812, 7),
 }
 
