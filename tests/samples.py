@@ -89,3 +89,64 @@ def make_obs(l1_m, l2_m, lli1=None, interval_s=30.0, t=None, flags=None):
     block = SystemBlock("G", ("G07",), ("L1C", "L2W"), v, lli, lli.copy())
     f = np.zeros(n, np.int8) if flags is None else np.asarray(flags, np.int8)
     return Observations("mem", header, np.asarray(t, float), f, {"G": block})
+
+
+def moving_observations(n_epoch: int = 40, interval_s: float = 30.0, seed: int = 2) -> Observations:
+    """Two GPS satellites moving at realistic range rates (C1C, L1C, L2W, D1C, S1C).
+
+    Phases and Doppler follow the pseudorange (as real data do), so the
+    reader's phase-rate and value-range checks see physical columns.
+    """
+    rng = np.random.default_rng(seed)
+    t0 = float(calendar_to_gps_s(2020, 6, 25, 0, 0, 0.0))
+    t = t0 + interval_s * np.arange(n_epoch)
+    sats = ("G05", "G12")
+    codes = ("C1C", "L1C", "L2W", "D1C", "S1C")
+    rate = np.array([600.0, -450.0])  # m/s
+    rho = 2.2e7 + rate[None, :] * (t - t0)[:, None]
+    v = np.empty((n_epoch, 2, 5))
+    v[:, :, 0] = rho + rng.normal(0, 0.5, (n_epoch, 2))
+    v[:, :, 1] = rho / LAM1 + 1234.0
+    v[:, :, 2] = rho / LAM2 - 4321.0
+    v[:, :, 3] = -rate[None, :] / LAM1
+    v[:, :, 4] = 45.0
+    v = np.round(v, 3)
+    lli = np.full(v.shape, -1, np.int8)
+    ssi = np.full(v.shape, -1, np.int8)
+    header = ObsHeader(
+        version=3.04,
+        file_system="G",
+        marker_name="MOVE",
+        receiver_type="SYNTH",
+        antenna_type="NONE",
+        approx_position_m=np.array([3582105.291, 532589.7313, 5232754.8054]),
+        antenna_delta_hen_m=np.zeros(3),
+        interval_s=interval_s,
+        time_system="GPS",
+        obs_types={"G": codes},
+    )
+    block = SystemBlock("G", sats, codes, v, lli, ssi)
+    return Observations("moving", header, t, np.zeros(n_epoch, np.int8), {"G": block})
+
+
+#: A small RINEX 2.11 observation file: GPS, C1 L1 L2 P2, three epochs at 30 s.
+V2_TEXT = """\
+     2.11           OBSERVATION DATA    G (GPS)             RINEX VERSION / TYPE
+test                                                        PGM / RUN BY / DATE
+V2                                                          MARKER NAME
+  3582105.2910   532589.7313  5232754.8054                  APPROX POSITION XYZ
+        0.0000        0.0000        0.0000                  ANTENNA: DELTA H/E/N
+     4    C1    L1    L2    P2                              # / TYPES OF OBSERV
+    30.000                                                  INTERVAL
+  2020     6    25     0     0    0.0000000     GPS         TIME OF FIRST OBS
+                                                            END OF HEADER
+ 20  6 25  0  0  0.0000000  0  2G05G12
+  22000000.000 7 115612000.000 7  90087000.000 6  22000001.000 6
+  23000000.000 7 120867000.000 7  94182000.000 6  23000001.000 6
+ 20  6 25  0  0 30.0000000  0  2G05G12
+  22018000.000 7 115706591.000 7  90160708.000 6  22018001.000 6
+  22986500.000 7 120796056.000 7  94126720.000 6  22986501.000 6
+ 20  6 25  0  1  0.0000000  0  2G05G12
+  22036000.000 7 115801182.000 7  90234416.000 6  22036001.000 6
+  22973000.000 7 120725112.000 7  94071440.000 6  22973001.000 6
+"""

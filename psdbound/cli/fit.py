@@ -1,4 +1,10 @@
-"""``psdbound fit``: observations -> bound -> result.json, report.html, report.pdf."""
+"""``psdbound fit``: observations -> bound -> result.json, report.html, report.pdf.
+
+Every option is checked before anything is read (types, ranges, conflicts;
+:class:`psdbound.pipeline.FitConfig`), and so is the output folder: an
+existing file, a folder below a file or a folder that is not a psdbound
+output (unless ``--overwrite``) is refused before the fit starts.
+"""
 
 from __future__ import annotations
 
@@ -6,12 +12,50 @@ import argparse
 import re
 import sys
 import time
+import tomllib
 from pathlib import Path
+from typing import Any
 
 from psdbound.cli.exit_codes import EXIT_NOT_BOUNDED, EXIT_OK
-from psdbound.errors import InputError
+from psdbound.errors import InputError, NoDataError
 
-__all__ = ["add_parser", "run", "add_output_options"]
+__all__ = ["add_parser", "run", "add_output_options", "build_config", "output_dir"]
+
+#: (section, option) -> command-line flag
+FLAGS: dict[tuple[str, str], str] = {
+    ("inputs", "obs"): "OBS",
+    ("inputs", "nav"): "--nav",
+    ("inputs", "method"): "--method",
+    ("inputs", "system"): "--system",
+    ("inputs", "signals"): "--signals",
+    ("inputs", "da_signal"): "--da-signal",
+    ("arcs", "min_length_s"): "--min-arc-min",
+    ("arcs", "elevation_mask_deg"): "--elevation-mask-deg",
+    ("cutoff", "f_c_hz"): "--cutoff-hz",
+    ("cutoff", "source"): "--cutoff-source",
+    ("filter", "kind"): "--filter",
+    ("filter", "order"): "--filter-order",
+    ("filter", "edge"): "--edge",
+    ("screening", "roti_threshold_tecu_min"): "--roti-threshold",
+    ("mapping", "kind"): "--mapping",
+    ("mapping", "a"): "--mapping",
+    ("mapping", "b"): "--mapping",
+    ("mapping", "c_deg"): "--mapping",
+    ("stationarity", "alpha"): "--alpha",
+    ("stationarity", "p_slide"): "--p-slide",
+    ("stationarity", "p_trim"): "--p-trim",
+    ("stationarity", "min_window_s"): "--min-window-s",
+    ("spectra", "estimator"): "--estimator",
+    ("bound", "objective"): "--objective",
+    ("bound", "target"): "--target",
+    ("bound", "level"): "--level",
+    ("validation", "geometries"): "--geometry",
+    ("validation", "threshold"): "--validation-threshold",
+    ("output", "out"): "--out",
+    ("output", "name"): "--name",
+    ("output", "pdf"): "--no-pdf",
+    ("output", "overwrite"): "--overwrite",
+}
 
 
 def add_output_options(p: argparse.ArgumentParser) -> None:
@@ -19,6 +63,12 @@ def add_output_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--out", help="output folder (default reports/<run-name>)")
     p.add_argument("--name", help="run name (default from the first observation file)")
     p.add_argument("--no-pdf", action="store_true", help="skip the PDF report")
+    p.add_argument(
+        "--overwrite",
+        action="store_true",
+        help="write into an existing folder that is not a psdbound output (psdbound's files "
+        "are replaced, nothing else is touched); a previous psdbound output is always replaced",
+    )
     g = p.add_mutually_exclusive_group()
     g.add_argument("--quiet", action="store_true", help="print only errors and the result")
     g.add_argument("--verbose", action="store_true", help="print stage timings and tracebacks")
@@ -34,10 +84,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "and fit the tightest Gauss-Markov + white-noise bound. Writes result.json, "
         "report.html and report.pdf. With no observation file, runs on the embedded demo.",
         epilog="Every option can also be set in --config FILE.toml (sections inputs, arcs, "
-        "cutoff, filter, mapping, stationarity, spectra, bound, validation, output); "
-        "command-line options win. Exit codes: 0 bounded; 3 ran but no trustworthy bound "
-        "(verdict not-bounded: reasons printed, outputs written); 2 bad input (nothing "
-        "written); 1 internal error.",
+        "cutoff, filter, screening, mapping, stationarity, spectra, bound, validation, "
+        "verdict, output); command-line options win, and options that conflict are an error. "
+        "Exit codes: 0 bounded; 3 ran but no trustworthy bound (verdict not-bounded: reasons "
+        "printed, outputs written); 2 bad input (nothing written); 1 internal error.",
     )
     p.add_argument("obs", nargs="*", help="observation file(s): one (DF) or two (DA)")
     p.add_argument("--nav", help="navigation (RINEX 2/3) or SP3 file")
@@ -48,7 +98,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--da-signal", help="DA phase code (L1C)")
     p.add_argument("--cutoff-hz", type=float, help="high-pass cutoff frequency, Hz")
     p.add_argument(
-        "--cutoff-source", choices=("auto", "given", "map", "computed"), help="cutoff source"
+        "--cutoff-source", choices=("auto", "given", "map", "computed", "thesis"),
+        help="cutoff source (auto: --cutoff-hz if given, else the shipped world map)"
     )
     p.add_argument("--min-arc-min", type=float, help="minimum arc length, minutes (30)")
     p.add_argument("--elevation-mask-deg", type=float, help="elevation mask, degrees (10)")
@@ -58,7 +109,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         help="screening: ROTI above this is ionosphere, TECU/min (0.15)",
     )
     p.add_argument("--filter", choices=("butter", "cheby2", "fir"), help="high-pass design")
-    p.add_argument("--filter-order", type=int, help="IIR filter order (4)")
+    p.add_argument("--filter-order", type=float, help="IIR filter order, 1 to 20 (4)")
     p.add_argument("--edge", choices=("trim", "pad"), help="filter edge handling (trim)")
     p.add_argument("--mapping", help="elevation mapping: thesis, fit, or a,b,c (c in degrees)")
     p.add_argument("--alpha", type=float, help="stationarity significance level (0.05)")
@@ -81,56 +132,102 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run)
 
 
-def _config(args: argparse.Namespace):
+def _mapping(text: str | None) -> dict[str, Any]:
+    if not text:
+        return {}
+    if text in ("thesis", "fit"):
+        return {"kind": text}
+    try:
+        a, b, c = (float(x) for x in text.split(","))
+    except ValueError:
+        raise InputError(
+            f"--mapping must be thesis, fit or three numbers a,b,c (c in degrees), got {text!r}"
+        ) from None
+    return {"kind": "fixed", "a": a, "b": b, "c_deg": c}
+
+
+def _cli_values(args: argparse.Namespace) -> list[tuple[str, dict[str, Any], dict[str, Any]]]:
+    """Per section: the options given on the command line, and their values as typed."""
+    from psdbound.common.options import Number
+
+    min_len = None
+    if args.min_arc_min is not None:
+        Number(lo=0.0, hi=1440.0, lo_open=True, unit="min")("--min-arc-min", args.min_arc_min)
+        min_len = 60.0 * args.min_arc_min
+    mapping = _mapping(args.mapping)
+    return [
+        ("inputs", dict(obs=tuple(args.obs) or None, nav=args.nav, method=args.method,
+                        system=args.system, signals=args.signals, da_signal=args.da_signal),
+         dict(signals=args.signals)),
+        ("arcs", dict(min_length_s=min_len, elevation_mask_deg=args.elevation_mask_deg),
+         dict(min_length_s=args.min_arc_min)),
+        ("cutoff", dict(f_c_hz=args.cutoff_hz, source=args.cutoff_source), {}),
+        ("filter", dict(kind=args.filter, order=args.filter_order, edge=args.edge), {}),
+        ("screening", dict(roti_threshold_tecu_min=args.roti_threshold), {}),
+        ("mapping", mapping, {}),
+        ("stationarity", dict(alpha=args.alpha, p_slide=args.p_slide, p_trim=args.p_trim,
+                              min_window_s=args.min_window_s), {}),
+        ("spectra", dict(estimator=args.estimator), {}),
+        ("bound", dict(objective=args.objective, target=args.target, level=args.level), {}),
+        ("validation", dict(geometries=tuple(args.geometry) if args.geometry else None,
+                            threshold=args.validation_threshold), {}),
+        ("output", dict(out=args.out, name=args.name, pdf=False if args.no_pdf else None,
+                        overwrite=True if getattr(args, "overwrite", False) else None), {}),
+    ]  # fmt: skip
+
+
+def _toml_names(path: str | None) -> set[tuple[str, str]]:
+    if not path:
+        return set()
+    try:
+        data = tomllib.loads(Path(path).read_text())
+    except (OSError, ValueError):
+        return set()
+    return {(s, k) for s, v in data.items() if isinstance(v, dict) for k in v}
+
+
+def build_config(args: argparse.Namespace):
+    """Return the checked :class:`~psdbound.pipeline.FitConfig` of the command line.
+
+    TOML values come first, command-line values override them; every value
+    is checked against its schema and the rules between options are
+    checked on the result. Messages name options by their flag (or by
+    ``[section] name`` and the file for values from ``--config``).
+
+    Raises
+    ------
+    InputError
+        A bad value or conflicting options.
+    """
+    from psdbound.common.options import OptionError
     from psdbound.pipeline import FitConfig
+    from psdbound.pipeline.config import default_label
 
     cfg = FitConfig.from_toml(args.config) if args.config else FitConfig()
-    mapping: dict = {}
-    if args.mapping:
-        if args.mapping in ("thesis", "fit"):
-            mapping = {"kind": args.mapping}
-        else:
-            try:
-                a, b, c = (float(x) for x in args.mapping.split(","))
-            except ValueError:
-                raise InputError(
-                    f"--mapping must be thesis, fit or a,b,c numbers; got {args.mapping!r}"
-                ) from None
-            mapping = {"kind": "fixed", "a": a, "b": b, "c_deg": c}
-    cfg = cfg.updated(
-        "inputs",
-        obs=tuple(args.obs) or None,
-        nav=args.nav,
-        method=args.method,
-        system=args.system,
-        signals=tuple(args.signals.split(",")) if args.signals else None,
-        da_signal=args.da_signal,
-    )
-    cfg = cfg.updated(
-        "arcs",
-        min_length_s=None if args.min_arc_min is None else 60.0 * args.min_arc_min,
-        elevation_mask_deg=args.elevation_mask_deg,
-    )
-    cfg = cfg.updated("cutoff", f_c_hz=args.cutoff_hz, source=args.cutoff_source)
-    cfg = cfg.updated("filter", kind=args.filter, order=args.filter_order, edge=args.edge)
-    cfg = cfg.updated("screening", roti_threshold_tecu_min=args.roti_threshold)
-    cfg = cfg.updated("mapping", **mapping)
-    cfg = cfg.updated(
-        "stationarity",
-        alpha=args.alpha,
-        p_slide=args.p_slide,
-        p_trim=args.p_trim,
-        min_window_s=args.min_window_s,
-    )
-    cfg = cfg.updated("spectra", estimator=args.estimator)
-    cfg = cfg.updated("bound", objective=args.objective, target=args.target, level=args.level)
-    cfg = cfg.updated(
-        "validation",
-        geometries=tuple(args.geometry) if args.geometry else None,
-        threshold=args.validation_threshold,
-    )
-    cfg = cfg.updated("output", out=args.out, name=args.name, pdf=False if args.no_pdf else None)
-    return cfg
+    given: set[tuple[str, str]] = set()
+    for section, values, typed in _cli_values(args):
+        values = {k: v for k, v in values.items() if v is not None}
+        given |= {(section, k) for k in values}
+        try:
+            cfg = cfg.updated(section, **values)
+        except OptionError as exc:
+            flag = FLAGS.get((section, exc.name))
+            if flag is None:
+                raise
+            if flag == "--mapping":
+                flag = f"--mapping {exc.name}"
+            raise exc.relabel(flag, value=typed.get(exc.name, exc.value)) from None
+    from_toml = _toml_names(args.config)
+
+    def label(section: str, name: str) -> str:
+        flag = FLAGS.get((section, name))
+        if (section, name) in from_toml and (section, name) not in given:
+            return f"{default_label(section, name)} (in {args.config})"
+        if flag == "OBS":
+            return "the observation files"
+        return flag or default_label(section, name)
+
+    return cfg.check(label)
 
 
 def _run_name(cfg) -> str:
@@ -141,9 +238,28 @@ def _run_name(cfg) -> str:
         name = f"{stem}-{cfg.inputs.method}" if cfg.inputs.method != "auto" else stem
     else:
         name = "demo"
-    if not re.fullmatch(r"[A-Za-z0-9._+-]+", name):
-        raise InputError(f"run name {name!r} may only use letters, digits and . _ + -")
+    if not re.fullmatch(r"[A-Za-z0-9._+-]+", name) or name in (".", ".."):
+        raise InputError(
+            f"run name {name!r} (from the observation file name) may only use letters, digits "
+            "and . _ + -; give --name"
+        )
     return name
+
+
+def output_dir(cfg) -> Path:
+    """Return the output folder of a configuration, checked (refused before the fit).
+
+    Raises
+    ------
+    InputError
+        The folder would replace a file, lies below a file, is not writable,
+        or is a folder that is not a psdbound output (without ``--overwrite``).
+    """
+    from psdbound.common.outputs import check_output_folder
+
+    out = Path(cfg.output.out) if cfg.output.out else Path("reports") / _run_name(cfg)
+    check_output_folder(out, overwrite=cfg.output.overwrite, option="--out")
+    return out
 
 
 def reporter(args: argparse.Namespace):
@@ -159,17 +275,28 @@ def reporter(args: argparse.Namespace):
     return say
 
 
+def _with_files(exc: InputError, obs: tuple[str, ...]) -> InputError:
+    """Name the observation file(s) in a data error that names no file."""
+    if exc.path is not None or not obs or type(exc) not in (InputError, NoDataError):
+        return exc
+    return type(exc)(exc.reason, path=" + ".join(obs))
+
+
 def run(args: argparse.Namespace) -> int:
     """Run the fit and write the outputs; return the exit code."""
     import psdbound
+    from psdbound.reports import write_report_folder
 
-    cfg = _config(args)
-    name = _run_name(cfg)
-    out = Path(cfg.output.out) if cfg.output.out else Path("reports") / name
+    cfg = build_config(args)
+    out = output_dir(cfg)
     say = reporter(args)
-    result = psdbound.fit(config=cfg, progress=say)
+    try:
+        result = psdbound.fit(config=cfg, progress=say)
+    except InputError as exc:
+        raise _with_files(exc, cfg.inputs.obs) from None
     say(f"writing {out}/ (result.json, report.html{', report.pdf' if cfg.output.pdf else ''})")
-    paths = result.report(out, pdf=cfg.output.pdf)
+    paths = write_report_folder(result.document, out, pdf=cfg.output.pdf,
+                                overwrite=cfg.output.overwrite, option="--out")  # fmt: skip
     print(result.summary())
     for p in paths.values():
         print(p)

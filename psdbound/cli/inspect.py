@@ -32,12 +32,33 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run)
 
 
+def _options(args: argparse.Namespace) -> tuple[list[str] | None, float, float]:
+    """Check the options before any file is read; return (signals, min length s, mask deg)."""
+    from psdbound.common.options import Choice, Number, OptionError, Text, Tuple
+    from psdbound.io import ArcOptions
+
+    Number(lo=0.0, hi=1440.0, lo_open=True, unit="min")("--min-arc-min", args.min_arc_min)
+    try:
+        arcs = ArcOptions(
+            min_length_s=60.0 * args.min_arc_min, elevation_mask_deg=args.elevation_mask_deg
+        )
+    except OptionError as exc:
+        raise exc.relabel("--elevation-mask-deg") from None
+    Choice(("G", "E", "R", "C", "J", "S", "I"), noun="satellite system")("--system", args.system)
+    signals = None
+    if args.signals is not None:
+        code = Text(r"L[1-9][A-Z]?", what="a phase code such as 'L1C'")
+        signals = list(Tuple(code, lengths=(2,), split=",", distinct=True,
+                             what="two phase codes such as 'L1C,L2W'")("--signals", args.signals))
+    return signals, arcs.min_length_s, arcs.elevation_mask_deg
+
+
 def run(args: argparse.Namespace) -> int:
     """Print file summaries and arcs; return the exit code."""
     from psdbound.io import find_arcs, read_obs, read_orbit
 
+    signals, min_length_s, mask_deg = _options(args)
     orbit = read_orbit(args.nav) if args.nav else None
-    signals = args.signals.split(",") if args.signals else None
     for path in args.obs:
         obs = read_obs(path)
         print(obs.summary())
@@ -51,8 +72,8 @@ def run(args: argparse.Namespace) -> int:
             signals,
             system=args.system,
             orbit=orbit,
-            min_length_s=args.min_arc_min * 60.0,
-            elevation_mask_deg=args.elevation_mask_deg,
+            min_length_s=min_length_s,
+            elevation_mask_deg=mask_deg,
         )
         print(arcs.summary())
         for a in arcs:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+import warnings
 from collections.abc import Sequence
 
 from psdbound.cli.exit_codes import EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_NOT_BOUNDED, EXIT_OK
@@ -45,6 +46,26 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _one_line(text: str) -> str:
+    return " ".join(str(text).split())
+
+
+def _show_warnings(command: str, caught: list[warnings.WarningMessage], quiet: bool) -> None:
+    """Print each distinct warning once, on one line (psdbound's own without a category)."""
+    from psdbound.common.notices import PsdboundWarning
+
+    if quiet:
+        return
+    seen = set()
+    for w in caught:
+        text = _one_line(w.message)
+        if not issubclass(w.category, PsdboundWarning):
+            text = f"{w.category.__name__}: {text}"
+        if text not in seen:
+            seen.add(text)
+            print(f"psdbound {command}: warning: {text}", file=sys.stderr)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; return the process exit code.
 
@@ -56,7 +77,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     Returns
     -------
     int
-        0 on success, 2 on bad input, 1 on an internal error.
+        0 on success (``fit``: bounded), 3 (``fit``: not bounded), 2 on bad
+        input (one line on stderr, nothing written), 1 on an internal error.
+        Warnings are printed after the command, one line each (not on bad
+        input, where the error line is the only output, nor with
+        ``--quiet``).
     """
     parser = build_parser()
     args = parser.parse_args(argv)
@@ -64,21 +89,27 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.print_help()
         return EXIT_OK
     try:
-        return int(args.func(args))
+        with warnings.catch_warnings(record=True) as caught:
+            code = int(args.func(args))
+        _show_warnings(args.command, caught, getattr(args, "quiet", False))
+        return code
     except InputError as exc:
-        print(f"psdbound {args.command}: error: {exc}", file=sys.stderr)
+        print(f"psdbound {args.command}: error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_BAD_INPUT
     except KeyboardInterrupt:
         print("psdbound: interrupted", file=sys.stderr)
         return EXIT_INTERNAL
+    except RecursionError as exc:  # deeply nested input (e.g. TOML) is bad input, not a bug
+        print(f"psdbound {args.command}: error: input nested too deeply ({exc})", file=sys.stderr)
+        return EXIT_BAD_INPUT
     except Exception as exc:  # an internal error: one line, traceback with --verbose
         if getattr(args, "verbose", False):
             import traceback
 
             traceback.print_exc()
         print(
-            f"psdbound {args.command}: internal error: {type(exc).__name__}: {exc} "
-            "(run with --verbose for the traceback; please report it)",
+            f"psdbound {args.command}: internal error: {type(exc).__name__}: "
+            f"{_one_line(exc)} (run with --verbose for the traceback; please report it)",
             file=sys.stderr,
         )
         return EXIT_INTERNAL

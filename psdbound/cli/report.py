@@ -18,6 +18,12 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("result", help="result.json written by psdbound fit")
     p.add_argument("--out", help="output folder (default: the result file's folder)")
     p.add_argument("--no-pdf", action="store_true", help="skip the PDF report")
+    p.add_argument(
+        "--overwrite",
+        action="store_true",
+        help="write into an existing folder that is not a psdbound output (psdbound's files "
+        "are replaced, nothing else is touched)",
+    )
     g = p.add_mutually_exclusive_group()
     g.add_argument("--quiet", action="store_true", help="print only errors")
     g.add_argument("--verbose", action="store_true", help="print tracebacks on errors")
@@ -25,12 +31,22 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    """Re-render; return the exit code."""
-    import psdbound
+    """Re-render; return the exit code.
 
-    result = psdbound.load(args.result)
+    The output folder is checked before the result is read and the figures
+    drawn: an existing file, or a folder that is not a psdbound output
+    (without ``--overwrite``), is refused.
+    """
+    import psdbound
+    from psdbound.common.outputs import check_output_folder
+    from psdbound.reports import write_report_folder
+
     out = Path(args.out) if args.out else Path(args.result).resolve().parent
-    paths = result.report(out, pdf=not args.no_pdf)
+    result = psdbound.load(args.result)
+    option = "--out" if args.out else "the result file's folder (the default --out)"
+    check_output_folder(out, overwrite=args.overwrite, option=option)
+    paths = write_report_folder(result.document, out, pdf=not args.no_pdf,
+                                overwrite=args.overwrite, option=option)  # fmt: skip
     if not args.quiet:
         for p in paths.values():
             print(p)

@@ -32,8 +32,23 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Simulate and print the written files; return the exit code."""
+    from psdbound.common.options import Number
+    from psdbound.common.outputs import check_writable_folder
     from psdbound.simulate import demo_data, preset, simulate
 
+    checks = {
+        "--seed": (args.seed, Number(lo=0, hi=2**63 - 1, integer=True, optional=True)),
+        "--duration-h": (args.duration_h, Number(lo=0, hi=24 * 366, lo_open=True, unit="h",
+                                                 optional=True)),
+        "--interval-s": (args.interval_s, Number(lo=0, hi=3600, lo_open=True, unit="s",
+                                                 optional=True)),
+        "--lat-deg": (args.lat_deg, Number(lo=-90, hi=90, unit="deg", optional=True)),
+        "--lon-deg": (args.lon_deg, Number(lo=-180, hi=360, unit="deg", optional=True)),
+    }  # fmt: skip
+    for flag, (value, spec) in checks.items():
+        spec(flag, value)
+    if args.out:
+        check_writable_folder(args.out, option="--out")
     sc = preset(args.preset)
     changes = {
         "seed": args.seed,

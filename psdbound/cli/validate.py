@@ -131,16 +131,36 @@ def run(args: argparse.Namespace) -> int:
         Bad geometry, distance, cutoff, rate, mode file, navigation file or
         output folder.
     """
+    from psdbound.common.options import Number, Tuple
+    from psdbound.common.outputs import check_writable_folder
     from psdbound.validation import run_validation
 
     if not args.geometry:
         raise InputError("give at least one --geometry, e.g. --geometry wall:d=25")
     if not (args.cutoff_hz > 0.0):
         raise InputError(f"--cutoff-hz must be > 0, got {args.cutoff_hz}")
+    checks = {
+        "--cutoff-hz": (args.cutoff_hz, Number(lo=1e-6, hi=10.0, unit="Hz")),
+        "--theta0-deg": (args.theta0_deg, Number(lo=-90.0, hi=90.0, unit="deg")),
+        "--amplitude-deg": (args.amplitude_deg, Number(lo=0.0, hi=90.0, lo_open=True, unit="deg",
+                                                       optional=True)),
+        "--elevation-mask-deg": (args.elevation_mask_deg, Number(lo=0.0, hi=90.0, hi_open=True,
+                                                                 unit="deg")),
+        "--min-pass-min": (args.min_pass_min, Number(lo=0.0, hi=1440.0, lo_open=True, unit="min")),
+        "--alpha": (args.alpha, Number(lo=0.0, hi=1.0, lo_open=True)),
+        "--threshold": (args.threshold, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True)),
+        "--wavelength-m": (args.wavelength_m, Number(lo=0.0, hi=10.0, lo_open=True, unit="m",
+                                                     optional=True)),
+        "--distance-tolerance-m": (args.distance_tolerance_m, Number(lo=0.0, hi=1e4, unit="m")),
+        "--receiver-ecef": (args.receiver_ecef, Tuple(Number(), lengths=(3,), what="X Y Z in m")
+                            if args.receiver_ecef is not None else Number(optional=True)),
+    }  # fmt: skip
+    for flag, (value, spec) in checks.items():
+        spec(flag, value)
     if args.nav and args.receiver_ecef is None:
         raise InputError("--nav needs --receiver-ecef X Y Z (receiver position, m)")
-    if args.min_pass_min <= 0.0:
-        raise InputError(f"--min-pass-min must be > 0, got {args.min_pass_min}")
+    if args.out:
+        check_writable_folder(args.out, option="--out")
     for sat in args.sat or ():
         if not re.fullmatch(r"[A-Z]\d{2}", sat):
             raise InputError(f"--sat {sat!r}: expected a satellite id such as G05")

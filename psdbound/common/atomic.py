@@ -59,6 +59,11 @@ def atomic_write_text(path: str | os.PathLike[str], text: str, encoding: str = "
 def atomic_folder(path: str | os.PathLike[str], *, replace: bool = True) -> Iterator[Path]:
     """Build a folder under a temporary name and rename it to ``path`` on success.
 
+    Low level: with ``replace=True`` an existing ``path`` is swapped out
+    whatever it holds. For folders the user names (``--out``) use
+    :func:`psdbound.common.outputs.output_folder`, which refuses to replace
+    anything psdbound did not create.
+
     Parameters
     ----------
     path : str or path-like

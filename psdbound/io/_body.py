@@ -1,7 +1,29 @@
-"""RINEX observation data sections (versions 2.1x and 3.0x) -> arrays."""
+"""RINEX observation data sections (versions 2.1x and 3.0x) -> arrays, strict.
+
+What is checked (every failure is an :class:`InputError` naming the file and
+the line):
+
+* epoch lines: the layout, the epoch flag (0-6), the number of records that
+  follow (exactly that many lines up to the next epoch), calendar fields in
+  range (month 13, day 32, hour 25, non-finite seconds, a year outside
+  1980-2099 are refused), not before ``TIME OF FIRST OBS`` nor after
+  ``TIME OF LAST OBS``;
+* epoch order: an epoch earlier than the one before it is refused; an
+  epoch repeated with the same records is dropped with a warning, repeated
+  with different records refused;
+* records: the satellite id (system letter, number within the system's
+  range), one record per satellite and epoch, no characters beyond the
+  columns of the declared observation types, every value in the strict
+  F14.3 layout, and values within what their type can be (signal strength,
+  Doppler, pseudorange), so that columns shifted against the header are
+  refused instead of read as other observations;
+* header records inside the data (event flag 4) that change the observation
+  types are refused.
+"""
 
 from __future__ import annotations
 
+import re
 from collections.abc import Collection
 from dataclasses import dataclass
 from pathlib import Path
@@ -12,6 +34,25 @@ from psdbound.errors import InputError
 from psdbound.io._fields import FIELD_WIDTH, FieldError, pad_lines, parse_fields
 from psdbound.io._header import ObsHeader
 from psdbound.io.timescales import calendar_to_gps_s, utc_to_gps_s
+
+#: Largest satellite number per system letter (RINEX 3.05 ids; SBAS ids are PRN - 100).
+PRN_RANGE = {"G": (1, 63), "R": (1, 36), "E": (1, 50), "C": (1, 63), "J": (1, 10),
+             "S": (20, 59), "I": (1, 14)}  # fmt: skip
+#: Years accepted in epochs (4-digit; RINEX 2 two-digit years map to 1980-2079).
+YEAR_RANGE = (1980, 2099)
+#: Plausible values per observation type (first letter), in RINEX units; outside them a
+#: column is not what the header says it is.
+VALUE_LIMITS = {
+    "C": (-1e6, 1e9, "pseudorange, m"),
+    "P": (-1e6, 1e9, "pseudorange, m"),
+    "D": (-1e6, 1e6, "Doppler, Hz"),
+    "S": (0.0, 1e4, "signal strength"),
+}
+
+_DATE_V3 = re.compile(rb"> (\d{4}) ([ \d]\d) ([ \d]\d) ([ \d]\d) ([ \d]\d)([ \d]{2}\d\.\d{7})")
+_DATE_V2 = re.compile(rb" ([ \d]\d) ([ \d]\d) ([ \d]\d) ([ \d]\d) ([ \d]\d)([ \d]{2}\d\.\d{7})")
+_LETTER = np.zeros(256, dtype=bool)
+_LETTER[np.frombuffer(b"GRECJSI", dtype=np.uint8)] = True
 
 
 @dataclass
@@ -24,85 +65,46 @@ class RawBlock:
     ssi: np.ndarray
 
 
-def _epoch_times(fields: list[tuple], header: ObsHeader) -> np.ndarray:
-    if not fields:
-        return np.zeros(0)
-    y, mo, d, h, mi, s = (np.array(c) for c in zip(*fields, strict=True))
-    t = calendar_to_gps_s(y, mo, d, h, mi, s)
-    ts = header.time_system.upper()
-    if ts in ("GPS", "GAL", "QZS", "IRN", ""):
-        return t
-    if ts == "BDT":
-        return t + 14.0
-    if ts == "GLO":
-        return utc_to_gps_s(t - 3 * 3600.0)
-    if ts == "UTC":
-        return utc_to_gps_s(t)
-    raise InputError(f"unknown time system {header.time_system!r} in TIME OF FIRST OBS")
-
-
 def _error_line(header: ObsHeader, idx: int) -> int:
     return header.n_lines + idx + 1
 
 
-def _build_blocks(
-    sat_lines: dict[str, list[int]],
-    epoch_of_line: dict[str, list[int]],
-    records: dict[str, list[bytes]],
-    sat_of_line: dict[str, list[str]],
-    header: ObsHeader,
-    path: Path,
-    n_epoch: int,
-    codes_wanted: Collection[str] | None,
-    offset: int,
-) -> dict[str, RawBlock]:
-    blocks = {}
-    for system, recs in records.items():
-        types = header.obs_types.get(system)
-        if types is None:
-            first = sat_lines[system][0]
-            raise InputError(
-                f"satellite {sat_of_line[system][0]} has no observation types in the header",
-                path=path,
-                line=_error_line(header, first),
-            )
-        if codes_wanted is None:
-            cols = list(range(len(types)))
-        else:
-            cols = [k for k, c in enumerate(types) if c in codes_wanted]
-        if not cols:
-            continue
-        n_types = len(types)
-        width = offset + FIELD_WIDTH * n_types
-        chars = pad_lines(recs, width)[:, offset:].reshape(len(recs), n_types, FIELD_WIDTH)
-        chars = chars[:, cols, :]
-        try:
-            values, lli, ssi = parse_fields(chars)
-        except FieldError as exc:
-            raise InputError(
-                f"satellite {sat_of_line[system][exc.row]}, observation "
-                f"{types[cols[exc.field]]}: {exc.text!r} is not an F14.3 number "
-                "(line cut short or columns shifted?)",
-                path=path,
-                line=_error_line(header, sat_lines[system][exc.row]),
-            ) from None
-        sats, sat_idx = np.unique(np.array(sat_of_line[system]), return_inverse=True)
-        ep = np.asarray(epoch_of_line[system])
-        shape = (n_epoch, len(sats), len(cols))
-        v = np.full(shape, np.nan)
-        li = np.full(shape, -1, dtype=np.int8)
-        si = np.full(shape, -1, dtype=np.int8)
-        v[ep, sat_idx] = values
-        li[ep, sat_idx] = lli
-        si[ep, sat_idx] = ssi
-        blocks[system] = RawBlock(
-            system, tuple(str(s) for s in sats), tuple(types[k] for k in cols), v, li, si
-        )
-    return blocks
+def _fmt_date(d: tuple) -> str:
+    y, mo, dd, h, mi, s = d
+    if 0 <= y < 100:
+        y = y + 2000 if y < 80 else y + 1900
+    return f"{int(y):04d}-{int(mo):02d}-{int(dd):02d} {int(h):02d}:{int(mi):02d}:{float(s):06.3f}"
 
 
-_V3_DATE = ((2, 6), (7, 9), (10, 12), (13, 15), (16, 18), (18, 29))
-_V2_DATE = ((1, 3), (4, 6), (7, 9), (10, 12), (13, 15), (15, 26))
+def _check_dates(dates: np.ndarray, header: ObsHeader, version3: bool) -> int | None:
+    """Index of the first epoch with a calendar field out of range (None if all are fine)."""
+    y, mo, d, h, mi, s = dates.T
+    if not version3:
+        y = np.where(y < 80, y + 2000, np.where(y < 100, y + 1900, -1))
+    sec_max = 61.0 if header.time_system in ("UTC", "GLO") else 60.0
+    bad = (y < YEAR_RANGE[0]) | (y > YEAR_RANGE[1]) | (mo < 1) | (mo > 12) | (d < 1)
+    bad |= (h < 0) | (h > 23) | (mi < 0) | (mi > 59) | ~(s >= 0) | ~(s < sec_max)
+    ok_month = ~bad
+    months = ((np.where(ok_month, y, 1970) - 1970) * 12 + np.where(ok_month, mo, 1) - 1)
+    start = months.astype("datetime64[M]")
+    length = ((start + 1).astype("datetime64[D]") - start.astype("datetime64[D]")).astype(int)
+    bad |= d > length
+    return int(np.argmax(bad)) if bad.any() else None
+
+
+def _to_gps_s(labels: np.ndarray, header: ObsHeader) -> np.ndarray:
+    ts = header.time_system.upper()
+    if ts in ("GPS", "GAL", "QZS", "IRN", ""):
+        return labels
+    if ts == "BDT":
+        return labels + 14.0
+    if ts == "GLO":
+        return utc_to_gps_s(labels - 3 * 3600.0)
+    return utc_to_gps_s(labels)
+
+
+def _label(date: tuple) -> float:
+    return float(calendar_to_gps_s(*(np.asarray(v) for v in date)))
 
 
 class _Collector:
@@ -111,23 +113,30 @@ class _Collector:
     def __init__(self, header: ObsHeader, path: Path, systems: Collection[str] | None) -> None:
         self.header, self.path, self.systems = header, path, systems
         self.times: list[tuple] = []
+        self.lines: list[int] = []
         self.flags: list[int] = []
         self.records: dict[str, list[bytes]] = {}
         self.line_of: dict[str, list[int]] = {}
         self.epoch_of: dict[str, list[int]] = {}
         self.sat_of: dict[str, list[str]] = {}
+        self.warnings: list[str] = []
 
-    def epoch(self, ln: bytes, i: int, flag: int, cols: tuple[tuple[int, int], ...]) -> int:
+    def fail(self, message: str, idx: int) -> InputError:
+        return InputError(message, path=self.path, line=_error_line(self.header, idx))
+
+    def epoch(self, ln: bytes, i: int, flag: int, layout: re.Pattern[bytes]) -> int:
         """Record an epoch's date and flag; return its index."""
-        try:
-            date = tuple(int(ln[a:b]) for a, b in cols[:5]) + (float(ln[cols[5][0] : cols[5][1]]),)
-        except ValueError:
-            raise InputError(
-                f"bad epoch date {ln[: cols[5][1]].decode('ascii', 'replace')!r}",
-                path=self.path,
-                line=_error_line(self.header, i),
-            ) from None
-        self.times.append(date)
+        m = layout.match(ln)
+        if m is None:
+            raise self.fail(
+                f"bad epoch date {ln[:29].decode('ascii', 'replace')!r} (expected "
+                + ("'> yyyy mm dd hh mm ss.sssssss'" if layout is _DATE_V3
+                   else "' yy mm dd hh mm ss.sssssss'") + ")",
+                i,
+            )  # fmt: skip
+        g = m.groups()
+        self.times.append((int(g[0]), int(g[1]), int(g[2]), int(g[3]), int(g[4]), float(g[5])))
+        self.lines.append(i)
         self.flags.append(flag)
         return len(self.flags) - 1
 
@@ -143,16 +152,244 @@ class _Collector:
         self.epoch_of[sys_].append(e)
         self.sat_of[sys_].append(sat)
 
+    # ----------------------------------------------------------------- epochs
+    def _records_of(self, e: int) -> tuple[int, dict[tuple[str, str], bytes]]:
+        out = {}
+        for s, ep in self._epoch_arrays.items():
+            lo, hi = np.searchsorted(ep, [e, e + 1])
+            for k in range(lo, hi):
+                out[(s, self.sat_of[s][k])] = self.records[s][k].rstrip()
+        return self.flags[e], out
+
+    def _epochs(self, version3: bool) -> np.ndarray:
+        """Check dates and order, resolve repeated epochs; return the kept labels."""
+        h = self.header
+        dates = np.asarray(self.times, dtype=np.float64).reshape(-1, 6)
+        k = _check_dates(dates, h, version3)
+        if k is not None:
+            raise self.fail(
+                f"impossible epoch date {' '.join(f'{v:g}' for v in dates[k])} (month 1-12, day "
+                f"in the month, hour 0-23, minute 0-59, seconds 0-60, year "
+                f"{YEAR_RANGE[0]}-{YEAR_RANGE[1]})",
+                self.lines[k],
+            )
+        y = dates[:, 0].astype(np.int64)
+        labels = calendar_to_gps_s(y, *(dates[:, c].astype(np.int64) for c in (1, 2, 3, 4)),
+                                   dates[:, 5])  # fmt: skip
+        step = np.diff(labels)
+        if np.any(step < 0):
+            k = int(np.argmax(step < 0)) + 1
+            raise self.fail(
+                f"epoch {_fmt_date(dates[k])} is earlier than the epoch before it "
+                f"({_fmt_date(dates[k - 1])}, line {_error_line(h, self.lines[k - 1])}): epochs "
+                "must increase (the file is damaged or was concatenated out of order)",
+                self.lines[k],
+            )
+        self._check_span(labels, dates)
+        keep = np.ones(labels.size, dtype=bool)
+        if np.any(step == 0):
+            self._epoch_arrays = {s: np.asarray(v) for s, v in self.epoch_of.items()}
+            first = None
+            for k in np.flatnonzero(step == 0) + 1:
+                prev = k - 1
+                while not keep[prev]:
+                    prev -= 1
+                if self._records_of(int(prev)) != self._records_of(int(k)):
+                    raise self.fail(
+                        f"epoch {_fmt_date(dates[k])} appears twice with different data "
+                        f"(lines {_error_line(h, self.lines[prev])} and "
+                        f"{_error_line(h, self.lines[k])}); which one is right is unknown",
+                        self.lines[k],
+                    )
+                keep[k] = False
+                first = first or (int(prev), int(k))
+            n = int((~keep).sum())
+            self.warnings.append(
+                f"line {_error_line(h, self.lines[first[1]])}: {n} epoch(s) repeated with "
+                f"identical data (first {_fmt_date(dates[first[1]])}, also on line "
+                f"{_error_line(h, self.lines[first[0]])}); the repeats are ignored"
+            )
+            self._drop_epochs(keep)
+        return labels[keep]
+
+    def _drop_epochs(self, keep: np.ndarray) -> None:
+        new = np.cumsum(keep) - 1
+        for s, ep in self._epoch_arrays.items():
+            m = keep[ep]
+            idx = np.flatnonzero(m)
+            self.records[s] = [self.records[s][i] for i in idx]
+            self.line_of[s] = [self.line_of[s][i] for i in idx]
+            self.sat_of[s] = [self.sat_of[s][i] for i in idx]
+            self.epoch_of[s] = new[ep[m]].tolist()
+        self.flags = [f for f, k in zip(self.flags, keep, strict=True) if k]
+        self.lines = [f for f, k in zip(self.lines, keep, strict=True) if k]
+
+    def _check_span(self, labels: np.ndarray, dates: np.ndarray) -> None:
+        h = self.header
+        for rec, name, sign in ((h.first_obs, "TIME OF FIRST OBS", -1),
+                                (h.last_obs, "TIME OF LAST OBS", 1)):  # fmt: skip
+            if rec is None or _check_dates(np.asarray([rec], float), h, True) is not None:
+                continue
+            limit = _label(rec)
+            out = sign * (labels - limit) > 1.0
+            if out.any():
+                k = int(np.argmax(out))
+                where = "before" if sign < 0 else "after"
+                raise self.fail(
+                    f"epoch {_fmt_date(dates[k])} is {where} the header's {name} "
+                    f"{_fmt_date(rec)}: a damaged date, or the header does not belong to the data",
+                    self.lines[k],
+                )
+
     def finish(
         self, codes_wanted: Collection[str] | None, offset: int
-    ) -> tuple[np.ndarray, np.ndarray, dict[str, RawBlock]]:
-        """Return epochs (GPS s), epoch flags and the per-system blocks."""
-        t = _epoch_times(self.times, self.header)
-        blocks = _build_blocks(
-            self.line_of, self.epoch_of, self.records, self.sat_of, self.header, self.path,
-            len(self.flags), codes_wanted, offset,
-        )  # fmt: skip
-        return t, np.asarray(self.flags, dtype=np.int8), blocks
+    ) -> tuple[np.ndarray, np.ndarray, dict[str, RawBlock], tuple[str, ...]]:
+        """Return epochs (GPS s), epoch flags, the per-system blocks and warnings."""
+        if not self.times:
+            return np.zeros(0), np.zeros(0, np.int8), {}, ()
+        labels = self._epochs(offset == 3)
+        t = _to_gps_s(labels, self.header)
+        blocks = _build_blocks(self, len(self.flags), codes_wanted, offset)
+        return t, np.asarray(self.flags, dtype=np.int8), blocks, tuple(self.warnings)
+
+
+# ------------------------------------------------------------------- records
+def _check_sats(acc: _Collector, system: str, sats: np.ndarray) -> None:
+    lo, hi = PRN_RANGE.get(system, (1, 99))
+    for sat in map(str, sats):
+        num = sat[1:]
+        if len(sat) == 3 and num.isdigit() and lo <= int(num) <= hi:
+            continue
+        k = acc.sat_of[system].index(sat)
+        raise acc.fail(
+            f"satellite id {sat!r} is not valid: expected {system} and a number from "
+            f"{lo:02d} to {hi:02d}",
+            acc.line_of[system][k],
+        )
+
+
+def _check_widths(acc: _Collector, system: str, recs: list[bytes], width: int) -> None:
+    lengths = np.fromiter(map(len, recs), dtype=np.int64, count=len(recs))
+    for r in np.flatnonzero(lengths > width):
+        extra = recs[r][width:]
+        if extra.strip():
+            n = len(acc.header.obs_types[system])
+            raise acc.fail(
+                f"satellite {acc.sat_of[system][r]}: the record is {len(recs[r].rstrip())} "
+                f"characters long, but the header's {n} observation types of {system} end at "
+                f"column {width}; found {extra.strip()[:16].decode('ascii', 'replace')!r} beyond "
+                "(observation types missing from the header, or columns shifted)",
+                acc.line_of[system][r],
+            )
+
+
+def _check_values(acc: _Collector, system: str, codes: list[str], values: np.ndarray) -> None:
+    for k, code in enumerate(codes):
+        lim = VALUE_LIMITS.get(code[0])
+        if lim is None:
+            continue
+        v = values[:, k]
+        bad = (v < lim[0]) | (v > lim[1])
+        if bad.any():
+            r = int(np.argmax(bad))
+            raise acc.fail(
+                f"satellite {acc.sat_of[system][r]}, observation {code}: {v[r]:.3f} is not a "
+                f"{lim[2]} (expected {lim[0]:g} to {lim[1]:g}; columns shifted against the "
+                "header's observation types?)",
+                acc.line_of[system][r],
+            )
+
+
+def _build_blocks(
+    acc: _Collector, n_epoch: int, codes_wanted: Collection[str] | None, offset: int
+) -> dict[str, RawBlock]:
+    blocks = {}
+    header = acc.header
+    for system, recs in acc.records.items():
+        types = header.obs_types.get(system)
+        if types is None:
+            raise acc.fail(
+                f"satellite {acc.sat_of[system][0]} has no observation types in the header",
+                acc.line_of[system][0],
+            )
+        sats, sat_idx = np.unique(np.array(acc.sat_of[system]), return_inverse=True)
+        _check_sats(acc, system, sats)
+        n_types = len(types)
+        width = offset + FIELD_WIDTH * n_types
+        if offset:
+            _check_widths(acc, system, recs, width)
+        ep = np.asarray(acc.epoch_of[system])
+        key = ep * len(sats) + sat_idx
+        if np.unique(key).size != key.size:
+            order = np.argsort(key, kind="stable")
+            r = int(order[np.flatnonzero(np.diff(key[order]) == 0)[0] + 1])
+            raise acc.fail(
+                f"satellite {acc.sat_of[system][r]} has two records in the same epoch",
+                acc.line_of[system][r],
+            )
+        if codes_wanted is None:
+            cols = list(range(n_types))
+        else:
+            cols = [k for k, c in enumerate(types) if c in codes_wanted]
+        if not cols:
+            continue
+        chars = pad_lines(recs, width)[:, offset:].reshape(len(recs), n_types, FIELD_WIDTH)
+        chars = chars[:, cols, :]
+        try:
+            values, lli, ssi = parse_fields(chars)
+        except FieldError as exc:
+            raise acc.fail(
+                f"satellite {acc.sat_of[system][exc.row]}, observation "
+                f"{types[cols[exc.field]]}: {exc.text!r} is not an F14.3 number with its "
+                "indicators (line cut short or columns shifted?)",
+                acc.line_of[system][exc.row],
+            ) from None
+        _check_values(acc, system, [types[k] for k in cols], values)
+        shape = (n_epoch, len(sats), len(cols))
+        v = np.full(shape, np.nan)
+        li = np.full(shape, -1, dtype=np.int8)
+        si = np.full(shape, -1, dtype=np.int8)
+        v[ep, sat_idx] = values
+        li[ep, sat_idx] = lli
+        si[ep, sat_idx] = ssi
+        blocks[system] = RawBlock(
+            system, tuple(str(s) for s in sats), tuple(types[k] for k in cols), v, li, si
+        )
+    return blocks
+
+
+_REDEFINING = (b"SYS / # / OBS TYPES", b"# / TYPES OF OBSERV")
+
+
+def _event(acc: _Collector, lines: list[bytes], i: int, flag: int, n: int) -> None:
+    """Check the header records of an event (flag 4): the observation types may not change."""
+    if flag != 4:
+        return
+    for j in range(i + 1, i + 1 + n):
+        if any(lab in lines[j][60:] for lab in _REDEFINING):
+            raise acc.fail(
+                "the observation types are redefined inside the data (event flag 4); "
+                "psdbound reads one type list per file: split the file there",
+                j,
+            )
+
+
+def _epoch_numbers(acc: _Collector, ln: bytes, i: int, a: int, what: str) -> tuple[int, int]:
+    """The epoch flag (column ``a``) and the number that follows (3 columns)."""
+    f, n = ln[a : a + 1], ln[a + 1 : a + 4]
+    if not (f.strip() == b"" or f.isdigit()) or not n.strip().isdigit():
+        raise acc.fail(f"bad epoch record {ln[: a + 4].decode('ascii', 'replace')!r} ({what})", i)
+    flag = int(f) if f.strip() else 0
+    if flag > 6:
+        raise acc.fail(f"epoch flag {flag} is not a RINEX epoch flag (0-6)", i)
+    return flag, int(n)
+
+
+def _lines(body: bytes) -> list[bytes]:
+    lines = body.split(b"\n")
+    while lines and not lines[-1].strip():
+        lines.pop()  # the newline ending the file and blank lines after the last epoch
+    return lines
 
 
 def parse_v3(
@@ -161,49 +398,51 @@ def parse_v3(
     path: Path,
     systems: Collection[str] | None,
     codes_wanted: Collection[str] | None,
-) -> tuple[np.ndarray, np.ndarray, dict[str, RawBlock]]:
-    """Parse a RINEX 3 data section; return epochs (GPS s), epoch flags, blocks."""
-    lines = body.split(b"\n")
-    if lines and not lines[-1]:
-        lines.pop()
+) -> tuple[np.ndarray, np.ndarray, dict[str, RawBlock], tuple[str, ...]]:
+    """Parse a RINEX 3 data section; return epochs (GPS s), flags, blocks and warnings."""
+    lines = _lines(body)
     n_lines = len(lines)
-    starts = [i for i, ln in enumerate(lines) if ln[:1] == b">"]
+    first = np.frombuffer(b"".join([ln[:1] or b" " for ln in lines]), dtype=np.uint8)
+    is_epoch = first == ord(">")
+    starts = np.flatnonzero(is_epoch).tolist()
+    odd = np.flatnonzero(~is_epoch & ~_LETTER[first])  # lines that cannot be records
+    acc = _Collector(header, path, systems)
     if lines and (not starts or starts[0] != 0):
-        raise InputError(
+        raise acc.fail(
             "expected an epoch record starting with '>' after the header, found "
             f"{lines[0][:40].decode('ascii', 'replace')!r}",
-            path=path,
-            line=_error_line(header, 0),
+            0,
         )
-    acc = _Collector(header, path, systems)
     starts.append(n_lines)
     for k in range(len(starts) - 1):
         i, nxt = starts[k], starts[k + 1]
         ln = lines[i]
-        try:
-            flag = int(ln[31:32] or b"0")
-            nsat = int(ln[32:35])
-        except ValueError:
-            raise InputError(
-                f"bad epoch record {ln[:35].decode('ascii', 'replace')!r}",
-                path=path,
-                line=_error_line(header, i),
-            ) from None
-        if i + 1 + nsat > nxt:
+        flag, nsat = _epoch_numbers(acc, ln, i, 31,
+                                    "expected '> yyyy mm dd hh mm ss.sssssss  f nnn'")  # fmt: skip
+        if i + 1 + nsat != nxt:
+            short = i + 1 + nsat > nxt
             where = "the file ends" if nxt == n_lines else "the next epoch starts"
-            raise InputError(
-                f"truncated epoch {ln[2:29].decode('ascii', 'replace').strip()}: it announces "
-                f"{nsat} satellite records but {where} after {nxt - i - 1}",
-                path=path,
-                line=_error_line(header, i),
+            what = "truncated epoch" if short else "epoch"
+            raise acc.fail(
+                f"{what} {ln[2:29].decode('ascii', 'replace').strip()}: it announces {nsat} "
+                f"{'satellite' if flag in (0, 1, 6) else 'event'} records but {where} after "
+                f"{nxt - i - 1} lines",
+                i if short else i + 1 + nsat,
             )
         if flag > 1:
+            _event(acc, lines, i, flag, nsat)
             continue  # event records (2-5) and cycle-slip records (6) carry no observations
-        e = acc.epoch(ln, i, flag, _V3_DATE)
-        for j in range(i + 1, i + 1 + nsat):
+        if odd.size and np.any((odd > i) & (odd < nxt)):
+            j = int(odd[np.argmax(odd > i)])
+            raise acc.fail(
+                "expected a satellite record starting with a satellite id such as 'G05', "
+                f"found {lines[j][:20].decode('ascii', 'replace')!r}",
+                j,
+            )
+        e = acc.epoch(ln, i, flag, _DATE_V3)
+        for j in range(i + 1, nxt):
             rec = lines[j]
-            sys_ = chr(rec[0]) if rec else " "
-            acc.record(sys_, rec, j, e, rec[:3].decode("ascii", "replace").replace(" ", "0"))
+            acc.record(chr(rec[0]), rec, j, e, rec[:3].decode("ascii", "replace").replace(" ", "0"))
     return acc.finish(codes_wanted, 3)
 
 
@@ -213,14 +452,13 @@ def parse_v2(
     path: Path,
     systems: Collection[str] | None,
     codes_wanted: Collection[str] | None,
-) -> tuple[np.ndarray, np.ndarray, dict[str, RawBlock]]:
-    """Parse a RINEX 2.1x data section; return epochs (GPS s), epoch flags, blocks."""
-    lines = body.split(b"\n")
-    if lines and not lines[-1]:
-        lines.pop()
+) -> tuple[np.ndarray, np.ndarray, dict[str, RawBlock], tuple[str, ...]]:
+    """Parse a RINEX 2.1x data section; return epochs (GPS s), flags, blocks and warnings."""
+    lines = _lines(body)
     n_lines = len(lines)
     n_types = len(next(iter(header.obs_types.values())))
     per_sat = -(-n_types // 5)
+    widths = [FIELD_WIDTH * min(5, n_types - 5 * r) for r in range(per_sat)]
     default_sys = header.file_system if header.file_system != "M" else "G"
     acc = _Collector(header, path, systems)
     i = 0
@@ -229,37 +467,45 @@ def parse_v2(
         if not ln.strip():
             i += 1
             continue
-        try:
-            flag = int(ln[28:29] or b"0")
-            nsat = int(ln[29:32])
-        except ValueError:
-            raise InputError(
-                f"bad epoch record {ln[:32].decode('ascii', 'replace')!r} "
-                "(expected ' yy mm dd hh mm ss.sssssss  f nnn')",
-                path=path,
-                line=_error_line(header, i),
-            ) from None
-        if flag > 1:
+        flag, nsat = _epoch_numbers(acc, ln, i, 28,
+                                    "expected ' yy mm dd hh mm ss.sssssss  f nnn'")  # fmt: skip
+        n_cont = max(-(-nsat // 12) - 1, 0)
+        if flag in (2, 3, 4, 5):
+            if i + 1 + nsat > n_lines:
+                raise acc.fail(f"truncated event: {nsat} records announced, the file ends", i)
+            _event(acc, lines, i, flag, nsat)
             i += 1 + nsat
             continue
-        n_cont = -(-nsat // 12) - 1
+        if i + n_cont >= n_lines:
+            raise acc.fail("truncated epoch: its satellite list is cut short", i)
         ids = b"".join(lines[i + c][32:68].ljust(36) for c in range(n_cont + 1))
         sats = [ids[3 * s : 3 * s + 3].decode("ascii", "replace") for s in range(nsat)]
         first_obs = i + 1 + n_cont
         if first_obs + nsat * per_sat > n_lines:
-            raise InputError(
+            raise acc.fail(
                 f"truncated epoch {ln[:26].decode('ascii', 'replace').strip()}: it announces "
                 f"{nsat} satellites x {per_sat} lines but the file ends",
-                path=path,
-                line=_error_line(header, i),
+                i,
             )
-        e = acc.epoch(ln, i, flag, _V2_DATE)
+        if flag == 6:  # cycle-slip records: observation layout, no observations used
+            i = first_obs + nsat * per_sat
+            continue
+        e = acc.epoch(ln, i, flag, _DATE_V2)
         for s_idx, sat in enumerate(sats):
             sys_ = sat[0] if sat[0] != " " else default_sys
             j = first_obs + s_idx * per_sat
             if systems is not None and sys_ not in systems:
                 continue
-            rec = b"".join(lines[j + r][:80].ljust(80) for r in range(per_sat))
+            parts = [lines[j + r] for r in range(per_sat)]
+            for r, (part, w) in enumerate(zip(parts, widths, strict=True)):
+                if len(part) > w and part[w:].strip():
+                    raise acc.fail(
+                        f"satellite {sys_ + sat[1:]}: characters beyond column {w}, where the "
+                        f"header's {n_types} observation types end on this line (observation "
+                        "types missing from the header, or columns shifted)",
+                        j + r,
+                    )
+            rec = b"".join(p[:80].ljust(80) for p in parts)
             acc.record(sys_, rec, j, e, sys_ + sat[1:].replace(" ", "0"))
         i = first_obs + nsat * per_sat
     return acc.finish(codes_wanted, 0)

@@ -9,10 +9,11 @@ what ``float(text)`` gives: the integer ``value * 1000`` is formed exactly in
 float64 (fewer than 16 significant digits) and one correctly rounded
 division by 1000 yields the double nearest to the decimal number.
 
-Fields that are not in the strict ``F14.3`` layout (a misplaced point, an
-exponent) fall back to ``float()`` one by one if they are right-justified;
-text that is no number, or a left-justified fragment (a line cut short), is
-reported with its row and field index.
+Fields must be blank or in the strict ``F14.3`` layout: optional minus sign,
+digits, the decimal point in column 11 and three decimals. Anything else (a
+misplaced point, an exponent, ``nan``, letters, a fragment of a line cut
+short or shifted) is reported with its row and field index: a value that is
+not where the format puts it is never guessed.
 """
 
 from __future__ import annotations
@@ -41,6 +42,8 @@ _CLASS[_SPACE] = 1.0
 _CLASS[_MINUS] = float(_MINUS_CODE)
 _CLASS[_DOT] = float(_DOT_CODE)
 _ONES = np.ones(VALUE_WIDTH)
+# column 0 counts the classes, column 1 weights them by position
+_COUNT_AND_POSITION = np.column_stack([_ONES, np.arange(VALUE_WIDTH, dtype=np.float64)])
 _INDICATOR = np.full(256, -1, dtype=np.int8)
 _INDICATOR[_ZERO : _ZERO + 10] = np.arange(10, dtype=np.int8)
 
@@ -51,6 +54,21 @@ class FieldError(ValueError):
     def __init__(self, row: int, field: int, text: str) -> None:
         self.row, self.field, self.text = row, field, text
         super().__init__(f"field {field + 1} is not a number: {text!r}")
+
+
+def _right_justified(code: NDArray[np.int32]) -> NDArray[np.float64]:
+    """Position-weighted class sum of a right-justified field with this class code.
+
+    With ``s`` spaces, ``m`` minus signs (0 or 1) and the point in column 11,
+    the field is right-justified and contiguous (spaces first, then the sign)
+    exactly when the position-weighted sum is ``s(s-1)/2 + 32 s m + 512 * 10``:
+    with three digits after the point, no other placement of the spaces and
+    the sign gives that sum (moving the sign before a space adds at least 32,
+    moving spaces right adds at most 25).
+    """
+    s = (code & 0x1F).astype(np.float64)
+    m = ((code >> 5) & 0xF).astype(np.float64)
+    return s * (s - 1.0) / 2.0 + _MINUS_CODE * s * m + _DOT_CODE * _POINT
 
 
 def parse_fields(
@@ -72,24 +90,26 @@ def parse_fields(
     """
     val = chars[:, :, :VALUE_WIDTH]
     scaled = _DIGIT[val] @ _WEIGHTS
-    # class code sum: spaces count in bits 0-4, minus signs 5-8, points 9-13
-    code = (_CLASS[val] @ _ONES).astype(np.int32)
+    # class code sum: spaces count in bits 0-4, minus signs 5-8, points 9-13; and the
+    # class codes weighted by position (see _RIGHT_JUSTIFIED)
+    sums = _CLASS[val] @ _COUNT_AND_POSITION
+    code = sums[:, :, 0].astype(np.int32)
     empty = code == VALUE_WIDTH
     values = scaled / 1000.0
     np.negative(values, out=values, where=(code & 0x1E0) != 0)
     values[empty] = np.nan
     ok = (code < _OTHER) & ((code & 0x3E00) == _DOT_CODE) & (code & 0x1E0 <= _MINUS_CODE)
     ok &= val[:, :, _POINT] == _DOT
+    # three decimals after the point (a field cut short or shifted has not); writers may
+    # drop the zero before the point ("-.931")
+    for k in (_POINT + 1, _POINT + 2, _POINT + 3):
+        ok &= (val[:, :, k] - _ZERO) < 10
+    ok &= sums[:, :, 1] == _right_justified(code)
     bad = ~ok & ~empty
     if bad.any():
-        for r, f in zip(*np.nonzero(bad), strict=True):
-            text = val[r, f].tobytes().decode("ascii", "replace")
-            try:
-                if text[-1] == " ":  # F14.3 is right-justified: a cut or shifted field
-                    raise ValueError(text)
-                values[r, f] = float(text.replace("D", "E").replace("d", "e"))
-            except ValueError:
-                raise FieldError(int(r), int(f), text.strip()) from None
+        r, f = (int(k[0]) for k in np.nonzero(bad))
+        text = val[r, f].tobytes().decode("ascii", "replace")
+        raise FieldError(r, f, text.strip() if text.strip() else text)
     lli = _INDICATOR[chars[:, :, VALUE_WIDTH]]
     ssi = _INDICATOR[chars[:, :, VALUE_WIDTH + 1]]
     return values, lli, ssi

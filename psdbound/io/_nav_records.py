@@ -11,6 +11,7 @@ parts -- column offsets, the epoch line and the record boundaries -- are in
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -28,9 +29,11 @@ __all__ = [
     "FIELD_WIDTH",
     "KEPLER_LINES",
     "OPTIONAL",
+    "PRN_RANGE",
     "REQUIRED",
     "Epoch",
     "RecordParser",
+    "valid_calendar",
 ]
 
 # BDT = GPST - 14 s; BDT week 0 starts 2006-01-01 = GPS week 1356.
@@ -101,6 +104,33 @@ KEPLER_LINES = 8
 #: Calendar fields of a time of clock: year, month, day, hour, minute, second.
 Epoch = tuple[int, int, int, int, int, float]
 
+#: Satellite numbers per system letter in navigation files (RINEX 3 ids).
+PRN_RANGE = {"G": (1, 63), "R": (1, 36), "E": (1, 50), "C": (1, 63), "J": (1, 10),
+             "S": (20, 59), "I": (1, 14)}  # fmt: skip
+#: Plausible Keplerian elements; a record outside them cannot be a GNSS orbit.
+_PLAUSIBLE = {
+    "sqrt_a": (2000.0, 10000.0, "sqrt(A) of 2000-10000 m^0.5"),
+    "e": (0.0, 0.5, "eccentricity from 0 to 0.5"),
+    "toe_sow_s": (0.0, 604800.0, "Toe within the week (0-604800 s)"),
+    "_week": (0.0, 10000.0, "a week number from 0 to 10000"),
+}
+
+
+def valid_calendar(ep: Epoch, two_digit_year: bool = False) -> bool:
+    """True when the calendar fields are a real date and time (year 1980-2099)."""
+    y, mo, d, h, mi, s = ep
+    if two_digit_year:
+        if not 0 <= y <= 99:
+            return False
+        y = y + 2000 if y < 80 else y + 1900
+    if not (1980 <= y <= 2099 and 1 <= mo <= 12 and 0 <= h <= 23 and 0 <= mi <= 59):
+        return False
+    if not 0.0 <= s < 60.0:  # also False for NaN
+        return False
+    days = [31, 29 if (y % 4 == 0 and y % 100 != 0) or y % 400 == 0 else 28, 31, 30, 31, 30,
+            31, 31, 30, 31, 30, 31]  # fmt: skip
+    return 1 <= d <= days[mo - 1]
+
 
 class RecordParser:
     """Collect the Keplerian records of a navigation file body into columns.
@@ -124,6 +154,22 @@ class RecordParser:
         self.epochs: dict[str, list[Epoch]] = {}
         self.skipped: dict[str, int] = {}
         self.last_nonblank = len(lines) - 1
+        #: records left out because they are damaged: (line index, satellite, reason)
+        self.damaged: list[tuple[int, str, str]] = []
+
+    #: RINEX 2 epochs carry two-digit years
+    TWO_DIGIT_YEAR = False
+
+    def check_sat(self, sat: str, idx: int, columns: str) -> None:
+        """Raise InputError unless ``sat`` is a satellite id within its system's range."""
+        lo, hi = PRN_RANGE.get(sat[:1], (1, 99))
+        num = sat[1:]
+        if not (len(sat) == 3 and num.isdigit() and lo <= int(num) <= hi):
+            raise self.error(
+                f"satellite id {sat!r} in {columns} is not valid: expected a system letter and "
+                f"a number from {lo:02d} to {hi:02d}",
+                idx,
+            )
 
     def error(self, message: str, line_index: int) -> InputError:
         return InputError(message, path=self.path, line=line_index + 1)
@@ -196,10 +242,38 @@ class RecordParser:
             cols = self.cols[system] = {a: [] for a in ATTRS}
             self.sats[system] = []
             self.epochs[system] = []
-        for (k, j), attr, required in FIELD_TABLE:
-            cols[attr].append(self.number(rec, k, j, sat, attr, required))
+        values = {attr: self.number(rec, k, j, sat, attr, required)
+                  for (k, j), attr, required in FIELD_TABLE}  # fmt: skip
+        reason = self.damage(ep, values)
+        if reason:
+            self.damaged.append((rec[0], sat, reason))
+            return
+        for attr, v in values.items():
+            cols[attr].append(v)
         self.sats[system].append(sat)
         self.epochs[system].append(ep)
+
+    def damage(self, ep: Epoch, values: dict[str, float]) -> str:
+        """Why a record cannot be used (empty when it can)."""
+        if not valid_calendar(ep, self.TWO_DIGIT_YEAR):
+            return f"impossible time of clock {' '.join(f'{v:g}' for v in ep)}"
+        bad = [DESCRIPTION[a] for a, v in values.items() if not math.isfinite(v)]
+        if bad:
+            return f"non-finite {bad[0]}"
+        for attr, (lo, hi, what) in _PLAUSIBLE.items():
+            if not lo <= values[attr] <= hi:
+                return f"{DESCRIPTION[attr]} {values[attr]:g} (expected {what})"
+        return ""
+
+    def damage_note(self) -> str:
+        """One line about the damaged records left out (empty when none)."""
+        if not self.damaged:
+            return ""
+        idx, sat, reason = self.damaged[0]
+        return (
+            f"{len(self.damaged)} navigation record(s) left out because they cannot be a "
+            f"valid ephemeris (first: {sat} on line {idx + 1}, {reason})"
+        )
 
     def truncated(self, sat: str, have: int, need: int, idx: int) -> InputError:
         return self.error(

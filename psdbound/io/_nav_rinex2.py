@@ -20,6 +20,7 @@ class Rinex2Parser(RecordParser):
     FIRST_COLUMN = 22
     CONTINUATION_COLUMN = 3
     EPOCH_COLUMNS = "columns 3-22"
+    TWO_DIGIT_YEAR = True
 
     def epoch(self, line0: str) -> Epoch:
         """Calendar fields of the epoch line (two-digit year as written)."""
@@ -47,15 +48,14 @@ class Rinex2Parser(RecordParser):
                 i += 1
                 continue
             prn_text = lines[i][:2]
-            try:
-                prn = int(prn_text)
-            except ValueError:
+            if not prn_text.strip().isdigit():
                 raise self.error(
                     f"cannot read the PRN {prn_text!r} in columns 1-2; expected the first "
                     "line of a RINEX 2 navigation record",
                     i,
-                ) from None
-            sat = f"{system}{prn:02d}"
+                )
+            sat = f"{system}{int(prn_text):02d}"
+            self.check_sat(sat, i, "columns 1-2")
             if last - i + 1 < need:
                 raise self.truncated(sat, last - i + 1, need, last)
             rec = list(range(i, i + need))

@@ -71,6 +71,8 @@ class Rinex3Parser(RecordParser):
                     "a system letter and a 2-digit number such as 'G01'",
                     i,
                 )
+            if system in KEPLER_SYSTEMS or system in SKIPPED_SYSTEMS:
+                self.check_sat(sat, i, "columns 1-3")
             # collect continuation lines (those starting with a blank)
             j = i + 1
             while j <= last and lines[j][:1] == " " and lines[j].strip():

@@ -36,13 +36,19 @@ def read_bytes(path: str | os.PathLike[str]) -> bytes:
     Raises
     ------
     InputError
-        If the file is missing, empty, not decompressable, or a corrupted
-        Hatanaka stream.
+        If the file is missing, a folder, unreadable (permissions), empty,
+        not decompressable (any error of the compressed stream), or a
+        corrupted Hatanaka stream.
     """
     p = Path(path)
+    if p.is_dir():
+        raise InputError("is a folder, not a file", path=p)
     if not p.is_file():
         raise InputError("file not found", path=p)
-    raw = p.read_bytes()
+    try:
+        raw = p.read_bytes()
+    except OSError as exc:
+        raise InputError(f"cannot read the file: {exc.strerror or exc}", path=p) from None
     if not raw:
         raise InputError("file is empty (0 bytes); expected a RINEX or SP3 file", path=p)
     try:
@@ -52,14 +58,18 @@ def read_bytes(path: str | os.PathLike[str]) -> bytes:
             import hatanaka
 
             raw = hatanaka.decompress(raw)
-    except (OSError, EOFError, ValueError) as exc:
-        raise InputError(f"cannot decompress: {exc}", path=p) from exc
+    except MemoryError:
+        raise
+    except Exception as exc:  # gzip/zlib/bz2/zip/LZW errors: the compressed stream is damaged
+        detail = " ".join(str(exc).split()) or type(exc).__name__
+        raise InputError(f"cannot decompress: {detail} (damaged or truncated file?)",
+                         path=p) from None  # fmt: skip
     if not raw.strip():
         raise InputError("file is empty after decompression", path=p)
+    if b"\r" in raw:
+        raw = raw.replace(b"\r\n", b"\n")
     if b"COMPACT RINEX" in raw[:200]:
         raw = _crx_to_rnx(raw, p)
-    if b"\r" in raw[:4096]:
-        raw = raw.replace(b"\r\n", b"\n")
     return raw
 
 

@@ -253,7 +253,8 @@ def find_arcs(
             receiver_xyz_m = obs.header.approx_position_m
         if receiver_xyz_m is None:
             raise InputError(
-                "no receiver position: the header has no APPROX POSITION XYZ; give receiver_xyz_m",
+                "no receiver position: the header's APPROX POSITION XYZ is missing, zero or not "
+                "near the Earth's surface; give receiver_xyz_m",
                 path=obs.path,
             )
         from psdbound.io.geometry import satellite_azel

@@ -33,6 +33,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from psdbound.common.notices import warn
 from psdbound.errors import InputError
 from psdbound.io._nav_rinex2 import Rinex2Parser
 from psdbound.io._nav_rinex3 import KEPLER_SYSTEMS, SKIPPED_SYSTEMS, Rinex3Parser
@@ -130,9 +131,17 @@ def read_nav(path: str | os.PathLike[str]) -> Navigation:
     ------
     InputError
         If the file is not a RINEX 2/3 navigation file (e.g. an observation or
-        SP3 file), has no END OF HEADER, ends in the middle of a record, or
-        holds a number that cannot be parsed. The message names the file, the
-        1-based line and, where relevant, the satellite and columns.
+        SP3 file), has no END OF HEADER, ends in the middle of a record,
+        holds a number that cannot be parsed or a satellite id outside its
+        system's range. The message names the file, the 1-based line and,
+        where relevant, the satellite and columns.
+
+    Warns
+    -----
+    PsdboundWarning
+        Records with non-finite values, an impossible time of clock or
+        elements no GNSS orbit has are left out (counted in one warning,
+        also in :attr:`Navigation.warnings`).
 
     """
     p = Path(path)
@@ -148,10 +157,12 @@ def read_nav(path: str | os.PathLike[str]) -> Navigation:
     else:
         parser = Rinex3Parser(p, lines)
         parser.parse(end + 1)
+    note = parser.damage_note()
     return Navigation(
         path=p,
         version=version,
         leap_seconds=leap,
         ephemerides=parser.build(),
         skipped=dict(sorted(parser.skipped.items())),
+        warnings=(warn(note, path=p),) if note else (),
     )

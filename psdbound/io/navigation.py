@@ -40,6 +40,10 @@ class Navigation:
     skipped : dict of str to int
         Number of records per system letter that were recognised but not
         parsed (GLONASS, SBAS, NavIC).
+    warnings : tuple of str
+        Records left out because they are damaged (non-finite values,
+        impossible dates or elements), one line per file; also issued as
+        :class:`~psdbound.common.notices.PsdboundWarning`.
 
     """
 
@@ -48,6 +52,7 @@ class Navigation:
     leap_seconds: int | None
     ephemerides: dict[str, KeplerEphemerides] = field(default_factory=dict)
     skipped: dict[str, int] = field(default_factory=dict)
+    warnings: tuple[str, ...] = ()
 
     @property
     def satellites(self) -> tuple[str, ...]:

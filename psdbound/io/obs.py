@@ -8,6 +8,7 @@ the header (2.1x or 3.0x) and accepts plain, gzip/Z/bz2/zip and Hatanaka
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -15,15 +16,17 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from psdbound.common.notices import warn
 from psdbound.errors import InputError, NoDataError
 from psdbound.io._body import parse_v2, parse_v3
+from psdbound.io._checks import check_phase_rates
 from psdbound.io._header import ObsHeader
 from psdbound.io._header import parse_header as _parse_header
 from psdbound.io._source import read_bytes
 from psdbound.io.signals import RINEX2_TO_RINEX3, wavelength_m
 from psdbound.io.timescales import gps_s_to_datetime64
 
-__all__ = ["Observations", "ObsHeader", "SystemBlock", "read_obs"]
+__all__ = ["Observations", "ObsHeader", "SystemBlock", "epoch_interval_s", "read_obs"]
 
 _SYSTEM_NAMES = {
     "G": "GPS",
@@ -84,6 +87,10 @@ class Observations:
         RINEX epoch flag (0 OK, 1 power failure since the previous epoch).
     blocks : mapping of str to SystemBlock
         Observations per satellite system.
+    warnings : tuple of str
+        What the reader repaired or ignored (repeated epochs dropped, header
+        values that disagree with the data), one line each, naming the file
+        and line; also issued as :class:`~psdbound.common.notices.PsdboundWarning`.
     """
 
     path: str
@@ -91,6 +98,7 @@ class Observations:
     t_gps_s: NDArray[np.float64]
     epoch_flag: NDArray[np.int8]
     blocks: Mapping[str, SystemBlock]
+    warnings: tuple[str, ...] = ()
 
     @property
     def systems(self) -> tuple[str, ...]:
@@ -109,12 +117,18 @@ class Observations:
 
     @property
     def interval_s(self) -> float:
-        """Sampling interval in seconds: the header value, else the median step."""
-        if self.header.interval_s:
-            return float(self.header.interval_s)
-        if self.t_gps_s.size < 2:
-            raise NoDataError("fewer than two epochs: sampling interval unknown", path=self.path)
-        return float(np.median(np.diff(self.t_gps_s)))
+        """Sampling interval in seconds, from the epochs.
+
+        The median step between consecutive epochs; the header's ``INTERVAL``
+        when it agrees within 0.1 % (the nominal value, free of clock
+        jitter), or when there are fewer than two epochs.
+
+        Raises
+        ------
+        NoDataError
+            Fewer than two epochs and no usable ``INTERVAL`` record.
+        """
+        return epoch_interval_s(self.t_gps_s, self.header.interval_s, self.path)
 
     def codes(self, system: str) -> tuple[str, ...]:
         """Observation codes read for a system."""
@@ -170,11 +184,15 @@ class Observations:
         """Describe the file content in a few lines of text."""
         h = self.header
         span = (self.t_gps_s[-1] - self.t_gps_s[0]) if self.t_gps_s.size else 0.0
+        try:
+            interval = f"{self.interval_s:g} s"
+        except NoDataError:
+            interval = "unknown (one epoch)"
         out = [
             f"{Path(self.path).name}: RINEX {h.version:.2f}, station {h.marker_name or '?'}, "
             f"receiver {h.receiver_type or '?'}",
             f"  epochs: {self.t_gps_s.size}, span {span / 3600:.2f} h, interval "
-            f"{self.interval_s:g} s, first {self.times[0] if self.t_gps_s.size else '-'} GPST",
+            f"{interval}, first {self.times[0] if self.t_gps_s.size else '-'} GPST",
         ]
         for sys_, b in self.blocks.items():
             out.append(
@@ -285,9 +303,19 @@ def read_obs(
                     path=p,
                 )
     parse = parse_v3 if header.version >= 3 else parse_v2
-    t, flags, raw = parse(text[start:], header, p, want_sys, want_codes)
+    t, flags, raw, notes = parse(text[start:], header, p, want_sys, want_codes)
     if t.size == 0:
         raise NoDataError("no observation epochs after the header", path=p)
+    check_phase_rates(t, raw, header, p)
+    notes = list(header.notes) + list(notes)
+    hi = header.interval_s
+    if t.size >= 2 and hi:
+        dt = epoch_interval_s(t, None, p)
+        if abs(hi - dt) > 1e-3 * dt:
+            notes.append(
+                f"the header's INTERVAL {hi:g} s disagrees with the epochs, {dt:g} s apart; "
+                "the epochs' interval is used"
+            )
     if want_sys is not None:
         missing = sorted(want_sys - set(raw))
         if missing:
@@ -296,4 +324,41 @@ def read_obs(
     blocks = {
         s: SystemBlock(b.system, b.sats, b.codes, b.values, b.lli, b.ssi) for s, b in raw.items()
     }
-    return Observations(str(p), header, t, flags, blocks)
+    issued: list[str] = []
+    for note in notes:
+        m = re.match(r"line (\d+): (.*)", note, re.S)
+        line, text = (int(m.group(1)), m.group(2)) if m else (None, note)
+        issued.append(warn(text, path=p, line=line))
+    return Observations(str(p), header, t, flags, blocks, tuple(issued))
+
+
+def epoch_interval_s(
+    t_gps_s: NDArray[np.float64], header_interval_s: float | None, path: str | os.PathLike[str]
+) -> float:
+    """Return the sampling interval of epochs (see :attr:`Observations.interval_s`).
+
+    Parameters
+    ----------
+    t_gps_s : ndarray of float64
+        Increasing epochs, s.
+    header_interval_s : float or None
+        The header's ``INTERVAL``, s.
+    path : str or path-like
+        The file (for messages).
+
+    Returns
+    -------
+    float
+        Seconds.
+    """
+    t = np.asarray(t_gps_s, dtype=np.float64)
+    steps = np.diff(t)
+    steps = steps[steps > 0]
+    if steps.size:
+        dt = float(np.median(steps))
+        if header_interval_s and abs(header_interval_s - dt) <= 1e-3 * dt:
+            return float(header_interval_s)
+        return round(dt, 6)
+    if header_interval_s:
+        return float(header_interval_s)
+    raise NoDataError("fewer than two epochs: sampling interval unknown", path=path)

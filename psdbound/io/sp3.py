@@ -14,6 +14,7 @@ GPS, the SP3 default.
 
 from __future__ import annotations
 
+import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
@@ -22,6 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from psdbound.errors import InputError
+from psdbound.io._nav_records import PRN_RANGE, valid_calendar
 from psdbound.io._source import read_bytes
 from psdbound.io.timescales import calendar_to_gps_s, utc_to_gps_s
 
@@ -170,36 +172,45 @@ def _fail(path: Path, message: str, line: int | None = None) -> InputError:
 
 def _float(path: Path, text: str, lineno: int, c0: int, c1: int, what: str) -> float:
     s = text[c0:c1]
+    if not s.strip():
+        raise _fail(path, f"{what} (columns {c0 + 1}-{c1}) is blank; expected a number", lineno)
     try:
-        return float(s)
+        x = float(s)
     except ValueError:
-        if not s.strip():
-            raise _fail(
-                path, f"{what} (columns {c0 + 1}-{c1}) is blank; expected a number", lineno
-            ) from None
         raise _fail(
             path,
             f"cannot parse number {s.strip()!r} in columns {c0 + 1}-{c1} ({what})",
             lineno,
         ) from None
+    if not math.isfinite(x):
+        raise _fail(
+            path,
+            f"{what} (columns {c0 + 1}-{c1}) is {s.strip()!r}; expected a finite number",
+            lineno,
+        )
+    return x
 
 
 def _epoch_fields(path: Path, line: str, lineno: int) -> tuple[int, int, int, int, int, float]:
     try:
-        return (
-            int(line[3:7]),
-            int(line[8:10]),
-            int(line[11:13]),
-            int(line[14:16]),
-            int(line[17:19]),
-            float(line[20:31]),
-        )
+        ints = [line[a:b] for a, b in ((3, 7), (8, 10), (11, 13), (14, 16), (17, 19))]
+        if not all(x.strip().isdigit() for x in ints):
+            raise ValueError
+        ep = tuple(int(x) for x in ints) + (float(line[20:31]),)
     except ValueError:
         raise _fail(
             path,
             f"cannot read the epoch {line.rstrip()!r}; expected '*  yyyy mm dd hh mm ss.ssssssss'",
             lineno,
         ) from None
+    if not valid_calendar(ep):
+        raise _fail(
+            path,
+            f"impossible epoch {line[3:31].strip()!r} (month 1-12, day in the month, hour 0-23, "
+            "minute 0-59, seconds 0-60, year 1980-2099)",
+            lineno,
+        )
+    return ep
 
 
 def read_sp3(path: str | os.PathLike[str]) -> PreciseOrbit:
@@ -255,6 +266,7 @@ def read_sp3(path: str | os.PathLike[str]) -> PreciseOrbit:
 
     # ---- header
     n_sat: int | None = None
+    sat_line = 0
     sat_ids: list[str] = []
     time_system: str | None = None
     i = 1
@@ -262,6 +274,7 @@ def read_sp3(path: str | os.PathLike[str]) -> PreciseOrbit:
     while i < n and not lines[i].startswith("*"):
         line = lines[i]
         if line.startswith("+ "):
+            sat_line = sat_line or i + 1
             if n_sat is None:
                 try:
                     n_sat = int(line[1:6])
@@ -288,6 +301,15 @@ def read_sp3(path: str | os.PathLike[str]) -> PreciseOrbit:
     if n_sat is None:
         raise _fail(p, "no satellite list ('+' lines) in the SP3 header", i + 1)
     sats = [s.replace(" ", "0") for s in sat_ids if s.strip() and s.strip() != "0"][:n_sat]
+    for s in sats:
+        lo, hi = PRN_RANGE.get(s[:1], (1, 99))
+        if not (s[1:].isdigit() and lo <= int(s[1:]) <= hi):
+            raise _fail(
+                p,
+                f"satellite id {s!r} in the header's satellite list is not valid: expected a "
+                f"system letter and a number from {lo:02d} to {hi:02d}",
+                sat_line,
+            )
     if len(sats) != n_sat:
         raise _fail(
             p,
@@ -306,6 +328,7 @@ def read_sp3(path: str | os.PathLike[str]) -> PreciseOrbit:
     # ---- data
     col = {s: k for k, s in enumerate(sats)}
     epochs: list[tuple[int, int, int, int, int, float]] = []
+    epoch_lines: list[int] = []
     xyz = np.full((max(n_epochs_header, 1), n_sat, 3), np.nan)
     clk = np.full((max(n_epochs_header, 1), n_sat), np.nan)
     seen = 0  # P records in the current epoch
@@ -323,6 +346,7 @@ def read_sp3(path: str | os.PathLike[str]) -> PreciseOrbit:
                     i + 1,
                 )
             epochs.append(_epoch_fields(p, line, i + 1))
+            epoch_lines.append(i + 1)
             last_epoch_line = i
             seen = 0
             e = len(epochs) - 1
@@ -390,7 +414,10 @@ def read_sp3(path: str | os.PathLike[str]) -> PreciseOrbit:
     if np.any(np.diff(t) <= 0):
         bad = int(np.flatnonzero(np.diff(t) <= 0)[0]) + 1
         raise _fail(
-            p, f"epoch {bad + 1} is not later than the previous epoch; expected increasing epochs"
+            p,
+            f"epoch {bad + 1} is not later than the previous epoch (line "
+            f"{epoch_lines[bad - 1]}); expected increasing epochs",
+            epoch_lines[bad],
         )
     return PreciseOrbit(
         path=p,

@@ -90,13 +90,27 @@ def utc_to_gps_s(t_utc_label_gps_s: ArrayLike) -> NDArray[np.float64]:
         True GPS seconds, i.e. the labels plus the GPS-UTC offset (leap
         seconds since 1980, from astropy's table) in force at each epoch.
     """
+    import warnings
+
     from astropy.time import Time
 
     lab = np.atleast_1d(np.asarray(t_utc_label_gps_s, dtype=np.float64))
     isot = gps_s_to_datetime64(lab).astype("datetime64[ms]").astype(str)
-    utc = Time(list(isot), format="isot", scale="utc")
-    # astropy's "gps" format counts SI seconds since 1980-01-06 00:00:00 UTC.
-    offset = utc.gps - lab
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        utc = Time(list(isot), format="isot", scale="utc")
+        # astropy's "gps" format counts SI seconds since 1980-01-06 00:00:00 UTC.
+        offset = utc.gps - lab
+    if caught:
+        from psdbound.common.notices import warn
+
+        if any("dubious year" in str(w.message) for w in caught):
+            warn(
+                f"UTC epochs up to {str(isot[-1])[:10]} are later than the leap seconds known "
+                "to astropy: converted with the last known GPS-UTC offset"
+            )
+        for text in {str(w.message) for w in caught if "dubious year" not in str(w.message)}:
+            warn(f"converting UTC epochs: {text}")
     return lab + np.round(offset)
 
 

@@ -29,11 +29,15 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy import signal
 
+from psdbound.common.options import Choice, Number, check_fields, option
 from psdbound.errors import InputError
 
-__all__ = ["HighPass", "FILTER_KINDS"]
+__all__ = ["HighPass", "FILTER_KINDS", "MAX_ORDER"]
 
 FILTER_KINDS = ("butter", "cheby2", "fir")
+#: Highest IIR order accepted (the zero-phase response has twice the order).
+MAX_ORDER = 20
+_MAX_TAPS = 2_000_000
 
 
 @dataclass(frozen=True)
@@ -47,26 +51,26 @@ class HighPass:
         below the passband, edge at the cutoff) or windowed-sinc FIR
         (Hamming window, ``4 / f_c`` long).
     order : int, default 4
-        Order of the IIR designs (the zero-phase response has twice the
-        order); ignored for FIR.
+        Order of the IIR designs, 1 to :data:`MAX_ORDER` (20); the
+        zero-phase response has twice the order; ignored for FIR.
     edge : {"trim", "pad"}, default "trim"
         Edge-transient handling (see the module docstring).
     stopband_db : float, default 40
-        Stopband attenuation of the Chebyshev design, dB.
+        Stopband attenuation of the Chebyshev design, dB (> 0, at most 200).
+
+    Raises
+    ------
+    OptionError
+        A value of the wrong type or outside its range.
     """
 
-    kind: str = "butter"
-    order: int = 4
-    edge: str = "trim"
-    stopband_db: float = 40.0
+    kind: str = option("butter", Choice(FILTER_KINDS, noun="filter kind"))
+    order: int = option(4, Number(lo=1, hi=MAX_ORDER, integer=True))
+    edge: str = option("trim", Choice(("trim", "pad"), noun="edge handling"))
+    stopband_db: float = option(40.0, Number(lo=0.0, hi=200.0, lo_open=True, unit="dB"))
 
     def __post_init__(self) -> None:
-        if self.kind not in FILTER_KINDS:
-            raise InputError(f"unknown filter kind {self.kind!r}; choose from {FILTER_KINDS}")
-        if self.edge not in ("pad", "trim"):
-            raise InputError(f"unknown edge handling {self.edge!r}; choose 'pad' or 'trim'")
-        if self.order < 1:
-            raise InputError(f"filter order must be >= 1, got {self.order}")
+        check_fields(self)
 
     def check_cutoff(self, cutoff_hz: float, interval_s: float) -> float:
         """Raise :class:`InputError` unless 0 < cutoff < Nyquist; return Nyquist, Hz."""
@@ -126,9 +130,21 @@ class HighPass:
             )
         raise InputError("the FIR design has no second-order sections")
 
+    @staticmethod
+    def _numtaps(interval_s: float, cutoff_hz: float) -> int:
+        """Length of the FIR design, ``4 / f_c`` seconds (odd); refused when absurdly long."""
+        n = 4.0 / (cutoff_hz * interval_s)
+        if not n <= _MAX_TAPS:
+            raise InputError(
+                f"the FIR high-pass at {cutoff_hz:g} Hz and {interval_s:g} s sampling would "
+                f"need {n:.3g} taps (4 / (f_c dt), at most {_MAX_TAPS:g}); raise the cutoff "
+                "or use an IIR design (butter, cheby2)"
+            )
+        return int(np.ceil(n)) | 1
+
     def _fir(self, x: NDArray[np.float64], interval_s: float, cutoff_hz: float, pad: int):
         fs = 1.0 / interval_s
-        numtaps = int(np.ceil(4.0 / (cutoff_hz * interval_s))) | 1
+        numtaps = self._numtaps(interval_s, cutoff_hz)
         taps = signal.firwin(numtaps, cutoff_hz, pass_zero=False, fs=fs, window="hamming")
         half = numtaps // 2
         m = min(half, x.size - 1)
@@ -141,7 +157,7 @@ class HighPass:
         self.check_cutoff(cutoff_hz, interval_s)
         fs = 1.0 / interval_s
         if self.kind == "fir":
-            numtaps = int(np.ceil(4.0 / (cutoff_hz * interval_s))) | 1
+            numtaps = self._numtaps(interval_s, cutoff_hz)
             taps = signal.firwin(numtaps, cutoff_hz, pass_zero=False, fs=fs, window="hamming")
             _, h = signal.freqz(taps, worN=f_hz, fs=fs)
             return np.abs(h)

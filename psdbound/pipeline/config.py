@@ -16,30 +16,83 @@ sections are defined here.
 ``[arcs]``, ``[cutoff]``, ``[filter]``, ``[screening]``, ``[mapping]``, ``[stationarity]``,
 ``[spectra]``, ``[bound]``, ``[validation]``, ``[verdict]``, ``[output]``); unknown names
 are errors. The effective configuration is saved with every result.
+
+Checking
+--------
+Every option has one schema (:mod:`psdbound.common.options`): its type,
+range and unit are checked when a section is built, whether the value comes
+from TOML, the command line or the library, before anything is read. A bad
+value raises :class:`~psdbound.common.options.OptionError` naming the option
+(``[filter] order must be an integer from 1 to 20, got 4.5``).
+
+Rules between options (conflicts, options the chosen method would ignore)
+are checked by :meth:`FitConfig.check` once the configuration is complete:
+conflicting options are an error, never a silent choice.
 """
 
 from __future__ import annotations
 
+import math
 import tomllib
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
+from psdbound.common.options import (
+    Boolean,
+    Choice,
+    Number,
+    OptionError,
+    Spec,
+    Text,
+    Tuple,
+    check_fields,
+    option,
+    show_value,
+)
 from psdbound.errors import InputError
 from psdbound.io.options import ArcOptions
-from psdbound.ionosphere.policy import CutoffOptions
+from psdbound.ionosphere.policy import CUTOFF_SOURCES, CutoffOptions
 from psdbound.isolation import HighPass
 from psdbound.pipeline.verdict import VerdictOptions
 from psdbound.screening import ScreeningOptions
-from psdbound.spectra.options import BoundOptions, SpectraOptions
+from psdbound.spectra.options import BoundOptions, SpectraOptions, check_estimator_options
 from psdbound.stationarity.options import MappingOptions, StationarityOptions
 from psdbound.validation.options import ValidationOptions
 
 __all__ = [
+    "CUTOFF_RANGE_HZ",
     "FitConfig",
     "InputsConfig",
+    "Label",
     "OutputConfig",
+    "default_label",
 ]
+
+#: Cutoff frequencies accepted before the data are read, Hz (the Nyquist frequency of
+#: the data is checked when the filter is applied).
+CUTOFF_RANGE_HZ = (1e-6, 10.0)
+
+#: Systems a fit can use (RINEX letters).
+_SYSTEMS = ("G", "E", "R", "C", "J", "S", "I")
+_PHASE_CODE = r"L[1-9][A-Z]?"
+
+
+class _Position(Spec):
+    """An ECEF position ``[x, y, z]`` in metres near the Earth's surface."""
+
+    def describe(self) -> str:
+        """Describe what is allowed."""
+        return "an ECEF position [x, y, z] in m, 6200 to 6500 km from the Earth's centre"
+
+    def check(self, value: Any) -> Any:
+        """Check and normalise ``value``."""
+        xyz = Tuple(Number(), lengths=(3,)).check(value)
+        r = math.sqrt(sum(x * x for x in xyz))
+        if not 6.2e6 <= r <= 6.5e6:
+            raise ValueError(f"{r / 1000:.1f} km from the centre")
+        return xyz
 
 
 @dataclass(frozen=True)
@@ -47,28 +100,53 @@ class InputsConfig:
     """Input files and what to take from them.
 
     ``obs``: one file (dual-frequency) or two (dual-antenna); empty runs the
-    demo. ``method``: ``auto`` (DF for one file, DA for two), ``df`` or
-    ``da``. ``signals``: DF phase pair (default per system, GPS L1C-L2W);
-    ``da_signal``: DA phase code. ``receiver_xyz_m``: ECEF position(s),
-    else the header's.
+    demo (a single name is one file). ``nav``: navigation (RINEX 2/3) or SP3
+    file, needed with observation files. ``method``: ``auto`` (DF for one
+    file, DA for two), ``df`` or ``da``. ``system``: satellite system letter.
+    ``signals``: DF phase pair (default per system, GPS L1C-L2W);
+    ``da_signal``: DA phase code. ``receiver_xyz_m``: ECEF position(s) in m,
+    one per observation file, else the header's.
     """
 
-    obs: tuple[str, ...] = ()
-    nav: str | None = None
-    method: str = "auto"
-    system: str = "G"
-    signals: tuple[str, ...] = ()
-    da_signal: str = "L1C"
-    receiver_xyz_m: tuple[tuple[float, float, float], ...] = ()
+    obs: tuple[str, ...] = option(
+        (), Tuple(Text(what="a file name", paths=True), max_len=100,
+                  what="a list of observation file names"),
+    )  # fmt: skip
+    nav: str | None = option(None, Text(what="a file name", paths=True, optional=True))
+    method: str = option("auto", Choice(("auto", "df", "da"), noun="isolation method"))
+    system: str = option("G", Choice(_SYSTEMS, noun="satellite system"))
+    signals: tuple[str, ...] = option(
+        (), Tuple(Text(_PHASE_CODE, what="a phase code such as 'L1C'"), lengths=(0, 2),
+                  split=",", distinct=True, what="two phase codes such as 'L1C,L2W'"),
+    )  # fmt: skip
+    da_signal: str = option("L1C", Text(_PHASE_CODE, what="a phase code such as 'L1C'"))
+    receiver_xyz_m: tuple[tuple[float, float, float], ...] = option(
+        (), Tuple(_Position(), max_len=2, what="a list of ECEF positions [x, y, z] in m")
+    )
+
+    def __post_init__(self) -> None:
+        check_fields(self)
 
 
 @dataclass(frozen=True)
 class OutputConfig:
-    """Outputs: folder (default ``reports/<name>``), run name, PDF on/off."""
+    """Outputs: folder (default ``reports/<name>``), run name, PDF on/off, overwrite.
 
-    out: str | None = None
-    name: str | None = None
-    pdf: bool = True
+    ``overwrite``: also write into an existing folder that is not a previous
+    psdbound output (psdbound's files are replaced, nothing else is touched).
+    """
+
+    out: str | None = option(None, Text(what="a folder name", paths=True, optional=True))
+    name: str | None = option(
+        None,
+        Text(r"(?!\.\.?$)[A-Za-z0-9._+-]+", optional=True,
+             what="a run name of letters, digits and . _ + -"),
+    )  # fmt: skip
+    pdf: bool = option(True, Boolean())
+    overwrite: bool = option(False, Boolean())
+
+    def __post_init__(self) -> None:
+        check_fields(self)
 
 
 _SECTIONS = {
@@ -86,10 +164,37 @@ _SECTIONS = {
     "output": OutputConfig,
 }
 
+# CutoffOptions lives in psdbound.ionosphere and is checked here
+_CUTOFF_SPECS: dict[str, Spec] = {
+    "f_c_hz": Number(lo=CUTOFF_RANGE_HZ[0], hi=CUTOFF_RANGE_HZ[1], unit="Hz", optional=True),
+    "source": Choice(CUTOFF_SOURCES, noun="cutoff source"),
+    "mp_sigma_m": Number(lo=0.0, hi=1.0, lo_open=True, unit="m"),
+    "margin_db": Number(lo=0.0, hi=200.0, unit="dB"),
+}
+
+#: How an option is named in messages: ``label(section, name)``.
+Label = Callable[[str, str], str]
+
+
+def default_label(section: str, name: str) -> str:
+    """Name an option as in the TOML file: ``[filter] order``."""
+    return f"[{section}] {name}"
+
+
+def _relabel(exc: OptionError, section: str, source: str | None) -> OptionError:
+    return exc.relabel(default_label(section, exc.name), section=section, path=source)
+
 
 @dataclass(frozen=True)
 class FitConfig:
-    """Every option of a ``fit`` run, by stage (see the module docstring)."""
+    """Every option of a ``fit`` run, by stage (see the module docstring).
+
+    Raises
+    ------
+    OptionError
+        When built with a value outside its schema (also from
+        :meth:`updated`, :meth:`from_dict` and :meth:`from_toml`).
+    """
 
     inputs: InputsConfig = field(default_factory=InputsConfig)
     arcs: ArcOptions = field(default_factory=ArcOptions)
@@ -104,20 +209,46 @@ class FitConfig:
     verdict: VerdictOptions = field(default_factory=VerdictOptions)
     output: OutputConfig = field(default_factory=OutputConfig)
 
+    def __post_init__(self) -> None:
+        for name, cls in _SECTIONS.items():
+            if not isinstance(getattr(self, name), cls):
+                raise InputError(
+                    f"FitConfig.{name} must be a {cls.__name__}, got {type(getattr(self, name))}"
+                )
+        normal = {}
+        for name, spec in _CUTOFF_SPECS.items():
+            if hasattr(self.cutoff, name):
+                try:
+                    value = spec(name, getattr(self.cutoff, name))
+                except OptionError as exc:
+                    raise _relabel(exc, "cutoff", None) from None
+                if value is not getattr(self.cutoff, name):
+                    normal[name] = value  # e.g. an integer given for a float
+        if normal:
+            object.__setattr__(self, "cutoff", replace(self.cutoff, **normal))
+
     def to_dict(self) -> dict[str, Any]:
         """Return the configuration as plain data (for result files)."""
         return asdict(self)
 
     def updated(self, section: str, **values: Any) -> FitConfig:
-        """Return a copy with some options of one section changed (None = unchanged)."""
+        """Return a copy with some options of one section changed (None = unchanged).
+
+        Raises
+        ------
+        InputError
+            An unknown section or option name.
+        OptionError
+            A value outside the option's schema (named ``[section] name``).
+        """
         values = {k: v for k, v in values.items() if v is not None}
         if not values:
             return self
-        return replace(self, **{section: _build(section, values, getattr(self, section))})
+        return _with(self, section, _build(section, values, self._section(section)), None)
 
     @classmethod
     def from_dict(cls, data: dict[str, Any], *, source: str = "configuration") -> FitConfig:
-        """Build from nested dicts; unknown sections or names raise InputError."""
+        """Build from nested dicts; unknown sections or names and bad values raise InputError."""
         out = cls()
         for section, values in data.items():
             if section not in _SECTIONS:
@@ -126,12 +257,13 @@ class FitConfig:
                 )
             if not isinstance(values, dict):
                 raise InputError(f"{source}: [{section}] must be a table of options")
-            out = replace(out, **{section: _build(section, values, getattr(out, section), source)})
+            built = _build(section, values, getattr(out, section), source)
+            out = _with(out, section, built, source)
         return out
 
     @classmethod
     def from_toml(cls, path: str | Path) -> FitConfig:
-        """Read a TOML configuration file."""
+        """Read a TOML configuration file (values are checked; see the module docstring)."""
         p = Path(path)
         if not p.is_file():
             raise InputError("configuration file not found", path=p)
@@ -139,23 +271,233 @@ class FitConfig:
             data = tomllib.loads(p.read_text())
         except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
             raise InputError(f"not valid TOML: {exc}", path=p) from None
+        except OSError as exc:
+            raise InputError(f"cannot read the file: {exc.strerror}", path=p) from None
         return cls.from_dict(data, source=str(p))
+
+    def check(self, label: Label = default_label) -> FitConfig:
+        """Check the rules between options; return ``self``.
+
+        Parameters
+        ----------
+        label : callable, optional
+            ``label(section, name)`` names an option in messages (default
+            ``[section] name``; the command line passes its flags).
+
+        Returns
+        -------
+        FitConfig
+            ``self``, unchanged.
+
+        Raises
+        ------
+        InputError
+            Conflicting options, options the chosen method would ignore, extra
+            observation files, a missing navigation file, estimator options
+            of another estimator.
+        """
+        for rule in _RULES:
+            rule(self, label)
+        return self
+
+    def _section(self, section: str) -> Any:
+        if section not in _SECTIONS:
+            raise InputError(f"unknown section {section!r}; expected one of {', '.join(_SECTIONS)}")
+        return getattr(self, section)
+
+
+
+def _with(cfg: FitConfig, section: str, value: Any, source: str | None) -> FitConfig:
+    try:
+        return replace(cfg, **{section: value})
+    except OptionError as exc:
+        path = None if source in (None, "option", "configuration") else source
+        raise _relabel(exc, section, path) from None
 
 
 def _build(section: str, values: dict[str, Any], base: Any, source: str = "option") -> Any:
     cls = _SECTIONS[section]
-    names = {f.name: f for f in fields(cls)}
+    names = {f.name for f in fields(cls)}
     for k in values:
         if k not in names:
             raise InputError(
                 f"{source}: unknown option {section}.{k}; expected one of {', '.join(names)}"
             )
-    clean = {}
-    for k, v in values.items():
-        default = getattr(base, k)
-        if isinstance(default, tuple) and isinstance(v, list | tuple):
-            v = tuple(tuple(x) if isinstance(x, list) else x for x in v)
-        elif isinstance(default, float) and isinstance(v, int) and not isinstance(v, bool):
-            v = float(v)
-        clean[k] = v
-    return replace(base, **clean)
+    path = None if source in ("option", "configuration") else source
+    try:
+        return replace(base, **values)
+    except OptionError as exc:
+        raise _relabel(exc, section, path) from None
+    except (TypeError, ValueError) as exc:  # a section class without a schema
+        bad = ", ".join(f"{k} = {show_value(v)}" for k, v in values.items())
+        raise InputError(f"[{section}] {bad}: {exc}", path=path) from None
+
+
+
+# ----------------------------------------------------------------- rules between options
+
+
+def _show(label: str, value: Any) -> str:
+    """``--cutoff-hz 0.001`` for a flag, ``[cutoff] f_c_hz = 0.001`` otherwise."""
+    if label.startswith("-"):
+        text = show_value(value)
+        return f"{label} {text[1:-1] if isinstance(value, str) else text}"
+    return f"{label} = {show_value(value)}"
+
+
+def _changed(obj: Any) -> dict[str, Any]:
+    """Return the options of a section that differ from their defaults."""
+    default = type(obj)()
+    return {f.name: getattr(obj, f.name) for f in fields(obj)
+            if getattr(obj, f.name) != getattr(default, f.name)}  # fmt: skip
+
+
+def _method(cfg: FitConfig) -> str:
+    """Return the isolation method the inputs lead to (``demo``, ``df`` or ``da``)."""
+    n = len(cfg.inputs.obs)
+    if n == 0:
+        return "demo"
+    if cfg.inputs.method == "auto":
+        return "da" if n == 2 else "df"
+    return cfg.inputs.method
+
+
+def _rule_inputs(cfg: FitConfig, label: Label) -> None:
+    inp = cfg.inputs
+    n = len(inp.obs)
+    lab = label("inputs", "obs")
+    if inp.method == "da" and n != 2:
+        raise InputError(
+            f"{_show(label('inputs', 'method'), 'da')} needs two observation files (two "
+            f"antennas), got {n}"
+        )
+    limit = {"auto": 2, "df": 1, "da": 2}[inp.method]
+    if n > limit:
+        extra = ", ".join(inp.obs[limit:])
+        what = (
+            "dual-frequency takes one file" if limit == 1
+            else "one file (dual-frequency) or two (dual-antenna) are used"
+        )  # fmt: skip
+        raise InputError(
+            f"{n} observation files given but {what}: {extra} would be ignored; "
+            "give only the files to use"
+        )
+    if n == 0:
+        if inp.nav is not None:
+            raise InputError(
+                f"{_show(label('inputs', 'nav'), inp.nav)} given without observation files: "
+                "the demo uses its own navigation file; give the observation files too"
+            )
+        if inp.receiver_xyz_m:
+            raise InputError(
+                f"{label('inputs', 'receiver_xyz_m')} given without observation files "
+                "(the demo knows its positions)"
+            )
+        return
+    if inp.nav is None:
+        raise InputError(
+            f"a navigation (or SP3) file is needed for elevations with {lab}: give "
+            f"{label('inputs', 'nav')}"
+        )
+    if len(inp.receiver_xyz_m) > n:
+        raise InputError(
+            f"{label('inputs', 'receiver_xyz_m')} gives {len(inp.receiver_xyz_m)} positions for "
+            f"{n} observation file(s)"
+        )
+
+
+def _rule_method_options(cfg: FitConfig, label: Label) -> None:
+    """Options one isolation method would ignore are errors with the other."""
+    method = _method(cfg)
+    inp = cfg.inputs
+    if method == "da":
+        ignored = [("inputs", "signals", inp.signals)] if inp.signals else []
+        for section in ("cutoff", "filter", "validation"):
+            ignored += [(section, k, v) for k, v in _changed(getattr(cfg, section)).items()]
+        roti = ("roti_threshold_tecu_min", "roti_cap_tecu_min", "elevation_scaled", "ionosphere")
+        ignored += [("screening", k, v) for k, v in _changed(cfg.screening).items() if k in roti]
+        if ignored:
+            sec, k, v = ignored[0]
+            what = "the dual-frequency phase pair" if k == "signals" else "a dual-frequency option"
+            raise InputError(
+                f"{_show(label(sec, k), v)} is {what}, but two observation files make the run "
+                "dual-antenna, which applies no high-pass filter and no ionosphere screening; "
+                "remove it, or give one file for dual-frequency"
+            )
+    elif method in ("df", "demo") and inp.da_signal != InputsConfig().da_signal:
+        raise InputError(
+            f"{_show(label('inputs', 'da_signal'), inp.da_signal)} is a dual-antenna option but "
+            "the run is dual-frequency (one observation file); use "
+            f"{label('inputs', 'signals')} for the phase pair"
+        )
+    if method == "df" and not inp.signals:
+        from psdbound.io import DEFAULT_SIGNALS
+
+        if inp.system not in DEFAULT_SIGNALS:
+            system = _show(label("inputs", "system"), inp.system)
+            raise InputError(
+                f"no default dual-frequency signal pair for {system}; give "
+                f"{label('inputs', 'signals')} (defaults exist for {', '.join(DEFAULT_SIGNALS)})"
+            )
+
+
+def _rule_cutoff(cfg: FitConfig, label: Label) -> None:
+    f_c = getattr(cfg.cutoff, "f_c_hz", None)
+    source = getattr(cfg.cutoff, "source", "auto")
+    if source == "given" and f_c is None:
+        raise InputError(
+            f"{_show(label('cutoff', 'source'), source)} needs {label('cutoff', 'f_c_hz')}"
+        )
+    if source not in ("auto", "given") and f_c is not None:
+        raise InputError(
+            f"{_show(label('cutoff', 'source'), source)} and "
+            f"{_show(label('cutoff', 'f_c_hz'), f_c)} conflict: the {source} cutoff would "
+            "replace the given one; give one or the other"
+        )
+
+
+def _rule_filter(cfg: FitConfig, label: Label) -> None:
+    hp, changed = cfg.filter, _changed(cfg.filter)
+    if hp.kind == "fir" and "order" in changed:
+        raise InputError(
+            f"{_show(label('filter', 'order'), hp.order)} is not used by "
+            f"{_show(label('filter', 'kind'), 'fir')} (the FIR length is 4 / f_c)"
+        )
+    if hp.kind != "cheby2" and "stopband_db" in changed:
+        raise InputError(
+            f"{_show(label('filter', 'stopband_db'), hp.stopband_db)} is only used by "
+            f"{_show(label('filter', 'kind'), 'cheby2')}, not {hp.kind}"
+        )
+
+
+def _rule_mapping(cfg: FitConfig, label: Label) -> None:
+    mp = cfg.mapping
+    set_ = [k for k in ("a", "b", "c_deg") if k in _changed(mp)]
+    if mp.kind != "fixed" and set_:
+        raise InputError(
+            f"{_show(label('mapping', set_[0]), getattr(mp, set_[0]))} is only used with "
+            f"{_show(label('mapping', 'kind'), 'fixed')}, but the mapping is {mp.kind!r}"
+        )
+
+
+def _rule_spectra(cfg: FitConfig, label: Label) -> None:
+    try:
+        check_estimator_options(cfg.spectra.estimator, cfg.spectra.options)
+    except OptionError as exc:
+        raise exc.relabel(label("spectra", exc.name)) from None
+    b = cfg.bound
+    if b.target != "upper" and "level" in _changed(b):
+        raise InputError(
+            f"{_show(label('bound', 'level'), b.level)} is only used with "
+            f"{_show(label('bound', 'target'), 'upper')}"
+        )
+
+
+_RULES = (
+    _rule_inputs,
+    _rule_method_options,
+    _rule_cutoff,
+    _rule_filter,
+    _rule_mapping,
+    _rule_spectra,
+)

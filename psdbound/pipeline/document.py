@@ -26,6 +26,7 @@ _WHITE_CONVENTION = (
 
 
 def stage_warnings(
+    inputs: InputData,
     cutoff: CutoffChoice | None,
     isolated: Isolated,
     screened: Screened,
@@ -35,7 +36,8 @@ def stage_warnings(
     interval_s: float,
 ) -> list[str]:
     """Return every stage's warnings, in pipeline order."""
-    out = list(cutoff.warnings if cutoff is not None else ())
+    out = list(inputs.warnings)
+    out += list(cutoff.warnings if cutoff is not None else ())
     out += [*isolated.warnings, *screened.warnings, *windowed.warnings]
     if bounded.bound.sigma_wn_m == 0.0:
         out.append(
@@ -183,7 +185,7 @@ def build_document(
         },
         "windows": _windows_section(windowed, bounded),
         "validation": validated.summary,
-        "warnings": stage_warnings(cutoff, isolated, screened, windowed, bounded, validated,
+        "warnings": stage_warnings(inputs, cutoff, isolated, screened, windowed, bounded, validated,
                                    interval_s),
         "provenance": {
             "inputs": list(inputs.files),

@@ -228,6 +228,7 @@ def fit(
         when the data hold no usable arc or window.
     """
     cfg = _config_from(obs, nav, config, options)
+    cfg.check()  # conflicting options and ignored files are errors before anything is read
     say = progress or (lambda msg: None)
     t0 = time.perf_counter()
     inputs = stages.read_inputs(cfg.inputs, progress=say)

@@ -39,6 +39,8 @@ class InputData:
         Year of the first epoch.
     demo : dict or None
         The demo's truth metadata when the embedded demo was used.
+    warnings : tuple of str
+        What the readers skipped or corrected (e.g. a duplicated epoch).
     """
 
     method: str
@@ -50,6 +52,7 @@ class InputData:
     lon_deg: float | None
     year: int
     demo: dict[str, Any] | None = None
+    warnings: tuple[str, ...] = ()
 
     @property
     def interval_s(self) -> float:

@@ -127,7 +127,8 @@ def read_inputs(options: InputsConfig, *, progress: Progress = _quiet) -> InputD
         for role, p in [*(("obs", q) for q in obs_paths), ("nav", nav_path)]
     )
     year = int(str(obs[0].times[0])[:4])
-    return InputData(method, obs, orbit, files, rx, lat, lon, year, demo)
+    notes = tuple(str(w) for o in (*obs, orbit) for w in getattr(o, "warnings", ()) or ())
+    return InputData(method, obs, orbit, files, rx, lat, lon, year, demo, notes)
 
 
 def choose_cutoff(inputs: InputData, options: CutoffOptions) -> CutoffChoice | None:

@@ -46,6 +46,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from psdbound.common.options import Number, check_fields, option
+
 __all__ = ["VerdictOptions", "judge"]
 
 
@@ -63,12 +65,21 @@ class VerdictOptions:
         Smallest ``f_Nyquist / f_c``.
     max_excluded_fraction : float, default 0.5
         Largest fraction of the data the screening may exclude.
+
+    Raises
+    ------
+    OptionError
+        A value of the wrong type or outside its range (fractions in
+        [0, 1], the band ratio at least 1, the tau multiple > 0).
     """
 
-    min_tau_multiple: float = 50.0
-    max_filter_loss: float = 0.5
-    min_band_ratio: float = 4.0
-    max_excluded_fraction: float = 0.5
+    min_tau_multiple: float = option(50.0, Number(lo=0.0, hi=1e6, lo_open=True))
+    max_filter_loss: float = option(0.5, Number(lo=0.0, hi=1.0))
+    min_band_ratio: float = option(4.0, Number(lo=1.0, hi=1e6))
+    max_excluded_fraction: float = option(0.5, Number(lo=0.0, hi=1.0))
+
+    def __post_init__(self) -> None:
+        check_fields(self)
 
 
 def _covered_s(per_window: list[dict[str, Any]], interval_s: float) -> float:

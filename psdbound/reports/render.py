@@ -16,7 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.backends.backend_pdf import PdfPages  # noqa: E402
 
-from psdbound.common import atomic_folder  # noqa: E402
+from psdbound.common.outputs import output_folder  # noqa: E402
 from psdbound.reports.figures import FIGURES  # noqa: E402
 from psdbound.results import write_document  # noqa: E402
 
@@ -143,13 +143,22 @@ def render_pdf(document: dict[str, Any], path: str | os.PathLike[str]) -> Path:
 
 
 def write_report_folder(
-    document: dict[str, Any], out_dir: str | os.PathLike[str], *, pdf: bool = True
+    document: dict[str, Any],
+    out_dir: str | os.PathLike[str],
+    *,
+    pdf: bool = True,
+    overwrite: bool = False,
+    option: str = "output folder",
 ) -> dict[str, Path]:
-    """Write ``result.json``, ``report.html`` (and ``report.pdf``) atomically.
+    """Write ``result.json``, ``report.html`` (and ``report.pdf``) safely and atomically.
 
-    Everything is written into a temporary sibling folder that replaces
-    ``out_dir`` only when complete: a failed run leaves no half-written folder
-    (and an existing folder untouched).
+    Everything is written into a temporary folder that is installed only
+    when complete: a failed run leaves no half-written folder (and an
+    existing folder untouched). An existing ``out_dir`` is replaced only when
+    it is empty or a previous psdbound output; any other folder is refused
+    unless ``overwrite`` (then psdbound's three files are written into it and
+    nothing else is touched); an existing file is always refused (see
+    :mod:`psdbound.common.outputs`).
 
     Parameters
     ----------
@@ -159,14 +168,23 @@ def write_report_folder(
         Destination folder.
     pdf : bool, default True
         Also write the PDF report.
+    overwrite : bool, default False
+        Allow writing into a folder that is not a psdbound output.
+    option : str, default "output folder"
+        How to name the destination in messages (the CLI passes ``"--out"``).
 
     Returns
     -------
     dict of str to Path
         ``{"result": ..., "html": ..., "pdf": ...}``.
+
+    Raises
+    ------
+    InputError
+        The destination is refused (checked before anything is rendered).
     """
     out = Path(out_dir)
-    with atomic_folder(out) as tmp:
+    with output_folder(out, overwrite=overwrite, option=option) as tmp:
         write_document(tmp / "result.json", document)
         (tmp / "report.html").write_text(render_html(document))
         if pdf:

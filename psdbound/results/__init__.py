@@ -9,18 +9,22 @@ and write through it.
 from __future__ import annotations
 
 from psdbound.results.schema import (
+    NUMBER_FIELDS,
     REQUIRED_FIELDS,
     SCHEMA_VERSION,
     get_field,
+    number_problems,
     read_document,
     to_jsonable,
     write_document,
 )
 
 __all__ = [
+    "NUMBER_FIELDS",
     "REQUIRED_FIELDS",
     "SCHEMA_VERSION",
     "get_field",
+    "number_problems",
     "read_document",
     "to_jsonable",
     "write_document",

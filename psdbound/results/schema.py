@@ -15,7 +15,9 @@ from psdbound.errors import InputError
 
 __all__ = [
     "SCHEMA_VERSION",
+    "NUMBER_FIELDS",
     "REQUIRED_FIELDS",
+    "number_problems",
     "to_jsonable",
     "get_field",
     "write_document",
@@ -48,6 +50,50 @@ REQUIRED_FIELDS = (
     "provenance.created_utc",
     "figures",
 )
+
+#: Dotted paths documented as numbers: always finite numbers in a result, never ``null``.
+#: The values of ``NULLABLE_WHEN`` may be ``null`` for the method named there.
+NUMBER_FIELDS = (
+    "bound.sigma_gm_m",
+    "bound.tau_s",
+    "bound.sigma_wn_m",
+    "bound.n_wn_two_sided_m2_hz",
+    "bound.dt_s",
+    "bound.total_variance_m2",
+    "cutoff.f_c_hz",
+    "cutoff.tau_c_min",
+    "sampling.interval_s",
+    "sampling.nyquist_hz",
+    "mapping.a",
+    "mapping.b",
+    "mapping.c_deg",
+    "windows.count",
+    "windows.total_duration_s",
+    "screening.excluded_s",
+    "screening.excluded_fraction",
+    "screening.multipath_limit_m",
+)
+#: Number fields that are ``null`` by design for one method (no high-pass for dual-antenna).
+NULLABLE_WHEN = {"cutoff.f_c_hz": "DA", "cutoff.tau_c_min": "DA"}
+
+
+def number_problems(document: dict[str, Any]) -> list[str]:
+    """Return the documented number fields that are not finite numbers (``null``, NaN, text).
+
+    Fields absent from the document are not reported (:data:`REQUIRED_FIELDS` is checked
+    separately); ``null`` is accepted where :data:`NULLABLE_WHEN` allows it.
+    """
+    out = []
+    for f in NUMBER_FIELDS:
+        try:
+            v = get_field(document, f)
+        except KeyError:
+            continue
+        if v is None and NULLABLE_WHEN.get(f) == document.get("method"):
+            continue
+        if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
+            out.append(f"'{f}' must be a finite number, got {json.dumps(to_jsonable(v))}")
+    return out
 
 
 def to_jsonable(obj: Any) -> Any:
@@ -88,14 +134,29 @@ def write_document(path: str | os.PathLike[str], document: dict[str, Any]) -> Pa
     path : str or path-like
         Target file (``result.json``).
     document : dict
-        The document; numpy values are converted, NaN becomes ``null``.
+        The document; numpy values are converted, NaN becomes ``null`` (only
+        where the schema allows it: see :data:`NUMBER_FIELDS`).
 
     Returns
     -------
     Path
         The written path.
+
+    Raises
+    ------
+    ValueError
+        A documented number (:data:`NUMBER_FIELDS`) is NaN, infinite or
+        missing its value: a result that looks like a number but is none is
+        never written (an internal error: the stages must not produce it).
     """
-    text = json.dumps(to_jsonable(document), indent=1, allow_nan=False) + "\n"
+    data = to_jsonable(document)
+    bad = number_problems(data)
+    if bad:
+        raise ValueError(
+            "refusing to write a result whose documented numbers are not numbers: "
+            + ", ".join(bad)
+        )
+    text = json.dumps(data, indent=1, allow_nan=False) + "\n"
     return atomic_write_text(path, text)
 
 
@@ -138,4 +199,7 @@ def read_document(path: str | os.PathLike[str]) -> dict[str, Any]:
             get_field(data, f)
         except KeyError:
             raise InputError(f"result file lacks the field {f!r}", path=p) from None
+    bad = number_problems(data)
+    if bad:
+        raise InputError(f"no number where the schema documents one: {bad[0]}", path=p)
     return data

@@ -77,7 +77,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from psdbound.errors import InputError
+from psdbound.common.options import Boolean, Number, OptionError, check_fields, option
 from psdbound.io.signals import carrier_frequency_hz, wavelength_m
 from psdbound.isolation import MultipathSeries
 from psdbound.screening.plausibility import multipath_limit_m
@@ -112,29 +112,35 @@ class ScreeningOptions:
         Apply the ROTI test (dual-frequency only).
     plausibility : bool, default True
         Apply the carrier-multipath limit.
+
+    Raises
+    ------
+    OptionError
+        A value of the wrong type or outside its range (thresholds > 0 and at
+        most 100 TECU/min, the cap not below the threshold, the guard from 0
+        to 86400 s).
     """
 
-    roti_threshold_tecu_min: float = 0.15
-    roti_cap_tecu_min: float | None = None
-    elevation_scaled: bool = True
-    guard_s: float | None = None
-    ionosphere: bool = True
-    plausibility: bool = True
+    roti_threshold_tecu_min: float = option(
+        0.15, Number(lo=0.0, hi=100.0, lo_open=True, unit="TECU/min")
+    )
+    roti_cap_tecu_min: float | None = option(
+        None, Number(lo=0.0, hi=100.0, lo_open=True, unit="TECU/min", optional=True)
+    )
+    elevation_scaled: bool = option(True, Boolean())
+    guard_s: float | None = option(None, Number(lo=0.0, hi=86400.0, unit="s", optional=True))
+    ionosphere: bool = option(True, Boolean())
+    plausibility: bool = option(True, Boolean())
 
     def __post_init__(self) -> None:
-        if not (np.isfinite(self.roti_threshold_tecu_min) and self.roti_threshold_tecu_min > 0):
-            raise InputError(
-                "screening roti_threshold_tecu_min must be a number > 0 TECU/min, got "
-                f"{self.roti_threshold_tecu_min!r}"
-            )
+        check_fields(self)
         cap = self.roti_cap_tecu_min
-        if cap is not None and not (np.isfinite(cap) and cap >= self.roti_threshold_tecu_min):
-            raise InputError(
-                "screening roti_cap_tecu_min must be a number >= roti_threshold_tecu_min, got "
-                f"{self.roti_cap_tecu_min!r}"
-            )
-        if self.guard_s is not None and not (np.isfinite(self.guard_s) and self.guard_s >= 0):
-            raise InputError(f"screening guard_s must be a number >= 0 s, got {self.guard_s!r}")
+        if cap is not None and cap < self.roti_threshold_tecu_min:
+            raise OptionError(
+                "roti_cap_tecu_min", cap,
+                f"a number >= roti_threshold_tecu_min = {self.roti_threshold_tecu_min:g} "
+                "TECU/min (or unset)",
+            )  # fmt: skip
 
 
 @dataclass(frozen=True)

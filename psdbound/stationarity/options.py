@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 from numpy.typing import ArrayLike
 
+from psdbound.common.options import Choice, Number, check_fields, option
 from psdbound.errors import InputError
 from psdbound.stationarity.mapping import THESIS_MAPPING, ElevationMapping, fit_mapping
 
@@ -24,15 +25,25 @@ class MappingOptions:
         The thesis's (1, 29, 10 deg), the given ``a, b, c_deg``, or fitted
         to the data's RMS per elevation bin.
     a, b : float
-        Dimensionless coefficients (``kind="fixed"``).
+        Dimensionless coefficients (``kind="fixed"``): ``0 < a <= 1000``,
+        ``0 <= b <= 10000`` (so that ``m(el) > 0``).
     c_deg : float
-        Width, degrees (``kind="fixed"``).
+        Width, degrees (``kind="fixed"``), ``0 < c_deg <= 90``.
+
+    Raises
+    ------
+    OptionError
+        A value of the wrong type or outside its range. That ``a, b, c_deg``
+        are only set with ``kind="fixed"`` is checked by ``FitConfig.check``.
     """
 
-    kind: str = "thesis"
-    a: float = 1.0
-    b: float = 29.0
-    c_deg: float = 10.0
+    kind: str = option("thesis", Choice(MAPPING_KINDS, noun="mapping kind"))
+    a: float = option(1.0, Number(lo=0.0, hi=1e3, lo_open=True))
+    b: float = option(29.0, Number(lo=0.0, hi=1e4))
+    c_deg: float = option(10.0, Number(lo=0.0, hi=90.0, lo_open=True, unit="deg"))
+
+    def __post_init__(self) -> None:
+        check_fields(self)
 
 
 @dataclass(frozen=True)
@@ -42,20 +53,28 @@ class StationarityOptions:
     Parameters
     ----------
     alpha : float
-        Significance level of the Levene and K-S tests.
+        Significance level of the Levene and K-S tests, in (0, 1).
     p_slide, p_trim : float
-        Slide and trim coefficients.
+        Slide (> 1, at most 100) and trim (in (0, 1)) coefficients.
     min_window_s : float
-        Minimum window length, seconds.
+        Minimum window length, seconds (> 0, at most 86400).
     levene_center : {"mean", "median"}
         Centre of the Levene test.
+
+    Raises
+    ------
+    OptionError
+        A value of the wrong type or outside its range.
     """
 
-    alpha: float = 0.05
-    p_slide: float = 1.2
-    p_trim: float = 0.8
-    min_window_s: float = 600.0
-    levene_center: str = "mean"
+    alpha: float = option(0.05, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True))
+    p_slide: float = option(1.2, Number(lo=1.0, hi=100.0, lo_open=True))
+    p_trim: float = option(0.8, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True))
+    min_window_s: float = option(600.0, Number(lo=0.0, hi=86400.0, lo_open=True, unit="s"))
+    levene_center: str = option("mean", Choice(("mean", "median"), noun="Levene centre"))
+
+    def __post_init__(self) -> None:
+        check_fields(self)
 
 
 def choose_mapping(

@@ -82,6 +82,36 @@ def test_report_rerenders_from_result_alone(demo_run, tmp_path):
     assert html.count("data:image/png;base64,") >= 5
 
 
+def test_report_out_never_loses_a_user_file(demo_run, tmp_path, capsys):
+    """--out: a user's folder is refused (or, with --overwrite, only added to); a previous
+    output is replaced atomically; a file is never replaced."""
+    from psdbound.cli import main
+
+    work, _ = demo_run
+    src = work / "reports" / "demo" / "result.json"
+    user = tmp_path / "user"
+    user.mkdir()
+    (user / "notes.txt").write_text("my notes\n")
+    assert main(["report", str(src), "--out", str(user), "--no-pdf"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "not a psdbound output" in err[0]
+    assert sorted(p.name for p in user.iterdir()) == ["notes.txt"]
+    assert main(["report", str(src), "--out", str(user), "--no-pdf", "--overwrite"]) == 0
+    assert sorted(p.name for p in user.iterdir()) == ["notes.txt", "report.html", "result.json"]
+    assert (user / "notes.txt").read_text() == "my notes\n"
+    # a previous output (the demo's) is replaced as a whole, nothing hidden is left behind
+    prev = tmp_path / "prev"
+    shutil.copytree(work / "reports" / "demo", prev)
+    assert main(["report", str(prev / "result.json"), "--no-pdf", "--quiet"]) == 0
+    assert sorted(p.name for p in prev.iterdir()) == ["report.html", "result.json"]
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]
+    afile = tmp_path / "afile"
+    afile.write_text("x")
+    assert main(["report", str(src), "--out", str(afile)]) == 2
+    assert afile.read_text() == "x" and not [p for p in tmp_path.iterdir()
+                                             if p.name.startswith(".")]  # fmt: skip
+
+
 def test_config_file_is_applied_and_saved(tmp_path, demo_run):
     work, _ = demo_run
     cfg = tmp_path / "run.toml"
