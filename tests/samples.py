@@ -13,6 +13,21 @@ from psdbound.io.timescales import calendar_to_gps_s
 from psdbound.io.write import write_obs_v3
 
 
+def _header(marker: str, interval_s: float, codes) -> ObsHeader:
+    """A GPS RINEX 3.04 header of a synthetic receiver near ESBC."""
+    return ObsHeader(
+        version=3.04,
+        file_system="G",
+        marker_name=marker,
+        receiver_type="SYNTH",
+        antenna_type="NONE",
+        approx_position_m=np.array([3582105.291, 532589.7313, 5232754.8054]),
+        antenna_delta_hen_m=np.zeros(3),
+        interval_s=interval_s,
+        time_system="GPS",
+        obs_types={"G": codes},
+    )
+
 def small_observations(n_epoch: int = 40, interval_s: float = 30.0, seed: int = 1) -> Observations:
     """Two GPS satellites, L1C/L2W/C1C/S1C, 30 s, with a loss-of-lock flag and a gap."""
     rng = np.random.default_rng(seed)
@@ -33,18 +48,7 @@ def small_observations(n_epoch: int = 40, interval_s: float = 30.0, seed: int = 
     lli[20, 0, 1] = 1  # loss of lock on G05 L1C
     ssi = np.where(np.isfinite(v), 7, -1).astype(np.int8)
     ssi[:, :, 3] = -1
-    header = ObsHeader(
-        version=3.04,
-        file_system="G",
-        marker_name="TEST",
-        receiver_type="SYNTH",
-        antenna_type="NONE",
-        approx_position_m=np.array([3582105.291, 532589.7313, 5232754.8054]),
-        antenna_delta_hen_m=np.zeros(3),
-        interval_s=interval_s,
-        time_system="GPS",
-        obs_types={"G": codes},
-    )
+    header = _header("TEST", interval_s, codes)
     block = SystemBlock("G", sats, codes, v, lli, ssi)
     return Observations("synthetic", header, t, np.zeros(n_epoch, np.int8), {"G": block})
 
@@ -113,18 +117,7 @@ def moving_observations(n_epoch: int = 40, interval_s: float = 30.0, seed: int =
     v = np.round(v, 3)
     lli = np.full(v.shape, -1, np.int8)
     ssi = np.full(v.shape, -1, np.int8)
-    header = ObsHeader(
-        version=3.04,
-        file_system="G",
-        marker_name="MOVE",
-        receiver_type="SYNTH",
-        antenna_type="NONE",
-        approx_position_m=np.array([3582105.291, 532589.7313, 5232754.8054]),
-        antenna_delta_hen_m=np.zeros(3),
-        interval_s=interval_s,
-        time_system="GPS",
-        obs_types={"G": codes},
-    )
+    header = _header("MOVE", interval_s, codes)
     block = SystemBlock("G", sats, codes, v, lli, ssi)
     return Observations("moving", header, t, np.zeros(n_epoch, np.int8), {"G": block})
 
