@@ -41,11 +41,16 @@ FLAGS: dict[tuple[str, str], str] = {
     ("mapping", "a"): "--mapping",
     ("mapping", "b"): "--mapping",
     ("mapping", "c_deg"): "--mapping",
+    ("stationarity", "test"): "--stationarity",
+    ("stationarity", "windows"): "--windows",
     ("stationarity", "alpha"): "--alpha",
     ("stationarity", "p_slide"): "--p-slide",
     ("stationarity", "p_trim"): "--p-trim",
     ("stationarity", "min_window_s"): "--min-window-s",
     ("spectra", "estimator"): "--estimator",
+    ("bound", "rule"): "--rule",
+    ("bound", "confidence_level"): "--confidence-level",
+    ("bound", "coverage"): "--coverage",
     ("bound", "objective"): "--objective",
     ("bound", "target"): "--target",
     ("bound", "level"): "--level",
@@ -112,6 +117,12 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--filter-order", type=float, help="IIR filter order, 1 to 20 (4)")
     p.add_argument("--edge", choices=("trim", "pad"), help="filter edge handling (trim)")
     p.add_argument("--mapping", help="elevation mapping: thesis, fit, or a,b,c (c in degrees)")
+    p.add_argument("--stationarity", choices=("spectral", "thesis"),
+                   help="stationarity test: spectral homogeneity of the window halves, valid "
+                   "for correlated samples (default), or thesis (Levene then K-S)")
+    p.add_argument("--windows", choices=("disjoint", "slide"),
+                   help="windows: disjoint tiles (default, needed by --rule pooled) or the "
+                   "thesis's overlapping slide rule")
     p.add_argument("--alpha", type=float, help="stationarity significance level (0.05)")
     p.add_argument("--p-slide", type=float, help="windowing slide coefficient (1.2)")
     p.add_argument("--p-trim", type=float, help="windowing trim coefficient (0.8)")
@@ -119,9 +130,17 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--estimator", choices=("multitaper", "welch", "blackman-tukey"), help="PSD estimator"
     )
+    p.add_argument("--rule", choices=("pooled", "envelope"),
+                   help="bound pooled confidence limits of the windows' spectra (default) or "
+                   "the thesis's envelope of every window's PSD (use with --windows slide)")
+    p.add_argument("--confidence-level", type=float,
+                   help="family-wise confidence of the pooled bound (0.95)")
+    p.add_argument("--coverage", type=float,
+                   help="pooled rule: fraction of differing windows covered (0.99)")
     p.add_argument("--objective", choices=("variance", "area"), help="tightness objective")
-    p.add_argument("--target", choices=("point", "upper"), help="bound estimates or CI tops")
-    p.add_argument("--level", type=float, help="confidence level for --target upper (0.95)")
+    p.add_argument("--target", choices=("point", "upper"),
+                   help="envelope rule: bound estimates or CI tops (point)")
+    p.add_argument("--level", type=float, help="envelope rule: level for --target upper (0.95)")
     p.add_argument(
         "--geometry",
         action="append",
@@ -165,10 +184,13 @@ def _cli_values(args: argparse.Namespace) -> list[tuple[str, dict[str, Any], dic
         ("filter", dict(kind=args.filter, order=args.filter_order, edge=args.edge), {}),
         ("screening", dict(roti_threshold_tecu_min=args.roti_threshold), {}),
         ("mapping", mapping, {}),
-        ("stationarity", dict(alpha=args.alpha, p_slide=args.p_slide, p_trim=args.p_trim,
+        ("stationarity", dict(test=args.stationarity, windows=args.windows, alpha=args.alpha,
+                              p_slide=args.p_slide, p_trim=args.p_trim,
                               min_window_s=args.min_window_s), {}),
         ("spectra", dict(estimator=args.estimator), {}),
-        ("bound", dict(objective=args.objective, target=args.target, level=args.level), {}),
+        ("bound", dict(rule=args.rule, confidence_level=args.confidence_level,
+                       coverage=args.coverage, objective=args.objective, target=args.target,
+                       level=args.level), {}),
         ("validation", dict(geometries=tuple(args.geometry) if args.geometry else None,
                             threshold=args.validation_threshold), {}),
         ("output", dict(out=args.out, name=args.name, pdf=False if args.no_pdf else None,

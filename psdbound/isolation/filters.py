@@ -164,6 +164,34 @@ class HighPass:
         _, h = signal.sosfreqz(self.sos(interval_s, cutoff_hz), worN=f_hz, fs=fs)
         return np.abs(h) ** 2
 
+    def passband_start_hz(
+        self, interval_s: float, cutoff_hz: float, *, power: float = 0.9
+    ) -> float:
+        """Lowest frequency above which the filter passes at least ``power`` of the PSD, Hz.
+
+        Below it the high-passed series under-represents the multipath
+        spectrum by more than ``1 - power``; the pooled bound starts there.
+
+        Parameters
+        ----------
+        interval_s : float
+            Sampling interval, seconds.
+        cutoff_hz : float
+            Cutoff frequency, Hz.
+        power : float, default 0.9
+            Power response ``|H(f)|^2`` required, in (0, 1).
+
+        Returns
+        -------
+        float
+        """
+        nyq = self.check_cutoff(cutoff_hz, interval_s)
+        f = np.geomspace(cutoff_hz, nyq, 2000)
+        low = np.flatnonzero(self.response(f, interval_s, cutoff_hz) ** 2 < power)
+        if low.size == 0:
+            return float(cutoff_hz)
+        return float(f[min(low[-1] + 1, f.size - 1)])
+
     def describe(self, interval_s: float, cutoff_hz: float) -> dict[str, Any]:
         """Provenance of the filter as applied: design, zero-phase method, edges."""
         d: dict[str, Any] = {

@@ -491,6 +491,27 @@ def _rule_spectra(cfg: FitConfig, label: Label) -> None:
             f"{_show(label('bound', 'level'), b.level)} is only used with "
             f"{_show(label('bound', 'target'), 'upper')}"
         )
+    envelope_only = [k for k in ("target", "level") if k in _changed(b)]
+    if b.rule == "pooled" and envelope_only:
+        raise InputError(
+            f"{_show(label('bound', envelope_only[0]), getattr(b, envelope_only[0]))} is only "
+            f"used with {_show(label('bound', 'rule'), 'envelope')}; the pooled rule states "
+            f"its confidence with {label('bound', 'confidence_level')}"
+        )
+    pooled_only = [k for k in ("confidence_level", "coverage", "homogeneity_alpha",
+                               "bands_per_decade") if k in _changed(b)]  # fmt: skip
+    if b.rule == "envelope" and pooled_only:
+        raise InputError(
+            f"{_show(label('bound', pooled_only[0]), getattr(b, pooled_only[0]))} is only "
+            f"used with {_show(label('bound', 'rule'), 'pooled')}"
+        )
+    if b.rule == "pooled" and cfg.stationarity.windows != "disjoint":
+        raise InputError(
+            f"{_show(label('bound', 'rule'), 'pooled')} needs "
+            f"{_show(label('stationarity', 'windows'), 'disjoint')} (overlapping windows' "
+            f"spectra are not independent); use {_show(label('bound', 'rule'), 'envelope')} "
+            "with the slide rule"
+        )
 
 
 _RULES = (

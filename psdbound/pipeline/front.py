@@ -124,6 +124,21 @@ class FitResults:
             f"({w['total_duration_s'] / 3600:.2f} h); validation: "
             f"{d['validation'].get('verdict', 'n/a')}",
         ]
+        if w.get("covered_fraction") is not None:
+            lines.append(
+                f"  data covered by the bound: {w['covered_s'] / 3600:.2f} h of "
+                f"{w['data_s'] / 3600:.2f} h ({100 * w['covered_fraction']:.1f} %); rule "
+                f"{b.get('rule', 'envelope')}"
+                + (f", confidence {100 * b['confidence_level']:g} %"
+                   if b.get("confidence_level") else "")  # fmt: skip
+            )
+        demo = d.get("demo")
+        if demo and demo.get("variance_ratio") is not None:
+            lines.append(
+                f"  demo truth: bound variance / injected variance = "
+                f"{demo['variance_ratio']:.2f}; bound PSD / truth PSD >= "
+                f"{demo['min_psd_ratio']:.2f} over the bound's band"
+            )
         if d["warnings"]:
             lines.append(f"  {len(d['warnings'])} warning(s):")
             lines += [f"  - {x}" for x in d["warnings"]]
@@ -244,7 +259,8 @@ def fit(
                              min_length_s=cfg.stationarity.min_window_s, progress=say)
     windowed = stages.window(screened, mapping=cfg.mapping, options=cfg.stationarity,
                              progress=say)  # fmt: skip
-    bounded = stages.bound(windowed, spectra=cfg.spectra, options=cfg.bound, progress=say)
+    bounded = stages.bound(windowed, spectra=cfg.spectra, options=cfg.bound, cutoff=cutoff,
+                           highpass=cfg.filter, progress=say)  # fmt: skip
     validated = stages.validate(cutoff, inputs=inputs, isolated=isolated, arcs=cfg.arcs,
                                 options=cfg.validation, progress=say)
     products = dict(inputs=inputs, cutoff=cutoff, isolated=isolated, screened=screened,

@@ -336,11 +336,13 @@ def window(
         No stationary window of the minimum length.
     """
     series = screened.series
-    progress("elevation mapping and stationarity windows (Levene, then K-S)")
+    test = "Levene, then K-S" if options.test == "thesis" else "spectral homogeneity"
+    progress(f"elevation mapping and stationarity windows ({test}, {options.windows})")
     m = choose_mapping(mapping, series.value_m, series.elevation_deg)
     windows = find_stationary_windows(
         series, mapping=m, alpha=options.alpha, p_slide=options.p_slide,
         p_trim=options.p_trim, min_length_s=options.min_window_s, center=options.levene_center,
+        test=options.test, overlap=options.windows == "slide",
     )  # fmt: skip
     if len(windows) == 0:
         raise NoDataError(
@@ -361,6 +363,8 @@ def bound(
     *,
     spectra: SpectraOptions,
     options: BoundOptions,
+    cutoff: CutoffChoice | None = None,
+    highpass: HighPass | None = None,
     progress: Progress = _quiet,
 ) -> BoundResults:
     """Estimate every window's PSD and fit the tightest GM + white-noise bound.
@@ -370,15 +374,31 @@ def bound(
     windowed : Windowed
     spectra : SpectraOptions
     options : BoundOptions
+    cutoff : CutoffChoice, optional
+        The high-pass cutoff (None: dual-antenna, no filter).
+    highpass : HighPass, optional
+        The filter design; the pooled rule bounds from where it passes 90 %
+        of the power (:meth:`~psdbound.isolation.HighPass.passband_start_hz`).
+        Without cutoff: from twice the lowest frequency of the longest window.
     progress : callable, optional
 
     Returns
     -------
     BoundResults
     """
-    progress(f"{len(windowed.windows)} windows: PSDs ({spectra.estimator}) and bound")
+    progress(f"{len(windowed.windows)} windows: PSDs ({spectra.estimator}) and the "
+             f"{options.rule} bound")  # fmt: skip
     model = BoundModel(windowed.windows, estimator=spectra.estimator, **spectra.options)
-    return model.fit(objective=options.objective, target=options.target, level=options.level)
+    f_min_hz = None
+    if cutoff is not None:
+        f_min_hz = (highpass or HighPass()).passband_start_hz(windowed.windows.interval_s,
+                                                             cutoff.f_c_hz)  # fmt: skip
+    return model.fit(
+        rule=options.rule, objective=options.objective, f_min_hz=f_min_hz,
+        confidence_level=options.confidence_level, coverage=options.coverage,
+        homogeneity_alpha=options.homogeneity_alpha,
+        bands_per_decade=options.bands_per_decade, target=options.target, level=options.level,
+    )  # fmt: skip
 
 
 def _resolve_geometries(inputs: InputData, options: ValidationOptions) -> tuple[list[str], str]:

@@ -25,6 +25,13 @@ band
     The cutoff leaves less than ``min_band_ratio`` (default 4, two octaves)
     between ``f_c`` and the Nyquist frequency: the bound is fitted on a band
     too narrow to resolve a Gauss-Markov corner.
+data outside the bound
+    More than ``max_never_stationary_fraction`` (default 20 %) of the data
+    that passed screening never tested stationary, so the bound was not
+    fitted to it. A calibrated test at level 5 % trims about 5 % of
+    stationary data; a fifth means the data are dominated by behaviour the
+    model does not describe. (The share is always reported as
+    ``windows.covered_fraction`` and on page 1 of the report.)
 most data excluded
     Screening excluded more than ``max_excluded_fraction`` (default 50 %) of
     the data: what remains does not represent the station.
@@ -65,6 +72,9 @@ class VerdictOptions:
         Smallest ``f_Nyquist / f_c``.
     max_excluded_fraction : float, default 0.5
         Largest fraction of the data the screening may exclude.
+    max_never_stationary_fraction : float, default 0.2
+        Largest fraction of the screened data left outside every stationary
+        window.
 
     Raises
     ------
@@ -77,6 +87,7 @@ class VerdictOptions:
     max_filter_loss: float = option(0.5, Number(lo=0.0, hi=1.0))
     min_band_ratio: float = option(4.0, Number(lo=1.0, hi=1e6))
     max_excluded_fraction: float = option(0.5, Number(lo=0.0, hi=1.0))
+    max_never_stationary_fraction: float = option(0.2, Number(lo=0.0, hi=1.0))
 
     def __post_init__(self) -> None:
         check_fields(self)
@@ -158,6 +169,14 @@ def judge(document: dict[str, Any], options: VerdictOptions | None = None) -> tu
             f"cutoff validation: the high-pass removes about {1000 * removed:.2f} mm RMS of "
             f"reflector multipath (geometries {', '.join(val.get('geometries_used', []))}), "
             f"more than the bound's sigma_GM {1000 * b['sigma_gm_m']:.2f} mm"
+        )
+    w = document["windows"]
+    frac = w.get("covered_fraction")
+    if frac is not None and 1.0 - frac > opt.max_never_stationary_fraction:
+        reasons.append(
+            f"data outside the bound: {100 * (1.0 - frac):.1f} % of the screened data "
+            f"({w['never_stationary_s'] / 3600:.2f} h) never tested stationary (limit "
+            f"{100 * opt.max_never_stationary_fraction:g} %)"
         )
     scr = document.get("screening")
     if scr and scr.get("excluded_fraction", 0.0) > opt.max_excluded_fraction:

@@ -72,7 +72,17 @@ def render_html(document: dict[str, Any]) -> str:
         figures=figs,
         demo=r.get("demo"),
         validation_note=_validation_note(r),
+        coverage=_coverage_text(r["windows"]),
     )
+
+
+def _coverage_text(w: dict[str, Any]) -> str:
+    """Hours and percent of the screened data inside the bound's windows."""
+    if w.get("covered_fraction") is None:
+        return f"{w['total_duration_s'] / 3600:.2f} h of windows"
+    return (f"{w['covered_s'] / 3600:.2f} h of {w['data_s'] / 3600:.2f} h "
+            f"({100 * w['covered_fraction']:.1f} %); never stationary "
+            f"{w['never_stationary_s'] / 3600:.2f} h")
 
 
 def _summary_page(r: dict[str, Any]):
@@ -86,9 +96,11 @@ def _summary_page(r: dict[str, Any]):
         ("tau_GM", f"{b['tau_s']:.1f} s"),
         ("sigma_WN (per sample)", f"{100 * b['sigma_wn_m']:.3f} cm at {s['interval_s']:g} s"),
         ("N_WN (two-sided)", f"{b['n_wn_two_sided_m2_hz']:.4g} m^2/Hz"),
-        ("total variance", f"{b['total_variance_m2']:.4g} m^2 ({b['objective']}, {b['target']})"),
+        ("data covered by the bound", _coverage_text(w)),
+        ("confidence", b.get("covers") or "n/a"),
+        ("total variance", f"{b['total_variance_m2']:.4g} m^2 ({b['objective']}, "
+                           f"{b.get('rule', 'envelope')} rule)"),
         ("PSD estimator", b["estimator"]),
-        ("min margin bound/data", f"{b['min_margin']:.4f}"),
         ("cutoff f_c", f"{fc}; source: {c['source']}"),
         ("sampling / Nyquist", f"{s['interval_s']:g} s / {s['nyquist_hz']:.4g} Hz"),
         ("windows", f"{w['count']} ({w['total_duration_s'] / 3600:.2f} h), never stationary "

@@ -39,9 +39,11 @@ from scipy.optimize import linprog, minimize_scalar
 from psdbound.errors import InputError
 from psdbound.spectra.models import GaussMarkovWhiteNoise, gm_psd_sampled
 
-__all__ = ["BoundFit", "fit_bound", "OBJECTIVES"]
+__all__ = ["BoundFit", "fit_bound", "OBJECTIVES", "RULES"]
 
 OBJECTIVES = ("variance", "area")
+#: How the data to bound are formed: pooled confidence limits or the thesis's envelope.
+RULES = ("pooled", "envelope")
 
 
 class _PSDLike(Protocol):
@@ -68,12 +70,14 @@ class BoundFit:
     objective_value : float
         Its value at the optimum (m^2).
     target : str
-        ``"point"`` (PSD estimates bounded) or ``"upper"`` (their upper
-        confidence limits at ``level``).
+        ``"point"`` (PSD estimates bounded), ``"upper"`` (their upper
+        confidence limits at ``level``) or ``"pooled"`` (pooled limits of
+        :mod:`psdbound.spectra.pooled` at the family-wise ``level``).
     level : float or None
         Confidence level of the upper limits, when used.
     margins : ndarray
-        Per PSD, the minimum over frequency of ``S_model / S_data`` (>= 1).
+        Per PSD bounded (per window, or per group of windows for the pooled
+        rule), the minimum over frequency of ``S_model / S_data`` (>= 1).
     tau_grid_s, objective_grid : ndarray
         The outer search: ``tau`` values tried and the LP optimum at each.
     n_constraints : int

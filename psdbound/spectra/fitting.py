@@ -15,9 +15,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from psdbound.errors import NoDataError
-from psdbound.spectra.bound import BoundFit, fit_bound
+from psdbound.errors import InputError, NoDataError
+from psdbound.spectra.bound import RULES, BoundFit, fit_bound
 from psdbound.spectra.estimators import PSDEstimate, estimate_psd
+from psdbound.spectra.pooled import BandSpectra, PooledLimits, fit_pooled_bound
 from psdbound.stationarity.windowing import WindowSet
 
 __all__ = ["BoundModel", "BoundResults"]
@@ -39,6 +40,10 @@ class BoundResults:
         PSD estimator used.
     estimator_options : dict
         Its options.
+    rule : {"pooled", "envelope"}
+        How the bounded data were formed.
+    bands, pooled : BandSpectra, PooledLimits or None
+        The pooled rule's band spectra and limits (None for the envelope).
     """
 
     bound: BoundFit
@@ -46,11 +51,48 @@ class BoundResults:
     psds: tuple[PSDEstimate, ...]
     estimator: str
     estimator_options: dict[str, Any] = field(default_factory=dict)
+    rule: str = "envelope"
+    bands: BandSpectra | None = None
+    pooled: PooledLimits | None = None
 
     @property
     def margins(self) -> NDArray[np.float64]:
-        """Per-window minimum of bound/data over frequency (>= 1)."""
-        return self.bound.margins
+        """Per window, the minimum over frequency of bound / point estimate.
+
+        Under the envelope rule with ``target="point"`` every margin is
+        ``>= 1``; under the pooled rule single windows' estimates scatter
+        around the pooled spectrum, so margins below 1 are expected (the
+        bound covers the windows' true PSDs, not each noisy estimate).
+        """
+        if self.rule == "envelope":
+            return self.bound.margins
+        f_min = self.bound.f_min_hz
+        out = []
+        for p in self.psds:
+            use = (p.f_hz >= f_min) & (p.psd_m2_hz > 0)
+            r = self.bound.psd(p.f_hz[use]) / p.psd_m2_hz[use]
+            out.append(float(r.min()) if r.size else np.inf)
+        return np.asarray(out)
+
+    def confidence_statement(self) -> str:
+        """Return what the bound covers, in words."""
+        b = self.bound
+        if self.rule == "envelope":
+            what = ("every window's PSD estimate" if b.target == "point" else
+                    f"every window's {100 * (b.level or 0):g} % upper confidence limit")
+            return (f"the envelope rule (thesis): the bound lies above {what} from "
+                    f"{b.f_min_hz:.3g} Hz to Nyquist; no confidence level is stated for the "
+                    "true PSD of the data")  # fmt: skip
+        pl = self.pooled
+        assert pl is not None
+        return (
+            f"with {100 * pl.confidence_level:g} % confidence (family-wise, Bonferroni over "
+            f"{pl.n_groups} group(s) x {pl.f_hz.size} frequency bands) the bound lies above the "
+            f"mean PSD of each group of windows in every band from {self.bands.edges_hz[0]:.3g} Hz "
+            f"to Nyquist, and, where the windows of a group differ (Cochran's test at "
+            f"{b.meta.get('homogeneity_alpha', 0.05):g}), above the true PSD of "
+            f"{100 * pl.coverage:g} % of its windows (random-effects, lognormal spread)"
+        )
 
     def params(self) -> dict[str, float]:
         """Bound parameters with units in their names."""
@@ -117,21 +159,39 @@ class BoundModel:
     def fit(
         self,
         *,
+        rule: str = "pooled",
         objective: str = "variance",
+        f_min_hz: float | None = None,
+        confidence_level: float = 0.95,
+        coverage: float = 0.99,
+        homogeneity_alpha: float = 0.05,
+        bands_per_decade: int = 10,
         target: str = "point",
         level: float = 0.95,
         n_grid: int = 64,
     ) -> BoundResults:
-        """Fit the tightest bound over all windows' PSDs.
+        """Fit the tightest bound over the windows' PSDs.
 
         Parameters
         ----------
+        rule : {"pooled", "envelope"}, default "pooled"
+            Pooled upper confidence limits (:func:`psdbound.spectra.pooled.fit_pooled_bound`;
+            the windows must be disjoint) or the thesis's envelope of every
+            window's PSD (:func:`psdbound.spectra.fit_bound`).
         objective : {"variance", "area"}, default "variance"
-            Tightness objective (:func:`psdbound.spectra.fit_bound`).
+            Tightness objective.
+        f_min_hz : float, optional
+            Pooled rule: lowest frequency bounded, Hz (e.g. where the
+            high-pass filter stops attenuating); default twice the lowest
+            frequency of the longest window.
+        confidence_level, coverage, homogeneity_alpha : float
+            Pooled rule (see :func:`psdbound.spectra.pooled.pool_bands`).
+        bands_per_decade : int, default 10
+            Pooled rule: frequency bands per decade.
         target : {"point", "upper"}, default "point"
-            Bound the PSD estimates or their upper confidence limits.
+            Envelope rule: bound the PSD estimates or their upper confidence limits.
         level : float, default 0.95
-            Confidence level for ``target="upper"``.
+            Envelope rule: confidence level for ``target="upper"``.
         n_grid : int, default 64
             Size of the log-spaced ``tau`` grid.
 
@@ -139,14 +199,34 @@ class BoundModel:
         -------
         BoundResults
             Bound, windows, PSDs and estimator provenance.
+
+        Raises
+        ------
+        InputError
+            An unknown rule, or overlapping windows with the pooled rule.
         """
+        if rule not in RULES:
+            raise InputError(f"unknown bound rule {rule!r}; choose from {', '.join(RULES)}")
         psds = self.psds()
-        bound = fit_bound(
-            psds,
-            self.windows.interval_s,
-            objective=objective,
-            target=target,
-            level=level,
-            n_grid=n_grid,
-        )
-        return BoundResults(bound, self.windows, psds, self.estimator, dict(self.estimator_options))
+        dt = self.windows.interval_s
+        common = dict(psds=psds, windows=self.windows, estimator=self.estimator,
+                      estimator_options=dict(self.estimator_options))  # fmt: skip
+        if rule == "envelope":
+            bound = fit_bound(psds, dt, objective=objective, target=target, level=level,
+                              n_grid=n_grid)  # fmt: skip
+            return BoundResults(bound, rule="envelope", **common)
+        if self.windows.params.get("overlap", False):
+            raise InputError(
+                "the pooled bound needs disjoint windows (their spectra must be independent); "
+                "window with overlap=False (stationarity windows = 'disjoint') or use the "
+                "envelope rule"
+            )
+        if f_min_hz is None:
+            longest = max(p.n_samples for p in psds) * dt
+            f_min_hz = 2.0 / longest
+        bound, bands, pooled = fit_pooled_bound(
+            psds, dt, f_min_hz=f_min_hz, confidence_level=confidence_level, coverage=coverage,
+            homogeneity_alpha=homogeneity_alpha, bands_per_decade=bands_per_decade,
+            objective=objective, n_grid=n_grid,
+        )  # fmt: skip
+        return BoundResults(bound, rule="pooled", bands=bands, pooled=pooled, **common)

@@ -16,7 +16,7 @@ from psdbound.common.options import (
     check_fields,
     option,
 )
-from psdbound.spectra.bound import OBJECTIVES
+from psdbound.spectra.bound import OBJECTIVES, RULES
 from psdbound.spectra.estimators import METHODS
 
 __all__ = ["BoundOptions", "ESTIMATOR_OPTIONS", "SpectraOptions", "check_estimator_options"]
@@ -138,12 +138,27 @@ class BoundOptions:
 
     Parameters
     ----------
+    rule : {"pooled", "envelope"}
+        ``"pooled"`` (default): upper confidence limits of the windows'
+        pooled band spectra at a family-wise ``confidence_level``
+        (:mod:`psdbound.spectra.pooled`); ``"envelope"``: the thesis's
+        envelope of every window's PSD (``target``, ``level``).
     objective : {"variance", "area"}
         Tightness objective minimised.
+    confidence_level : float
+        Family-wise confidence of the pooled limits, in (0, 1).
+    coverage : float
+        Pooled rule: fraction of the windows' true PSDs covered when the
+        windows differ (Cochran's test rejects a common PSD), in (0.5, 1).
+    homogeneity_alpha : float
+        Pooled rule: level of the test of a common PSD in each band.
+    bands_per_decade : int
+        Pooled rule: frequency bands per decade.
     target : {"point", "upper"}
-        Bound the PSD estimates or their upper confidence limits.
+        Envelope rule: bound the PSD estimates or their upper confidence limits.
     level : float
-        Confidence level of the upper limits (``target="upper"``), in (0, 1).
+        Envelope rule: confidence level of the per-window upper limits
+        (``target="upper"``), in (0, 1).
 
     Raises
     ------
@@ -151,7 +166,12 @@ class BoundOptions:
         A value of the wrong type or outside its range.
     """
 
+    rule: str = option("pooled", Choice(RULES, noun="bound rule"))
     objective: str = option("variance", Choice(OBJECTIVES, noun="objective"))
+    confidence_level: float = option(0.95, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True))
+    coverage: float = option(0.99, Number(lo=0.5, hi=1.0, lo_open=True, hi_open=True))
+    homogeneity_alpha: float = option(0.05, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True))
+    bands_per_decade: int = option(10, Number(lo=1, hi=100, integer=True))
     target: str = option("point", Choice(("point", "upper"), noun="target"))
     level: float = option(0.95, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True))
 

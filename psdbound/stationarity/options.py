@@ -9,6 +9,7 @@ from numpy.typing import ArrayLike
 from psdbound.common.options import Choice, Number, check_fields, option
 from psdbound.errors import InputError
 from psdbound.stationarity.mapping import THESIS_MAPPING, ElevationMapping, fit_mapping
+from psdbound.stationarity.windowing import STATIONARITY_TESTS
 
 __all__ = ["MAPPING_KINDS", "MappingOptions", "StationarityOptions", "choose_mapping"]
 
@@ -48,12 +49,23 @@ class MappingOptions:
 
 @dataclass(frozen=True)
 class StationarityOptions:
-    """Windowing options (thesis slide/trim algorithm).
+    """Windowing options (slide/trim algorithm of the thesis, with a choice of test).
 
     Parameters
     ----------
+    test : {"spectral", "thesis"}
+        Stationarity test of each candidate window: ``"spectral"`` (default)
+        compares the multitaper log spectra of the window's halves and is
+        valid for autocorrelated samples
+        (:func:`~psdbound.stationarity.test_spectral_homogeneity`);
+        ``"thesis"``: Levene then Kolmogorov-Smirnov, which assume
+        independent samples.
+    windows : {"disjoint", "slide"}
+        ``"disjoint"`` (default): after a stationary window the next one
+        starts right after it (what the pooled bound needs); ``"slide"``:
+        the thesis's overlapping slide rule.
     alpha : float
-        Significance level of the Levene and K-S tests, in (0, 1).
+        Significance level of the stationarity test, in (0, 1).
     p_slide, p_trim : float
         Slide (> 1, at most 100) and trim (in (0, 1)) coefficients.
     min_window_s : float
@@ -67,6 +79,8 @@ class StationarityOptions:
         A value of the wrong type or outside its range.
     """
 
+    test: str = option("spectral", Choice(STATIONARITY_TESTS, noun="stationarity test"))
+    windows: str = option("disjoint", Choice(("disjoint", "slide"), noun="window rule"))
     alpha: float = option(0.05, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True))
     p_slide: float = option(1.2, Number(lo=1.0, hi=100.0, lo_open=True))
     p_trim: float = option(0.8, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True))

@@ -50,7 +50,27 @@ from scipy.signal.windows import dpss
 
 from psdbound.errors import InputError
 
-__all__ = ["SpectralHomogeneityTest", "test_spectral_homogeneity"]
+__all__ = ["SpectralHomogeneityTest", "min_samples", "test_spectral_homogeneity"]
+
+
+def min_samples(*, n_parts: int = 2, nw: float = 4.0) -> int:
+    """Fewest samples :func:`test_spectral_homogeneity` accepts.
+
+    Each part needs at least two test frequencies ``2W`` apart besides the
+    zero and Nyquist bins: ``4 ceil(2 NW) + 2`` samples per part.
+
+    Parameters
+    ----------
+    n_parts : int, default 2
+        Number of parts.
+    nw : float, default 4
+        Time-half-bandwidth product.
+
+    Returns
+    -------
+    int
+    """
+    return n_parts * (4 * int(np.ceil(2.0 * nw)) + 2)
 
 
 @dataclass(frozen=True)
@@ -156,7 +176,7 @@ def test_spectral_homogeneity(
     if m < 4 * int(np.ceil(2.0 * nw)) + 2:
         raise InputError(
             f"window of {v.size} samples too short for {n_parts} parts with NW = {nw:g}: "
-            f"need at least {n_parts * (4 * int(np.ceil(2.0 * nw)) + 2)} samples"
+            f"need at least {min_samples(n_parts=n_parts, nw=nw)} samples"
         )
     y = _log_spectra(v[: m * n_parts].reshape(n_parts, m), nw, k)
     y = y[:, np.all(np.isfinite(y), axis=0)]

@@ -32,7 +32,7 @@ from numpy.typing import NDArray
 from psdbound.errors import InputError, NoDataError
 from psdbound.isolation.series import MultipathSeries
 from psdbound.stationarity.mapping import THESIS_MAPPING, ElevationMapping
-from psdbound.stationarity.spectral import test_spectral_homogeneity
+from psdbound.stationarity.spectral import min_samples, test_spectral_homogeneity
 from psdbound.stationarity.tests import StationarityTest, test_stationarity
 
 __all__ = ["STATIONARITY_TESTS", "Window", "WindowSet", "window_arc", "find_stationary_windows"]
@@ -153,6 +153,7 @@ def window_arc(
     p_trim: float = 0.8,
     center: str = "mean",
     test: str = "thesis",
+    overlap: bool = True,
 ) -> tuple[list[tuple[int, int, float, float]], int]:
     """Run the slide/trim algorithm on one arc.
 
@@ -174,6 +175,12 @@ def window_arc(
         Levene then K-S (:func:`~psdbound.stationarity.test_stationarity`), or
         the spectral-homogeneity test valid for correlated samples
         (:func:`~psdbound.stationarity.test_spectral_homogeneity`).
+    overlap : bool, default True
+        True: the thesis's slide rule (after a stationary window the start
+        moves by ``p_slide - 1`` of its length, so windows overlap). False:
+        tiling -- the next candidate starts right after the accepted window,
+        so the windows are disjoint and each sample is in at most one (what
+        pooling the windows' spectra needs).
 
     Returns
     -------
@@ -209,6 +216,11 @@ def window_arc(
         can_slide = (not end_reached) and (last - s_slid + 1 >= min_length)
         if res.stationary:
             out.append((s, e, res.levene_p, float(res.ks_p)))
+            if not overlap:
+                if last - e >= min_length:
+                    s, e = e + 1, last
+                    continue
+                break
             if can_slide:
                 s, e = s_slid, last
                 continue
@@ -232,7 +244,8 @@ def find_stationary_windows(
     p_trim: float = 0.8,
     min_length_s: float = 600.0,
     center: str = "mean",
-    test: str = "thesis",
+    test: str = "spectral",
+    overlap: bool = False,
 ) -> WindowSet:
     """Map a multipath series by elevation and window every arc into stationary pieces.
 
@@ -244,15 +257,22 @@ def find_stationary_windows(
         Elevation normalisation; default the thesis's ``(1, 29, 10 deg)``.
         Use :func:`psdbound.stationarity.fit_mapping` for fitted parameters.
     alpha : float, default 0.05
-        Significance level of the Levene and K-S tests.
+        Significance level of the stationarity test.
     p_slide, p_trim : float, default 1.2, 0.8
         Thesis windowing coefficients (see the module docstring).
     min_length_s : float, default 600
-        Minimum window length ``L``, seconds.
+        Minimum window length ``L``, seconds. With ``test="spectral"`` it is
+        raised to the test's minimum (:func:`psdbound.stationarity.spectral.min_samples`,
+        68 samples: 34 min at 30 s sampling); ``params["effective_min_length_s"]``
+        records the length used.
     center : str, default "mean"
         Levene centre ("mean": Levene 1960; "median": Brown-Forsythe).
-    test : {"thesis", "spectral"}, default "thesis"
-        Stationarity test of each candidate window (see :func:`window_arc`).
+    test : {"spectral", "thesis"}, default "spectral"
+        Stationarity test of each candidate window (see :func:`window_arc`):
+        valid for correlated samples, or the thesis's Levene then K-S.
+    overlap : bool, default False
+        Disjoint tiling (what the pooled bound needs) or the thesis's
+        overlapping slide rule (see :func:`window_arc`).
 
     Returns
     -------
@@ -267,6 +287,9 @@ def find_stationary_windows(
     mp = THESIS_MAPPING if mapping is None else mapping
     mapped = mp.apply(series.value_m, series.elevation_deg)
     L = max(8, int(math.ceil(min_length_s / series.interval_s)) + 1)
+    if test == "spectral":
+        # the spectral test needs two parts with two test frequencies each
+        L = max(L, min_samples())
     windows: list[Window] = []
     uncovered: list[tuple[int, str, float, float]] = []
     n_tests = 0
@@ -277,7 +300,7 @@ def find_stationary_windows(
         if x.size >= L:
             long_enough += 1
         found, nt = window_arc(x, L, alpha=alpha, p_slide=p_slide, p_trim=p_trim, center=center,
-                               test=test)  # fmt: skip
+                               test=test, overlap=overlap)  # fmt: skip
         n_tests += nt
         covered = np.zeros(x.size, dtype=bool)
         for s, e, lp, kp in found:
@@ -291,9 +314,16 @@ def find_stationary_windows(
             if b - a >= 2:
                 uncovered.append((k, series.arc_sats[k], float(t[a]), float(t[b - 1])))
     if long_enough == 0:
+        why = ""
+        if (L - 1) * series.interval_s > min_length_s:
+            why = (f" (the spectral stationarity test needs {min_samples()} samples: "
+                   f"{(L - 1) * series.interval_s / 60:.0f} min at {series.interval_s:g} s; use "
+                   "longer data, a higher sampling rate or the thesis test)")  # fmt: skip
+        longest = max((hi - lo for lo, hi in series.arc_bounds()), default=0)
         raise NoDataError(
-            f"no arc is as long as the minimum window length {min_length_s:g} s "
-            f"({series.n_arcs} arcs)"
+            f"no arc is as long as the minimum window length {(L - 1) * series.interval_s:g} s"
+            f"{why}; longest arc after filtering {max(longest - 1, 0) * series.interval_s / 60:.1f}"
+            f" min of {series.n_arcs}"
         )
     return WindowSet(
         windows=tuple(windows),
@@ -306,8 +336,10 @@ def find_stationary_windows(
             "p_trim": p_trim,
             "min_length_s": min_length_s,
             "min_length_samples": L,
+            "effective_min_length_s": (L - 1) * series.interval_s,
             "center": center,
             "test": test,
+            "overlap": overlap,
         },
         n_tests=n_tests,
         uncovered=tuple(uncovered),

@@ -78,7 +78,8 @@ def test_stages_compose_like_fit(demo_fit):
     scr = stages.screen(iso, options=cfg.screening, mapping=cfg.mapping,
                         min_length_s=cfg.stationarity.min_window_s)
     win = stages.window(scr, mapping=cfg.mapping, options=cfg.stationarity)
-    res = stages.bound(win, spectra=cfg.spectra, options=cfg.bound)
+    res = stages.bound(win, spectra=cfg.spectra, options=cfg.bound, cutoff=cutoff,
+                       highpass=cfg.filter)
     assert res.bound.sigma_gm_m == demo_fit.bound.sigma_gm_m
     val = stages.validate(cutoff, inputs=inputs, isolated=iso, arcs=cfg.arcs,
                           options=cfg.validation)

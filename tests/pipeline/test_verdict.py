@@ -90,7 +90,9 @@ def test_one_hour_file_exits_3_with_outputs_and_reasons(tmp_path):
     obs = _one_hour_of_esbc(tmp_path)
     r = subprocess.run(
         [sys.executable, "-m", "psdbound", "fit", str(obs), "--nav", str(shared_file(ESBC_NAV)),
-         "--cutoff-hz", "9.55e-4", "--out", str(tmp_path / "out"), "--no-pdf"],
+         "--cutoff-hz", "9.55e-4", "--out", str(tmp_path / "out"), "--no-pdf",
+         # the thesis test accepts 10-min windows; the spectral test needs 68 samples (34 min)
+         "--stationarity", "thesis", "--windows", "slide", "--rule", "envelope"],
         capture_output=True, text=True, timeout=600,
     )  # fmt: skip
     assert r.returncode == 3, r.stderr
@@ -101,6 +103,20 @@ def test_one_hour_file_exits_3_with_outputs_and_reasons(tmp_path):
     assert "NOT-BOUNDED" in r.stdout and "reason:" in r.stdout
     html = (tmp_path / "out" / "report.html").read_text()
     assert "not-bounded" in html[: html.index("<h2>Bound</h2>")]  # on the first page
+
+
+@pytest.mark.realdata
+@pytest.mark.slow
+def test_one_hour_file_with_default_test_says_why_no_window(tmp_path):
+    obs = _one_hour_of_esbc(tmp_path)
+    r = subprocess.run(
+        [sys.executable, "-m", "psdbound", "fit", str(obs), "--nav", str(shared_file(ESBC_NAV)),
+         "--cutoff-hz", "9.55e-4", "--out", str(tmp_path / "out"), "--no-pdf"],
+        capture_output=True, text=True, timeout=600,
+    )  # fmt: skip
+    assert r.returncode == 2
+    assert "68 samples" in r.stderr and "34 min" in r.stderr and "longest arc" in r.stderr
+    assert not (tmp_path / "out").exists()
 
 
 @pytest.mark.realdata

@@ -7,7 +7,7 @@ import pytest
 from conftest import ESBC_NAV, ESBC_OBS, UPC1_OBS, UPC2_OBS, UPC_NAV, shared_file
 from scipy.signal import lfilter
 
-from psdbound.errors import NoDataError
+from psdbound.errors import InputError, NoDataError
 from psdbound.io import find_arcs, read_obs, read_orbit
 from psdbound.isolation import MultipathSeries, isolate_dual_antenna, isolate_dual_frequency
 from psdbound.spectra import BoundModel, estimate_psd, fit_bound
@@ -62,15 +62,30 @@ def test_windows_psds_bound_pipeline():
         0.5,
         dt,
     )
-    ws = find_stationary_windows(series, min_length_s=600)
+    ws = find_stationary_windows(series, min_length_s=600, test="thesis", overlap=True)
     for est in ("multitaper", "welch", "blackman-tukey"):
-        res = BoundModel(ws, estimator=est).fit()
+        res = BoundModel(ws, estimator=est).fit(rule="envelope")
         assert len(res.psds) == len(ws) and res.margins.size == len(ws)
         assert res.margins.min() >= 1.0
         for p in res.psds:
             assert np.all(res.bound.psd(p.f_hz) >= p.psd_m2_hz * (1 - 1e-12))
         text = res.summary()
         assert est in text and "elevation mapping" in text and "windows" in text
+
+
+def test_pooled_rule_refuses_overlapping_windows():
+    rng = np.random.default_rng(1)
+    n, dt = 4000, 1.0
+    series = MultipathSeries("DA", 1.3e9 + dt * np.arange(n), rng.normal(0, 0.003, n),
+                             np.full(n, 90.0), np.zeros(n, dtype=np.intp), ("G01-G02",),
+                             ("L1C",), 0.5, dt)  # fmt: skip
+    slid = find_stationary_windows(series, min_length_s=600, test="thesis", overlap=True)
+    with pytest.raises(InputError, match="disjoint windows"):
+        BoundModel(slid).fit()
+    tiled = find_stationary_windows(series, min_length_s=600)
+    res = BoundModel(tiled).fit()
+    assert res.rule == "pooled" and res.bound.margins.min() >= 1.0
+    assert "95 % confidence" in res.confidence_statement()
 
 
 def test_no_window_is_an_error():
