@@ -101,6 +101,44 @@ def _demo_truth(scenario: dict[str, Any], res: BoundResults, interval_s: float) 
     }
 
 
+def _mapping_section(windowed: Windowed, res: BoundResults, screened: Screened) -> dict[str, Any]:
+    """Return the mapping, its uncertainty and the mapped RMS per elevation bin vs the bound."""
+    mp = windowed.mapping
+    el = screened.series.elevation_deg
+    x = windowed.windows.mapped_m
+    sigma = float(np.sqrt(res.bound.total_variance_m2))
+    rows = []
+    for lo in range(0, 90, 10):
+        sel = (el >= lo) & (el < lo + 10) & np.isfinite(x)
+        if sel.sum() < 30:
+            continue
+        rms = float(np.sqrt(np.mean(x[sel] ** 2)))
+        mid = lo + 5.0
+        rows.append({"elevation_deg": [lo, lo + 10], "n": int(sel.sum()), "mapped_rms_m": rms,
+                     "rms_over_bound_sigma": rms / sigma if sigma > 0 else None,
+                     "factor": float(mp.factor(mid)),
+                     "factor_rel_sigma": float(mp.factor_sigma(mid) / mp.factor(mid))})  # fmt: skip
+    out = mp.as_dict()
+    ok = np.isfinite(el)
+    rms_factor = float(np.sqrt(np.mean(mp.factor(el[ok]) ** 2))) if ok.any() else 1.0
+    out["rms_factor_over_data"] = rms_factor
+    out["check"] = {
+        "note": "RMS of the mapped data per 10-deg elevation bin against the bound's total "
+        "sigma (zenith scale); a ratio above 1 in a bin means the mapping under-scales "
+        "that elevation. factor_rel_sigma: relative standard error of m(el) from the fit",
+        "bins": rows,
+        "max_rms_over_bound_sigma": max((r["rms_over_bound_sigma"] or 0.0) for r in rows)
+        if rows else None,
+    }
+    if mp.covariance_bc is not None:
+        out["uncertainty_note"] = (
+            "the bound is fitted to data mapped with this m(el); a mapping error makes windows "
+            "at different elevations differ, which the pooled rule's between-window spread "
+            "covers (bound.pooled.between_window_log_sd)"
+        )
+    return out
+
+
 def _pooled_section(res: BoundResults) -> dict[str, Any] | None:
     pl = res.pooled
     if pl is None or res.bands is None:
@@ -154,6 +192,11 @@ def _windows_section(
         "coverage_note": "data after screening that lie in a stationary window the bound is "
         "fitted to; the rest never tested stationary (never_stationary)",
         "never_stationary_s": w.uncovered_s,
+        "rejected_s": w.rejected_s,
+        "too_short_s": w.short_s,
+        "too_short_note": "arcs shorter than the minimum window "
+        f"({w.params.get('effective_min_length_s', 0) / 60:.0f} min) cannot be tested; they are "
+        "outside the bound but not evidence of non-stationarity",
         "never_stationary": [list(u) for u in w.uncovered],
         "n_tests": w.n_tests,
         "params": w.params,
@@ -229,7 +272,7 @@ def build_document(
         "bound": _bound_section(bounded),
         "cutoff": _cutoff_section(cutoff),
         "sampling": {"interval_s": interval_s, "nyquist_hz": 0.5 / interval_s},
-        "mapping": windowed.mapping.as_dict(),
+        "mapping": _mapping_section(windowed, bounded, screened),
         "isolation": isolated.details,
         "screening": _screening_section(screened),
         "data_span": {

@@ -349,12 +349,20 @@ def window(
             f"no stationary window of at least {options.min_window_s:g} s in {series.n_arcs} "
             f"arcs ({windows.n_tests} tests)"
         )
-    warnings = ()
-    if windows.uncovered_s > 0:
-        warnings = (
-            f"{windows.uncovered_s / 60:.1f} min of data never tested stationary "
-            f"({len(windows.uncovered)} stretches) and are not covered by the bound",
+    warnings: tuple[str, ...] = ()
+    if windows.rejected_s > 0:
+        warnings += (
+            f"{windows.rejected_s / 60:.1f} min of data failed every stationarity test and are "
+            "not covered by the bound (windows.never_stationary)",
         )
+    if windows.short_s > 0:
+        warnings += (
+            f"{windows.short_s / 60:.1f} min of data lie in arcs shorter than the minimum window "
+            f"({windows.params['effective_min_length_s'] / 60:.0f} min): not tested, not covered "
+            "by the bound",
+        )
+    if m.source.startswith("thesis (fit impossible"):
+        warnings += (f"elevation mapping: {m.source}",)
     return Windowed(m, windows, warnings)
 
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from numpy.typing import ArrayLike
 
@@ -22,9 +22,12 @@ class MappingOptions:
 
     Parameters
     ----------
-    kind : {"thesis", "fixed", "fit"}
-        The thesis's (1, 29, 10 deg), the given ``a, b, c_deg``, or fitted
-        to the data's RMS per elevation bin.
+    kind : {"fit", "thesis", "fixed"}
+        ``"fit"`` (default): fitted to the data's RMS per elevation bin, with
+        the covariance of ``b, c`` (:func:`~psdbound.stationarity.fit_mapping`;
+        when fewer than four elevation bins are populated the thesis mapping
+        is used and its ``source`` says why); ``"thesis"``: (1, 29, 10 deg);
+        ``"fixed"``: the given ``a, b, c_deg``.
     a, b : float
         Dimensionless coefficients (``kind="fixed"``): ``0 < a <= 1000``,
         ``0 <= b <= 10000`` (so that ``m(el) > 0``).
@@ -38,7 +41,7 @@ class MappingOptions:
         are only set with ``kind="fixed"`` is checked by ``FitConfig.check``.
     """
 
-    kind: str = option("thesis", Choice(MAPPING_KINDS, noun="mapping kind"))
+    kind: str = option("fit", Choice(MAPPING_KINDS, noun="mapping kind"))
     a: float = option(1.0, Number(lo=0.0, hi=1e3, lo_open=True))
     b: float = option(29.0, Number(lo=0.0, hi=1e4))
     c_deg: float = option(10.0, Number(lo=0.0, hi=90.0, lo_open=True, unit="deg"))
@@ -113,7 +116,10 @@ def choose_mapping(
     if options.kind == "fixed":
         return ElevationMapping(options.a, options.b, options.c_deg, "fixed")
     if options.kind == "fit":
-        return fit_mapping(value_m, elevation_deg)
+        try:
+            return fit_mapping(value_m, elevation_deg)
+        except InputError as exc:  # too few elevations: say so and use the thesis mapping
+            return replace(THESIS_MAPPING, source=f"thesis (fit impossible: {exc})")
     raise InputError(
         f"unknown mapping kind {options.kind!r}; use {', '.join(MAPPING_KINDS)}"
     )

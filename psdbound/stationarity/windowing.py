@@ -109,6 +109,9 @@ class WindowSet:
         at least two samples covered by no stationary window.
     uncovered_s : float
         Their total duration, seconds.
+    short_s : float
+        Part of ``uncovered_s`` in arcs shorter than the minimum window:
+        never tested (too short), as opposed to tested and rejected.
     """
 
     windows: tuple[Window, ...]
@@ -119,6 +122,12 @@ class WindowSet:
     n_tests: int = 0
     uncovered: tuple[tuple[int, str, float, float], ...] = ()
     uncovered_s: float = 0.0
+    short_s: float = 0.0
+
+    @property
+    def rejected_s(self) -> float:
+        """Time in arcs long enough to test that no stationary window covers, seconds."""
+        return max(self.uncovered_s - self.short_s, 0.0)
 
     def __len__(self) -> int:
         return len(self.windows)
@@ -176,11 +185,13 @@ def window_arc(
         the spectral-homogeneity test valid for correlated samples
         (:func:`~psdbound.stationarity.test_spectral_homogeneity`).
     overlap : bool, default True
-        True: the thesis's slide rule (after a stationary window the start
-        moves by ``p_slide - 1`` of its length, so windows overlap). False:
-        tiling -- the next candidate starts right after the accepted window,
-        so the windows are disjoint and each sample is in at most one (what
-        pooling the windows' spectra needs).
+        True: the thesis's slide/trim rule (after a stationary window the
+        start moves by ``p_slide - 1`` of its length, so windows overlap).
+        False: binary segmentation (Vostrikova 1981) -- a segment that fails
+        the test is split in two halves, each tested in turn, down to
+        segments shorter than ``2 L``; the windows are disjoint (what
+        pooling the windows' spectra needs) and no remainder is left
+        untested. ``p_slide`` and ``p_trim`` are not used.
 
     Returns
     -------
@@ -203,24 +214,34 @@ def window_arc(
     n_tests = 0
     if x.size < min_length:
         return out, 0
+
+    def run(a: int, b: int) -> StationarityTest:
+        if test == "spectral":
+            sp = test_spectral_homogeneity(x[a : b + 1], alpha=alpha)
+            return StationarityTest(sp.stationary, sp.p_value, sp.p_value, alpha)
+        return test_stationarity(x[a : b + 1], alpha=alpha, center=center)
+
+    if not overlap:  # binary segmentation: disjoint windows, no untested remainders
+        todo = [(0, last)]
+        while todo:
+            a, b = todo.pop()
+            res = run(a, b)
+            n_tests += 1
+            if res.stationary:
+                out.append((a, b, res.levene_p, float(res.ks_p)))
+            elif b - a + 1 >= 2 * min_length:
+                mid = (a + b) // 2
+                todo += [(mid + 1, b), (a, mid)]
+        return sorted(out), n_tests
     while True:
         n_w = e - s + 1
-        if test == "spectral":
-            sp = test_spectral_homogeneity(x[s : e + 1], alpha=alpha)
-            res = StationarityTest(sp.stationary, sp.p_value, sp.p_value, alpha)
-        else:
-            res = test_stationarity(x[s : e + 1], alpha=alpha, center=center)
+        res = run(s, e)
         n_tests += 1
         end_reached = e == last
         s_slid = s + math.ceil((p_slide - 1.0) * n_w)
         can_slide = (not end_reached) and (last - s_slid + 1 >= min_length)
         if res.stationary:
             out.append((s, e, res.levene_p, float(res.ks_p)))
-            if not overlap:
-                if last - e >= min_length:
-                    s, e = e + 1, last
-                    continue
-                break
             if can_slide:
                 s, e = s_slid, last
                 continue
@@ -294,11 +315,14 @@ def find_stationary_windows(
     uncovered: list[tuple[int, str, float, float]] = []
     n_tests = 0
     long_enough = 0
+    short_s = 0.0
     for k, (lo, hi) in enumerate(series.arc_bounds()):
         x = mapped[lo:hi]
         t = series.t_gps_s[lo:hi]
         if x.size >= L:
             long_enough += 1
+        elif x.size >= 2:
+            short_s += float(t[-1] - t[0])
         found, nt = window_arc(x, L, alpha=alpha, p_slide=p_slide, p_trim=p_trim, center=center,
                                test=test, overlap=overlap)  # fmt: skip
         n_tests += nt
@@ -344,4 +368,5 @@ def find_stationary_windows(
         n_tests=n_tests,
         uncovered=tuple(uncovered),
         uncovered_s=float(sum(b - a for _, _, a, b in uncovered)),
+        short_s=short_s,
     )
