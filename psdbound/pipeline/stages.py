@@ -386,7 +386,8 @@ def bound(
         The high-pass cutoff (None: dual-antenna, no filter).
     highpass : HighPass, optional
         The filter design; the pooled rule bounds from where it passes 90 %
-        of the power (:meth:`~psdbound.isolation.HighPass.passband_start_hz`).
+        of the power (:meth:`~psdbound.isolation.HighPass.passband_start_hz`)
+        and divides the band averages by its power response ``|H(f)|^2``.
         Without cutoff: from twice the lowest frequency of the longest window.
     progress : callable, optional
 
@@ -397,11 +398,16 @@ def bound(
     progress(f"{len(windowed.windows)} windows: PSDs ({spectra.estimator}) and the "
              f"{options.rule} bound")  # fmt: skip
     model = BoundModel(windowed.windows, estimator=spectra.estimator, **spectra.options)
-    f_min_hz = None
+    f_min_hz = gain = None
     if cutoff is not None:
-        f_min_hz = (highpass or HighPass()).passband_start_hz(windowed.windows.interval_s,
-                                                             cutoff.f_c_hz)  # fmt: skip
+        hp, dt, fc = highpass or HighPass(), windowed.windows.interval_s, cutoff.f_c_hz
+        f_min_hz = hp.passband_start_hz(dt, fc)
+
+        def gain(f: np.ndarray) -> np.ndarray:
+            return hp.response(f, dt, fc) ** 2
+
     return model.fit(
+        power_response=gain if options.rule == "pooled" else None,
         rule=options.rule, objective=options.objective, f_min_hz=f_min_hz,
         confidence_level=options.confidence_level, coverage=options.coverage,
         homogeneity_alpha=options.homogeneity_alpha,

@@ -9,6 +9,7 @@ with the tightest GMRP + white-noise bound, the per-window margins and a
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -166,6 +167,7 @@ class BoundModel:
         coverage: float = 0.99,
         homogeneity_alpha: float = 0.05,
         bands_per_decade: int = 10,
+        power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]] | None = None,
         target: str = "point",
         level: float = 0.95,
         n_grid: int = 64,
@@ -188,6 +190,9 @@ class BoundModel:
             Pooled rule (see :func:`psdbound.spectra.pooled.pool_bands`).
         bands_per_decade : int, default 10
             Pooled rule: frequency bands per decade.
+        power_response : callable, optional
+            Pooled rule: ``|H(f)|^2`` of the high-pass the data went through,
+            undone in the band averages.
         target : {"point", "upper"}, default "point"
             Envelope rule: bound the PSD estimates or their upper confidence limits.
         level : float, default 0.95
@@ -227,6 +232,6 @@ class BoundModel:
         bound, bands, pooled = fit_pooled_bound(
             psds, dt, f_min_hz=f_min_hz, confidence_level=confidence_level, coverage=coverage,
             homogeneity_alpha=homogeneity_alpha, bands_per_decade=bands_per_decade,
-            objective=objective, n_grid=n_grid,
+            power_response=power_response, objective=objective, n_grid=n_grid,
         )  # fmt: skip
         return BoundResults(bound, rule="pooled", bands=bands, pooled=pooled, **common)

@@ -52,7 +52,7 @@ Applications. Cambridge University Press.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -106,7 +106,11 @@ class BandSpectra:
 
 
 def band_spectra(
-    psds: Sequence[PSDEstimate], *, f_min_hz: float, bands_per_decade: int = 10
+    psds: Sequence[PSDEstimate],
+    *,
+    f_min_hz: float,
+    bands_per_decade: int = 10,
+    power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]] | None = None,
 ) -> BandSpectra:
     """Average every PSD estimate over common log-spaced frequency bands.
 
@@ -119,6 +123,11 @@ def band_spectra(
         filter's attenuation ends.
     bands_per_decade : int, default 10
         Number of bands per decade of frequency.
+    power_response : callable, optional
+        ``|H(f)|^2`` of a filter the data went through (e.g. the high-pass):
+        each PSD value is divided by it before averaging, so the bands
+        estimate the PSD before filtering. Values below 0.5 are refused
+        (``f_min_hz`` should start where the filter passes most power).
 
     Returns
     -------
@@ -157,6 +166,14 @@ def band_spectra(
         idx = np.searchsorted(edges, p.f_hz[use], side="right") - 1
         inside = (idx >= 0) & (idx < n_bands)
         idx, s = idx[inside], p.psd_m2_hz[use][inside]
+        if power_response is not None:
+            gain = np.asarray(power_response(p.f_hz[use][inside]), dtype=float)
+            if gain.size and gain.min() < 0.5:
+                raise InputError(
+                    f"the filter passes only {gain.min():.2f} of the power at "
+                    f"{p.f_hz[use][inside][np.argmin(gain)]:.3g} Hz; start the bands higher"
+                )
+            s = s / gain
         counts = np.bincount(idx, minlength=n_bands)
         sums = np.bincount(idx, weights=s, minlength=n_bands)
         have = counts > 0
@@ -432,6 +449,7 @@ def fit_pooled_bound(
     homogeneity_alpha: float = 0.05,
     bands_per_decade: int = 10,
     min_window_dof: float = 4.0,
+    power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]] | None = None,
     objective: str = "variance",
     n_grid: int = 64,
 ) -> tuple[BoundFit, BandSpectra, PooledLimits]:
@@ -458,6 +476,9 @@ def fit_pooled_bound(
     min_window_dof : float, default 4
         Bands are merged until a typical window has this many degrees of
         freedom in each (:func:`merge_bands`).
+    power_response : callable, optional
+        Power response of a filter the data went through, undone in the
+        band averages (:func:`band_spectra`).
     objective : {"variance", "area"}, default "variance"
         Tightness objective (:func:`fit_bound`).
     n_grid : int, default 64
@@ -473,7 +494,8 @@ def fit_pooled_bound(
     limits : PooledLimits
         The pooled band limits.
     """
-    bands = merge_bands(band_spectra(psds, f_min_hz=f_min_hz, bands_per_decade=bands_per_decade),
+    bands = merge_bands(band_spectra(psds, f_min_hz=f_min_hz, bands_per_decade=bands_per_decade,
+                                     power_response=power_response),
                         min_window_dof=min_window_dof)  # fmt: skip
     limits = pool_bands(bands, confidence_level=confidence_level, coverage=coverage,
                         homogeneity_alpha=homogeneity_alpha)  # fmt: skip
@@ -482,7 +504,9 @@ def fit_pooled_bound(
         have = np.isfinite(row)
         target.append(_BandLimits(limits.f_hz[have], row[have]))
     fit = fit_bound(target, dt_s, objective=objective, target="point", n_grid=n_grid)
-    fit = replace(fit, target="pooled", level=confidence_level,
+    # the bound is stated over the bands' full span, lowest edge to Nyquist
+    fit = replace(fit, target="pooled", level=confidence_level, f_min_hz=float(bands.edges_hz[0]),
+                  f_max_hz=0.5 / dt_s,
                   meta={"n_bands": int(limits.f_hz.size), "coverage": coverage,
                         "n_groups": limits.n_groups,
                         "homogeneity_alpha": homogeneity_alpha})  # fmt: skip

@@ -37,6 +37,11 @@ rule, multitaper, fitted mapping, screening on). History:
   data fail every stationarity test); UPC (b 2.6, c 22 deg) 11.7 mm / 65.6 s
   / 0 / 13 (between-window log-sd up to 1.3 at low frequency, 13 windows).
   The demo keeps its own mapping: unchanged.
+* issue 15, third step: the band averages are divided by the high-pass's
+  power response |H(f)|^2 (up to 11 % at the lowest band), and the spectral
+  test refers its statistic to a scaled chi-square with its exact variance
+  (Satterthwaite): demo 3.64 mm / 31.8 s / 1.20 mm; ESBC 1.77 mm / 37.8 s;
+  NYA1 18.9 mm / 45.5 s / 93 windows; UPC (no filter) unchanged.
 """
 
 from __future__ import annotations
@@ -57,9 +62,9 @@ import psdbound
 
 PINS = {
     # case: (sigma_gm_m, tau_s, sigma_wn_m, windows)
-    "demo": (0.0036444027607853667, 31.22428227942581, 0.0011998590914158805, 15),
-    "esbc": (0.0017586801156135926, 37.79228983477901, 0.0, 119),
-    "nya1": (0.017747574791846122, 45.452236898956535, 0.0, 94),
+    "demo": (0.003644358485941778, 31.78232061420089, 0.0012024125562745335, 15),
+    "esbc": (0.0017730526608030549, 37.79228983473141, 0.0, 119),
+    "nya1": (0.018860419078250562, 45.452236898956535, 0.0, 93),
     "upc": (0.011709899693851477, 65.61302068609777, 0.0, 13),
 }
 

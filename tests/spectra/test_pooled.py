@@ -94,3 +94,20 @@ def test_bad_options_are_named(kw: dict) -> None:
 def test_f_min_must_lie_below_nyquist() -> None:
     with pytest.raises(InputError, match="Nyquist"):
         band_spectra(_windows(0, 2), f_min_hz=1.0)
+
+
+def test_power_response_is_undone_and_too_weak_refused() -> None:
+    psds = _windows(2, 3)
+    plain = band_spectra(psds, f_min_hz=2 / (N * DT))
+    undone = band_spectra(
+        psds, f_min_hz=2 / (N * DT), power_response=lambda f: np.full(f.shape, 0.8)
+    )
+    have = np.isfinite(plain.psd_m2_hz)
+    np.testing.assert_allclose(undone.psd_m2_hz[have], plain.psd_m2_hz[have] / 0.8)
+    with pytest.raises(InputError, match="filter passes only 0.40"):
+        band_spectra(psds, f_min_hz=2 / (N * DT), power_response=lambda f: np.full(f.shape, 0.4))
+
+
+def test_pooled_bound_is_stated_from_the_lowest_band_edge_to_nyquist() -> None:
+    b, bands, _ = fit_pooled_bound(_windows(4, 20), DT, f_min_hz=2 / (N * DT))
+    assert b.f_min_hz == pytest.approx(bands.edges_hz[0]) and b.f_max_hz == pytest.approx(0.5 / DT)
