@@ -353,12 +353,18 @@ def _changed(obj: Any) -> dict[str, Any]:
 
 
 def _method(cfg: FitConfig) -> str:
-    """Return the isolation method the inputs lead to (``demo``, ``df`` or ``da``)."""
+    """Return the isolation method the inputs lead to (``demo``, ``df``, ``da`` or ``auto``).
+
+    With ``method = "auto"`` and several files the method depends on how many
+    antennas the files hold (consecutive files of one station are merged,
+    two stations make a dual-antenna pair), known only once they are read:
+    ``"auto"`` then, and the method-specific checks wait for the data.
+    """
     n = len(cfg.inputs.obs)
     if n == 0:
         return "demo"
     if cfg.inputs.method == "auto":
-        return "da" if n == 2 else "df"
+        return "df" if n == 1 else "auto"
     return cfg.inputs.method
 
 
@@ -366,21 +372,10 @@ def _rule_inputs(cfg: FitConfig, label: Label) -> None:
     inp = cfg.inputs
     n = len(inp.obs)
     lab = label("inputs", "obs")
-    if inp.method == "da" and n != 2:
+    if inp.method == "da" and n < 2:
         raise InputError(
-            f"{_show(label('inputs', 'method'), 'da')} needs two observation files (two "
-            f"antennas), got {n}"
-        )
-    limit = {"auto": 2, "df": 1, "da": 2}[inp.method]
-    if n > limit:
-        extra = ", ".join(inp.obs[limit:])
-        what = (
-            "dual-frequency takes one file" if limit == 1
-            else "one file (dual-frequency) or two (dual-antenna) are used"
-        )  # fmt: skip
-        raise InputError(
-            f"{n} observation files given but {what}: {extra} would be ignored; "
-            "give only the files to use"
+            f"{_show(label('inputs', 'method'), 'da')} needs the observation files of two "
+            f"antennas, got {n} file(s)"
         )
     if n == 0:
         if inp.nav is not None:

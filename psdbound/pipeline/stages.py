@@ -26,8 +26,9 @@ import numpy as np
 
 from psdbound.common import file_sha256
 from psdbound.errors import InputError, NoDataError
-from psdbound.io import find_arcs, read_obs, read_orbit
+from psdbound.io import Observations, find_arcs, read_obs, read_orbit
 from psdbound.io.geometry import ecef_to_geodetic
+from psdbound.io.merge import merge_observations, same_station, station_key
 from psdbound.io.options import ArcOptions
 from psdbound.ionosphere.policy import CutoffChoice, CutoffOptions
 from psdbound.ionosphere.policy import choose_cutoff as _choose_cutoff
@@ -68,17 +69,31 @@ def _quiet(msg: str) -> None:
     """Default progress callback: say nothing."""
 
 
-def _method(inputs: InputsConfig, n_obs: int) -> str:
+def _method(inputs: InputsConfig, n_stations: int) -> str:
+    """Return the isolation method from the option and the number of antennas."""
     m = inputs.method.lower()
     if m == "auto":
-        return "da" if n_obs == 2 else "df"
+        return "da" if n_stations == 2 else "df"
     if m not in ("df", "da"):
         raise InputError(f"--method must be df, da or auto, got {inputs.method!r}")
-    if m == "da" and n_obs != 2:
-        raise InputError(f"--method da needs two observation files (two antennas), got {n_obs}")
-    if m == "df" and n_obs not in (1, 2):
-        raise InputError(f"--method df needs one observation file, got {n_obs}")
+    if m == "da" and n_stations != 2:
+        raise InputError(
+            f"--method da needs the files of two antennas, got {n_stations} station(s)"
+        )
     return m
+
+
+def _group_stations(obs: Sequence[Observations]) -> list[list[Observations]]:
+    """Return the files grouped by antenna, in order of first appearance."""
+    groups: list[list[Observations]] = []
+    for o in obs:
+        for g in groups:
+            if same_station(g[0], o):
+                g.append(o)
+                break
+        else:
+            groups.append([o])
+    return groups
 
 
 def read_inputs(options: InputsConfig, *, progress: Progress = _quiet) -> InputData:
@@ -107,14 +122,31 @@ def read_inputs(options: InputsConfig, *, progress: Progress = _quiet) -> InputD
         obs_paths, nav_path = [data.obs_paths[0]], data.nav_path
         demo = data.truth_meta()
         method_options = InputsConfig(method="df")
-    method = _method(method_options, len(obs_paths))
     for p in obs_paths:
         if not p.is_file():
             raise InputError("observation file not found", path=p)
     if nav_path is None:
         raise InputError("a navigation (or SP3) file is needed for elevations: give --nav")
     progress(f"reading {len(obs_paths)} observation file(s) and {nav_path.name}")
-    obs = tuple(read_obs(p, systems=options.system) for p in obs_paths)
+    groups = _group_stations([read_obs(p, systems=options.system) for p in obs_paths])
+    if len(groups) > 2:
+        names = ", ".join(f"{station_key(g[0])} ({len(g)} file(s))" for g in groups)
+        raise InputError(
+            f"observation files of {len(groups)} stations: {names}; fit one station (its "
+            "consecutive files are merged) or a dual-antenna pair (the files of two antennas)"
+        )
+    method = _method(method_options, len(groups))
+    if method == "df" and len(groups) == 2:
+        raise InputError(
+            f"--method df needs the files of one station, got two: {station_key(groups[0][0])} "
+            f"and {station_key(groups[1][0])}"
+        )
+    obs = tuple(merge_observations(g) for g in groups)
+    merged = [f"{station_key(g[0])}: {len(g)} observation files merged in time order into one "
+              f"data set ({obs[k].path and len(obs[k].t_gps_s)} epochs)"
+              for k, g in enumerate(groups) if len(g) > 1]  # fmt: skip
+    if merged:
+        progress("; ".join(merged))
     orbit = read_orbit(nav_path)
     rx = tuple(tuple(x) for x in options.receiver_xyz_m) or (None,) * len(obs)
     pos = obs[0].header.approx_position_m if rx[0] is None else np.asarray(rx[0])
@@ -128,6 +160,7 @@ def read_inputs(options: InputsConfig, *, progress: Progress = _quiet) -> InputD
     )
     year = int(str(obs[0].times[0])[:4])
     notes = tuple(str(w) for o in (*obs, orbit) for w in getattr(o, "warnings", ()) or ())
+    notes += tuple(merged)
     return InputData(method, obs, orbit, files, rx, lat, lon, year, demo, notes)
 
 

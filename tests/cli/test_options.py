@@ -71,12 +71,11 @@ def test_bad_fit_options_exit_2_before_reading(files, capsys, args, message):
     assert not (files / "reports").exists()
 
 
-def test_extra_observation_files_are_an_error_naming_them(files, capsys):
-    code, err = _run(capsys, "fit", "a.rnx", "b.rnx", "c.rnx", "--nav", "nav.rnx")
-    assert code == 2 and "c.rnx would be ignored" in err and "a.rnx would" not in err
-    code, err = _run(capsys, "fit", "a.rnx", "b.rnx", "--nav", "nav.rnx", "--method", "df")
-    assert code == 2 and "b.rnx would be ignored" in err
-    code, err = _run(capsys, "fit", "a.rnx", "b.rnx", "--nav", "nav.rnx", "--cutoff-hz", "1e-3")
+def test_method_options_are_checked_before_reading(files, capsys):
+    # several files: one station (merged, DF) or two antennas (DA) is known only once read;
+    # an explicit --method da still refuses dual-frequency options up front
+    code, err = _run(capsys, "fit", "a.rnx", "b.rnx", "--nav", "nav.rnx", "--method", "da",
+                     "--cutoff-hz", "1e-3")  # fmt: skip
     assert code == 2 and "--cutoff-hz 0.001 is a dual-frequency option" in err
     code, err = _run(capsys, "fit", "--nav", "nav.rnx")
     assert code == 2 and "--nav nav.rnx given without observation files" in err
@@ -128,8 +127,7 @@ def test_library_checks_options_before_reading(tmp_path):
 
 def test_fit_config_rules():
     cfg = FitConfig().updated("inputs", obs=("a", "b", "c"), nav="n")
-    with pytest.raises(InputError, match="c would be ignored"):
-        cfg.check()
+    assert cfg.check() is cfg  # consecutive files of one station are merged once read
     ok = FitConfig().updated("inputs", obs=("a",), nav="n")
     assert ok.check() is ok
     with pytest.raises(InputError, match=r"\[cutoff\] source = 'map' and \[cutoff\] f_c_hz"):
@@ -137,7 +135,7 @@ def test_fit_config_rules():
     with pytest.raises(InputError, match=r"\[mapping\] b = 3 is only used with"):
         ok.updated("mapping", b=3.0).check()
     assert ok.updated("mapping", kind="fixed", b=3.0).check()
-    with pytest.raises(InputError, match="--method da needs two"):
+    with pytest.raises(InputError, match="--method da needs the observation files of two"):
         ok.updated("inputs", method="da").check(lambda s, n: "--method" if n == "method" else n)
     with pytest.raises(InputError, match="(?i)unknown section"):
         ok.updated("nope", x=1)

@@ -139,7 +139,8 @@ def test_config_file_is_applied_and_saved(tmp_path, demo_run):
     [
         (["fit", "missing.rnx", "--nav", "nav.rnx"], "missing.rnx: observation file not found"),
         (["fit", "--frobnicate"], "unrecognized arguments: --frobnicate"),
-        (["fit", "a.rnx", "--method", "da"], "--method da needs two observation files"),
+        (["fit", "a.rnx", "--method", "da"],
+         "--method da needs the observation files of two antennas"),
         (["fit", "--config", "nope.toml"], "nope.toml: configuration file not found"),
         (["report", "nothing.json"], "nothing.json: result file not found"),
     ],

@@ -8,7 +8,7 @@ import sys
 
 import hatanaka
 import pytest
-from conftest import ESBC_NAV, ESBC_OBS, NYA1_NAV, NYA1_OBS, shared_file
+from conftest import ESBC_NAV, ESBC_OBS, NYA1_NAV, NYA1_OBS, UPC1_OBS, shared_file
 
 import psdbound
 from psdbound.pipeline.verdict import VerdictOptions, judge
@@ -131,3 +131,45 @@ def test_map_cutoff_on_nya1_never_gives_a_white_noise_bound_with_exit_0():
         assert res.verdict == "not-bounded"
     else:
         assert res.bound.sigma_gm_m > 0
+
+
+def _esbc_hours(tmp_path, hours, name):
+    """Write the ESBC epochs of the given hours (e.g. range(0, 12)) as a RINEX 3 file."""
+    text = hatanaka.decompress(shared_file(ESBC_OBS).read_bytes()).decode()
+    head, body = text.split("END OF HEADER", 1)
+    head += "END OF HEADER" + body[: body.index("\n") + 1]
+    wanted = {f"{h:02d}" for h in hours}
+    out, keep = [], False
+    for line in body[body.index("\n") + 1 :].splitlines(keepends=True):
+        if line.startswith(">"):
+            keep = line[13:15] in wanted
+        if keep:
+            out.append(line)
+    p = tmp_path / name
+    p.write_text(head + "".join(out))
+    return p
+
+
+@pytest.mark.realdata
+@pytest.mark.slow
+def test_consecutive_files_are_merged_into_the_whole_day(tmp_path):
+    # issue 18: six files used to fit only the first; now the day in three pieces = the day
+    parts = [_esbc_hours(tmp_path, range(h, h + 8), f"ESBC{h:02d}.rnx") for h in (16, 0, 8)]
+    nav = shared_file(ESBC_NAV)
+    whole = psdbound.fit(shared_file(ESBC_OBS), nav=nav, cutoff={"f_c_hz": 1.5e-3})
+    merged = psdbound.fit(parts, nav=nav, cutoff={"f_c_hz": 1.5e-3})
+    assert merged.inputs.observations[0].t_gps_s.size == whole.inputs.observations[0].t_gps_s.size
+    assert merged.document["method"] == "DF"
+    assert merged.bound.sigma_gm_m == pytest.approx(whole.bound.sigma_gm_m, rel=1e-9)
+    assert any("3 observation files merged" in w for w in merged.warnings)
+    assert len([f for f in merged.provenance["inputs"] if f["role"] == "obs"]) == 3
+
+
+@pytest.mark.realdata
+def test_files_of_three_stations_are_an_error_naming_them(capsys):
+    from psdbound.cli.main import main
+
+    code = main(["fit", str(shared_file(ESBC_OBS)), str(shared_file(NYA1_OBS)),
+                 str(shared_file(UPC1_OBS)), "--nav", str(shared_file(ESBC_NAV))])  # fmt: skip
+    err = capsys.readouterr().err
+    assert code == 2 and "3 stations" in err and "ESBC" in err and "NYA1" in err

@@ -1,0 +1,72 @@
+"""Merging consecutive observation files of one station (issue 18)."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import hatanaka
+import numpy as np
+import pytest
+from conftest import ESBC_OBS, shared_file
+
+from psdbound.errors import InputError
+from psdbound.io import read_obs
+from psdbound.io.merge import merge_observations, same_station, station_key
+
+
+def _hours(tmp_path, hours, name):
+    text = hatanaka.decompress(shared_file(ESBC_OBS).read_bytes()).decode()
+    head, body = text.split("END OF HEADER", 1)
+    head += "END OF HEADER" + body[: body.index("\n") + 1]
+    wanted = {f"{h:02d}" for h in hours}
+    out, keep = [], False
+    for line in body[body.index("\n") + 1 :].splitlines(keepends=True):
+        if line.startswith(">"):
+            keep = line[13:15] in wanted
+        if keep:
+            out.append(line)
+    p = tmp_path / name
+    p.write_text(head + "".join(out))
+    return read_obs(p, systems="G")
+
+
+@pytest.fixture(scope="module")
+def pieces(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("merge")
+    return _hours(tmp, (0, 1), "a.rnx"), _hours(tmp, (1, 2), "b.rnx"), _hours(tmp, (4,), "c.rnx")
+
+
+@pytest.mark.realdata
+def test_overlap_kept_once_and_said(pieces):
+    a, b, c = pieces
+    m = merge_observations([c, b, a])  # any order
+    assert np.all(np.diff(m.t_gps_s) > 0)
+    assert m.t_gps_s.size == 3 * 120 + 120  # hours 0, 1, 2 and 4 at 30 s
+    assert any("120 epoch(s) present in more than one" in w for w in m.warnings)
+    assert m.path.startswith(a.path) and station_key(m) == "ESBC"
+    blk, blk_a = m.blocks["G"], a.blocks["G"]
+    i, j = m.codes("G").index("L1C"), blk_a.codes.index("L1C")
+    for s in blk_a.sats:
+        np.testing.assert_array_equal(blk.values[:120, blk.sats.index(s), i],
+                                      blk_a.values[:120, blk_a.sats.index(s), j])  # fmt: skip
+
+
+@pytest.mark.realdata
+def test_union_of_codes_and_errors(pieces):
+    a, b, _ = pieces
+    blk = b.blocks["G"]
+    fewer = replace(b, blocks={"G": replace(blk, codes=blk.codes[:-1], values=blk.values[..., :-1],
+                                            lli=blk.lli[..., :-1], ssi=blk.ssi[..., :-1])})
+    m = merge_observations([a, fewer])
+    last = m.codes("G").index(blk.codes[-1])
+    assert np.isnan(m.blocks["G"].values[-1, :, last]).all()  # missing code: NaN, not dropped
+    other = replace(b, header=replace(b.header, marker_name="ZZZZ"))
+    assert not same_station(a, other)
+    with pytest.raises(InputError, match="different stations.*'ESBC'.*'ZZZZ'"):
+        merge_observations([a, other])
+    slow = replace(b, t_gps_s=b.t_gps_s[::2], epoch_flag=b.epoch_flag[::2],
+                   header=replace(b.header, interval_s=60.0),
+                   blocks={"G": replace(blk, values=blk.values[::2], lli=blk.lli[::2],
+                                        ssi=blk.ssi[::2])})  # fmt: skip
+    with pytest.raises(InputError, match="different sampling intervals"):
+        merge_observations([a, slow])
