@@ -32,7 +32,13 @@ upper confidence limits of *pooled* spectra:
 4. **Bound.** The tightest GM + white-noise PSD above every limit
    (:func:`psdbound.spectra.fit_bound`, constraints at the bands'
    geometric centres -- for a ``f^-2`` spectrum the band mean equals the
-   value at the geometric centre).
+   value at the geometric centre). Within a band the true PSD can exceed
+   the band mean near the band's lower edge when it is steeper than the
+   bound there (a long-tau truth at the lowest band): in 100 random
+   simulations 10 bounds missed the truth by up to 10 % at a band edge
+   (``benchmarks/bound_truth.py``). Holding the bound above ``U f_hi / f_lo``
+   at every lower edge removes that but cost 25-30 % of variance in the
+   homogeneous tests; left as an open question.
 
 With more data of the same process the groups' degrees of freedom grow, the
 limits approach the true PSD, and the bound tightens.
@@ -64,7 +70,7 @@ from psdbound.spectra.bound import BoundFit, fit_bound
 from psdbound.spectra.estimators import PSDEstimate
 
 __all__ = ["BandSpectra", "PooledLimits", "band_spectra", "fit_pooled_bound", "merge_bands",
-           "pool_bands"]
+           "pool_bands", "excess_statistic"]
 
 
 @dataclass(frozen=True)
@@ -312,8 +318,31 @@ def _limits(
     return out[0], out[1], out[2]
 
 
-def _excess(z: NDArray, v: NDArray, ok: NDArray, log_u: NDArray) -> NDArray:
-    """Standardised mean excess of each window's log bands over the limits."""
+def excess_statistic(
+    z: NDArray[np.float64],
+    v: NDArray[np.float64],
+    ok: NDArray[np.bool_],
+    log_u: NDArray[np.float64],
+) -> NDArray[np.float64]:
+    """Return each window's standardised mean excess of its log band values over a limit.
+
+    ``T_w = sum_b (Z_wb - log U_b) / v_wb / sqrt(sum_b 1 / v_wb)``: standard
+    normal when the window's PSD equals ``U``, stochastically smaller when it
+    lies below.
+
+    Parameters
+    ----------
+    z, v : ndarray, shape (M, B)
+        Unbiased log band values and their variances (:meth:`BandSpectra.log_unbiased`).
+    ok : ndarray of bool, shape (M, B)
+        Cells with an estimate.
+    log_u : ndarray, shape (B,)
+        Log of the limit in each band.
+
+    Returns
+    -------
+    ndarray, shape (M,)
+    """
     use = ok & np.isfinite(log_u)[None, :]
     w = np.where(use, 1.0 / v, 0.0)
     d = np.where(use, z - np.nan_to_num(log_u)[None, :], 0.0)
@@ -414,7 +443,7 @@ def pool_bands(
             while True:
                 lu, _, _ = _limits(z[members], var[members], ok[members], a0, z_p,
                                    homogeneity_alpha)
-                t = _excess(z[members], var[members], ok[members], lu)
+                t = excess_statistic(z[members], var[members], ok[members], lu)
                 high = t > stats.norm.isf(outlier_alpha / members.size)
                 if not high.any() or high.all():
                     break

@@ -1,0 +1,111 @@
+"""One station-day of a campaign: the fit stages up to the window spectra, as a Dask task.
+
+A task item is a plain dict (picklable, hashable into a cache key):
+``{"station", "day", "obs": [paths], "nav": path, "sha256": {path: digest},
+"options": {...}}``. The result is a plain dict of numbers and arrays that
+:class:`psdbound.compute.DiskCache` stores as JSON + NPZ: the day's own
+pooled bound and every window's PSD estimate (to pool days later).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+__all__ = ["station_day_task", "psds_from_result"]
+
+
+def station_day_task(item: dict[str, Any]) -> dict[str, Any]:
+    """Run read, cutoff, isolation, screening, windows and the pooled bound of one station-day.
+
+    Parameters
+    ----------
+    item : dict
+        ``station``, ``day`` (``YYYY-MM-DD``), ``obs`` (paths of the day's
+        files of the station), ``nav`` (path), ``options`` (a dict of
+        :class:`~psdbound.pipeline.FitConfig` sections).
+
+    Returns
+    -------
+    dict
+        ``station``, ``day``, ``ok`` and either ``error`` (a one-line
+        reason) or the bound (``sigma_gm_m``, ``tau_s``, ``sigma_wn_m``,
+        ``dt_s``), ``f_min_hz``, ``f_c_hz``, ``covered_fraction``,
+        ``n_windows`` and the window PSDs as flat arrays ``psd_f_hz``,
+        ``psd_m2_hz`` (divided by the high-pass's power response where it
+        passes at least half the power, as the pooled bound does),
+        ``psd_dof``, ``psd_n`` (samples) and ``psd_len`` (frequencies per window).
+    """
+    from psdbound.errors import InputError, NoDataError
+    from psdbound.pipeline import stages
+    from psdbound.pipeline.config import FitConfig
+
+    out: dict[str, Any] = {"station": item["station"], "day": item["day"], "ok": False}
+    cfg = FitConfig()
+    for section, values in (item.get("options") or {}).items():
+        cfg = cfg.updated(section, **values)
+    cfg = cfg.updated("inputs", obs=tuple(item["obs"]), nav=item["nav"], method="df")
+    try:
+        inputs = stages.read_inputs(cfg.inputs)
+        cutoff = stages.choose_cutoff(inputs, cfg.cutoff)
+        iso = stages.isolate(inputs, cutoff, arcs=cfg.arcs, highpass=cfg.filter,
+                             options=cfg.inputs)  # fmt: skip
+        scr = stages.screen(iso, options=cfg.screening, mapping=cfg.mapping,
+                            min_length_s=cfg.stationarity.min_window_s)  # fmt: skip
+        win = stages.window(scr, mapping=cfg.mapping, options=cfg.stationarity)
+        res = stages.bound(win, spectra=cfg.spectra, options=cfg.bound, cutoff=cutoff,
+                           highpass=cfg.filter)  # fmt: skip
+    except (InputError, NoDataError) as exc:
+        out["error"] = " ".join(str(exc).split())
+        return out
+    b = res.bound
+    w = win.windows
+    series = scr.series
+    data_s = float(sum(hi - lo for lo, hi in series.arc_bounds()) * series.interval_s)
+    psds = res.psds
+    values = [p.psd_m2_hz for p in psds]
+    if cutoff is not None:  # undo the high-pass where it passes at least half the power
+        gains = [cfg.filter.response(p.f_hz, p.dt_s, cutoff.f_c_hz) ** 2 for p in psds]
+        values = [np.where(g >= 0.5, v / np.maximum(g, 0.5), v) for v, g in zip(values, gains,
+                                                                                  strict=True)]
+    out.update({
+        "ok": True,
+        "sigma_gm_m": b.sigma_gm_m, "tau_s": b.tau_s, "sigma_wn_m": b.sigma_wn_m,
+        "dt_s": b.dt_s, "f_min_hz": b.f_min_hz,
+        "f_c_hz": None if cutoff is None else cutoff.f_c_hz,
+        "mapping": [win.mapping.a, win.mapping.b, win.mapping.c_deg],
+        "n_windows": len(w),
+        "covered_fraction": max(1.0 - w.uncovered_s / data_s, 0.0) if data_s > 0 else 0.0,
+        "psd_f_hz": np.concatenate([p.f_hz for p in psds]),
+        "psd_m2_hz": np.concatenate(values),
+        "psd_dof": np.concatenate([np.broadcast_to(p.dof, p.f_hz.shape) for p in psds]),
+        "psd_n": np.array([p.n_samples for p in psds]),
+        "psd_len": np.array([p.f_hz.size for p in psds]),
+        "estimator": res.estimator,
+    })  # fmt: skip
+    return out
+
+
+def psds_from_result(result: dict[str, Any]) -> list[Any]:
+    """Rebuild the window PSD estimates of a station-day result.
+
+    Parameters
+    ----------
+    result : dict
+        A successful :func:`station_day_task` result (possibly read back
+        from the cache).
+
+    Returns
+    -------
+    list of PSDEstimate
+    """
+    from psdbound.spectra import PSDEstimate
+
+    edges = np.r_[0, np.cumsum(np.asarray(result["psd_len"], dtype=int))]
+    f, s, d = (np.asarray(result[k], dtype=float) for k in ("psd_f_hz", "psd_m2_hz", "psd_dof"))
+    return [
+        PSDEstimate(f[a:b], s[a:b], d[a:b], str(result.get("estimator", "multitaper")),
+                    dt_s=float(result["dt_s"]), n_samples=int(n))  # fmt: skip
+        for a, b, n in zip(edges[:-1], edges[1:], result["psd_n"], strict=True)
+    ]
