@@ -1,4 +1,9 @@
-"""``psdbound inspect``: list systems, signals and tracking arcs of observation files."""
+"""``psdbound inspect``: list systems, signals and tracking arcs of observation files.
+
+With ``--nav`` it also prints the orbit's coverage of each observation file
+(systems, time span, observed satellites without a position) and, when no
+arc results, why.
+"""
 
 from __future__ import annotations
 
@@ -15,7 +20,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "inspect",
         help="read observation files and list systems, signals and tracking arcs",
         description="Read RINEX observation files (2.x/3.x, gzip, Hatanaka) and "
-        "print their content and the continuous dual-signal tracking arcs.",
+        "print their content and the continuous dual-signal tracking arcs. With --nav, "
+        "also the orbit file's coverage of the observations (systems, span, satellites "
+        "without ephemerides).",
     )
     p.add_argument("obs", nargs="+", help="RINEX observation file(s)")
     p.add_argument("--nav", help="navigation (RINEX) or SP3 file for elevations")
@@ -55,7 +62,7 @@ def _options(args: argparse.Namespace) -> tuple[list[str] | None, float, float]:
 
 def run(args: argparse.Namespace) -> int:
     """Print file summaries and arcs; return the exit code."""
-    from psdbound.io import find_arcs, read_obs, read_orbit
+    from psdbound.io import find_arcs, orbit_coverage, read_obs, read_orbit
 
     signals, min_length_s, mask_deg = _options(args)
     orbit = read_orbit(args.nav) if args.nav else None
@@ -67,7 +74,10 @@ def run(args: argparse.Namespace) -> int:
                 f"no observations of system {args.system!r}; present: {' '.join(obs.systems)}",
                 path=path,
             )
-        arcs = find_arcs(
+        if orbit is not None:
+            # the full reason comes with the error find_arcs raises for --system
+            print(orbit_coverage(orbit, obs).summary(reasons=False))
+        arcs = find_arcs(  # raises, with the reason, when the orbit covers no satellite
             obs,
             signals,
             system=args.system,
@@ -76,6 +86,8 @@ def run(args: argparse.Namespace) -> int:
             elevation_mask_deg=mask_deg,
         )
         print(arcs.summary())
+        if not len(arcs):
+            print(f"  no arc: {arcs.empty_reason()}")
         for a in arcs:
             el = ""
             if a.elevation_deg is not None:

@@ -4,7 +4,10 @@ Public surface:
 
 * :func:`read_obs` -> :class:`Observations` (RINEX 2.1x/3.0x observation files)
 * :func:`read_orbit` -> :class:`Navigation` or :class:`PreciseOrbit`
-  (also :func:`read_nav`, :func:`read_sp3`)
+  (also :func:`read_nav`, :func:`read_sp3`); GLONASS broadcast records are
+  :class:`GlonassEphemerides`
+* :func:`orbit_coverage` -> :class:`OrbitCoverage`: does an orbit cover the
+  observed satellites and epochs, and if not why
 * :func:`satellite_azel`, :func:`azimuth_elevation`, :func:`ecef_to_geodetic`
 * :func:`find_arcs` -> :class:`ArcSet` of :class:`Arc`
 """
@@ -12,7 +15,9 @@ Public surface:
 from __future__ import annotations
 
 from psdbound.io.arcs import DEFAULT_SIGNALS, Arc, ArcSet, find_arcs, require_arcs
+from psdbound.io.coverage import OrbitCoverage, SystemCoverage, orbit_coverage
 from psdbound.io.geometry import azimuth_elevation, ecef_to_geodetic, satellite_azel
+from psdbound.io.glonass import GlonassEphemerides
 from psdbound.io.nav import Navigation, read_nav
 from psdbound.io.obs import Observations, ObsHeader, SystemBlock, read_obs
 from psdbound.io.options import ArcOptions
@@ -24,14 +29,18 @@ __all__ = [
     "Arc",
     "ArcSet",
     "DEFAULT_SIGNALS",
+    "GlonassEphemerides",
     "Navigation",
     "ObsHeader",
     "Observations",
+    "OrbitCoverage",
     "PreciseOrbit",
     "SystemBlock",
+    "SystemCoverage",
     "azimuth_elevation",
     "ecef_to_geodetic",
     "find_arcs",
+    "orbit_coverage",
     "read_nav",
     "read_obs",
     "read_orbit",

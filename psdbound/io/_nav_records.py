@@ -186,6 +186,10 @@ class RecordParser:
         """Calendar fields of the epoch line; ValueError when they do not parse."""
         raise NotImplementedError
 
+    def describe(self, attr: str) -> str:
+        """Name of a record field for messages (e.g. ``'sqrt(A)'``)."""
+        return DESCRIPTION.get(attr, attr)
+
     # -- numbers ------------------------------------------------------------
     def number(self, rec: list[int], k: int, j: int, sat: str, attr: str, required: bool) -> float:
         idx = rec[k]
@@ -196,7 +200,7 @@ class RecordParser:
             start = self.CONTINUATION_COLUMN + j * FIELD_WIDTH
         s = text[start : start + FIELD_WIDTH]
         col = f"columns {start + 1}-{start + FIELD_WIDTH}"
-        what = f"{DESCRIPTION[attr]} of {sat}"
+        what = f"{self.describe(attr)} of {sat}"
         if len(s) < FIELD_WIDTH and s.strip() and idx == self.last_nonblank:
             raise self.error(
                 f"truncated navigation record: {what} ({col}) is cut short at the end of the "

@@ -1,20 +1,22 @@
-"""RINEX 2 navigation records: GPS Keplerian records, GLONASS and GEO/SBAS records counted.
+"""RINEX 2 navigation records: GPS Keplerian and GLONASS records; GEO/SBAS records counted.
 
 Layout (RINEX 2.11, table A4): the epoch line holds the PRN in columns 1-2,
 the time of clock ``yy mm dd hh mm ss.s`` in columns 3-22 and three fields
 from column 23; the orbit lines hold four fields from column 4. A GPS record
-has eight lines; GLONASS (file type ``G``) and GEO/SBAS (``H``) records have
-four and are only counted.
+has eight lines; GLONASS (file type ``G``, read by
+:mod:`psdbound.io._nav_glonass`) and GEO/SBAS (``H``, only counted) records
+have four.
 """
 
 from __future__ import annotations
 
-from psdbound.io._nav_records import KEPLER_LINES, Epoch, RecordParser
+from psdbound.io._nav_glonass import GlonassParser
+from psdbound.io._nav_records import KEPLER_LINES, Epoch
 
 __all__ = ["Rinex2Parser"]
 
 
-class Rinex2Parser(RecordParser):
+class Rinex2Parser(GlonassParser):
     """Parser of the body of a RINEX 2 navigation file (one system per file)."""
 
     FIRST_COLUMN = 22
@@ -36,8 +38,8 @@ class Rinex2Parser(RecordParser):
     def parse(self, start: int, system: str = "G") -> None:
         """Read every record from line index ``start`` on; ``system`` from the file type.
 
-        ``"G"`` (GPS, file type N) records are parsed; GLONASS (``"R"``,
-        file type G) and SBAS (``"S"``, file type H) records are counted.
+        ``"G"`` (GPS, file type N) and ``"R"`` (GLONASS, file type G)
+        records are parsed; SBAS (``"S"``, file type H) records are counted.
         """
         lines = self.lines
         i = start
@@ -68,6 +70,8 @@ class Rinex2Parser(RecordParser):
                     )
             if system == "G":
                 self.add_kepler(system, sat, rec)
+            elif system == "R":
+                self.add_glonass(sat, rec)
             else:
                 self.skipped[system] = self.skipped.get(system, 0) + 1
             i += need

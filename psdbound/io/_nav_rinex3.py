@@ -1,16 +1,18 @@
-"""RINEX 3 navigation records: Keplerian records of GPS, Galileo, BeiDou, QZSS; others counted.
+"""RINEX 3 navigation records: Keplerian (GPS, Galileo, BeiDou, QZSS) and GLONASS; others counted.
 
 Layout (RINEX 3.0x): the epoch line holds the satellite id in columns 1-3,
 the time of clock ``yyyy mm dd hh mm ss`` in columns 5-23 and three fields
 from column 24; the orbit lines start with a blank and hold four fields from
 column 5. A record runs to the next line that starts with a satellite id.
-Keplerian records (:data:`KEPLER_SYSTEMS`) have eight lines; GLONASS, SBAS
-and NavIC records (:data:`SKIPPED_SYSTEMS`) are only counted.
+Keplerian records (:data:`KEPLER_SYSTEMS`) have eight lines, GLONASS records
+four (five from RINEX 3.05; see :mod:`psdbound.io._nav_glonass`); SBAS and
+NavIC records (:data:`SKIPPED_SYSTEMS`) are only counted.
 """
 
 from __future__ import annotations
 
-from psdbound.io._nav_records import KEPLER_LINES, Epoch, RecordParser
+from psdbound.io._nav_glonass import GLONASS_LINES, GlonassParser
+from psdbound.io._nav_records import KEPLER_LINES, Epoch
 from psdbound.io.kepler import SAT_ID_RE
 
 __all__ = ["KEPLER_SYSTEMS", "SKIPPED_SYSTEMS", "SKIPPED_LINES", "Rinex3Parser"]
@@ -18,12 +20,12 @@ __all__ = ["KEPLER_SYSTEMS", "SKIPPED_SYSTEMS", "SKIPPED_LINES", "Rinex3Parser"]
 #: Systems whose RINEX records are Keplerian broadcast ephemerides parsed here.
 KEPLER_SYSTEMS: tuple[str, ...] = ("G", "E", "C", "J")
 #: Systems whose records are recognised but skipped (only counted).
-SKIPPED_SYSTEMS: tuple[str, ...] = ("R", "S", "I")
+SKIPPED_SYSTEMS: tuple[str, ...] = ("S", "I")
 #: Minimum number of lines of the records that are only counted.
-SKIPPED_LINES = {"R": 4, "S": 4, "I": 8}
+SKIPPED_LINES = {"S": 4, "I": 8}
 
 
-class Rinex3Parser(RecordParser):
+class Rinex3Parser(GlonassParser):
     """Parser of the body of a RINEX 3 navigation file (single-system or mixed)."""
 
     FIRST_COLUMN = 23
@@ -71,7 +73,7 @@ class Rinex3Parser(RecordParser):
                     "a system letter and a 2-digit number such as 'G01'",
                     i,
                 )
-            if system in KEPLER_SYSTEMS or system in SKIPPED_SYSTEMS:
+            if system in KEPLER_SYSTEMS or system in SKIPPED_SYSTEMS or system == "R":
                 self.check_sat(sat, i, "columns 1-3")
             # collect continuation lines (those starting with a blank)
             j = i + 1
@@ -94,6 +96,17 @@ class Rinex3Parser(RecordParser):
                         rec[KEPLER_LINES],
                     )
                 self.add_kepler(system, sat, rec)
+            elif system == "R":
+                if len(rec) < GLONASS_LINES:
+                    if j > last:
+                        raise self.truncated(sat, len(rec), GLONASS_LINES, j - 1)
+                    raise self.error(
+                        f"incomplete navigation record of {sat}: {len(rec)} lines found "
+                        f"before the next record; expected {GLONASS_LINES} lines (5 from "
+                        "RINEX 3.05)",
+                        j - 1,
+                    )
+                self.add_glonass(sat, rec[:GLONASS_LINES])
             elif system in SKIPPED_SYSTEMS:
                 need = SKIPPED_LINES[system]
                 if len(rec) < need and j > last:

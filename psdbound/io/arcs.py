@@ -16,6 +16,13 @@ its carrier-phase ambiguities are constant. Arcs are broken
 * where the satellite is below the elevation mask (when an orbit is given).
 
 Stretches shorter than ``min_length_s`` are dropped and counted.
+
+When an orbit is given, :func:`find_arcs` first checks that it covers the
+observations (:func:`psdbound.io.coverage.orbit_coverage`): an orbit file of
+another day or without the system raises an :class:`InputError` that says
+so, and satellites or epochs it leaves without a position are reported as
+warnings (in :attr:`ArcSet.warnings`). :meth:`ArcSet.empty_reason` tells
+why an arc set is empty.
 """
 
 from __future__ import annotations
@@ -28,7 +35,9 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.ndimage import median_filter
 
+from psdbound.common.notices import warn
 from psdbound.errors import InputError, NoDataError
+from psdbound.io.coverage import OrbitCoverage, orbit_coverage
 from psdbound.io.obs import Observations
 
 __all__ = ["Arc", "ArcSet", "find_arcs", "DEFAULT_SIGNALS"]
@@ -39,6 +48,7 @@ DEFAULT_SIGNALS: dict[str, tuple[str, str]] = {
     "E": ("L1C", "L5Q"),
     "J": ("L1C", "L2L"),
     "C": ("L2I", "L7I"),
+    "R": ("L1C", "L2P"),
 }
 
 _SLIP_WINDOW = 11  # samples in the running median of the geometry-free rate
@@ -123,6 +133,26 @@ class ArcSet:
         Number of stretches dropped per reason (``"shorter than minimum"``).
     dropped_s : float
         Total duration of the dropped stretches, seconds.
+    warnings : tuple of str
+        What the orbit left uncovered (satellites or epochs without a
+        position), one line each, naming the orbit file; also issued as
+        :class:`~psdbound.common.notices.PsdboundWarning`.
+    tracked : tuple of str or None
+        Satellites tracked on both signals at two or more common epochs
+        (None when unknown, e.g. an ArcSet built elsewhere).
+    below_mask : tuple of str
+        Tracked satellites never above the elevation mask (or never with an
+        orbit position), hence without any arc.
+    elevation_mask_deg : float or None
+        The elevation mask applied, degrees (None without an orbit).
+    phase_counts : tuple of int or None
+        Number of (satellite, epoch) samples with a phase on each signal.
+    coverage : OrbitCoverage or None
+        The orbit's coverage of the observations (None without an orbit).
+    glonass_channels : dict of str to int
+        GLONASS FDMA frequency numbers used for the phases (observation
+        header, completed from the orbit's GLONASS records); pass them to
+        :func:`psdbound.io.signals.wavelength_m` for GLONASS signals.
     """
 
     path: str
@@ -134,6 +164,13 @@ class ArcSet:
     breaks: Counter = field(default_factory=Counter)
     dropped: Counter = field(default_factory=Counter)
     dropped_s: float = 0.0
+    warnings: tuple[str, ...] = ()
+    tracked: tuple[str, ...] | None = None
+    below_mask: tuple[str, ...] = ()
+    elevation_mask_deg: float | None = None
+    phase_counts: tuple[int, int] | None = None
+    coverage: OrbitCoverage | None = None
+    glonass_channels: dict[str, int] = field(default_factory=dict)
 
     def __len__(self) -> int:
         return len(self.arcs)
@@ -161,6 +198,50 @@ class ArcSet:
             f"({self.dropped_s / 3600:.2f} h)",
         ]
         return "\n".join(lines)
+
+    def empty_reason(self) -> str:
+        """Say why there is no arc ('' when there are arcs).
+
+        Returns
+        -------
+        str
+            One of: no satellite tracked on both signals at common epochs
+            (naming the signal without phase, if any); tracked satellites
+            never above the elevation mask or without an orbit position; all
+            tracking stretches shorter than the minimum length.
+
+        """
+        if self.arcs:
+            return ""
+        a, b = self.signals
+        if self.dropped:
+            return (
+                f"no arc long enough: all {sum(self.dropped.values())} tracking stretches of "
+                f"{self.system} {a}-{b} are shorter than {self.min_length_s / 60:g} min"
+            )
+        both = f"no satellite tracked both {a} and {b} ({self.system}) at the same epochs"
+        if not self.tracked:
+            n_a, n_b = self.phase_counts if self.phase_counts is not None else (1, 0)
+            if n_a and not n_b:
+                return f"{both}: the second frequency is missing"
+            if n_b and not n_a:
+                return f"{both}: the first frequency is missing"
+            if not (n_a or n_b):
+                return f"{both}: neither signal has a phase"
+            return f"{both}: each signal was tracked, but never together for two epochs"
+        below = self.below_mask
+        no_orbit: tuple[str, ...] = ()
+        if self.coverage is not None and self.system in self.coverage.systems:
+            sc = self.coverage.systems[self.system]
+            no_orbit = tuple(s for s in below if s in sc.missing or s in sc.outside)
+        mask = self.elevation_mask_deg or 0.0
+        text = (
+            f"no satellite tracked on both {a} and {b} ({self.system}) is above the "
+            f"elevation mask of {mask:g} deg at any epoch ({len(below)} tracked)"
+        )
+        if no_orbit:
+            text += f"; the orbit gives no position for {' '.join(no_orbit)}"
+        return text
 
 
 def _slips(gf_m: NDArray[np.float64], threshold_m: float) -> NDArray[np.bool_]:
@@ -234,8 +315,16 @@ def find_arcs(
     Raises
     ------
     InputError
-        Unknown signals, a missing second signal, or no receiver position
-        when an orbit is given.
+        Unknown signals, a missing second signal, no receiver position
+        when an orbit is given, or an orbit that gives no position for any
+        observed satellite of the system (a file of another day, or without
+        the system; the message says which).
+
+    Warns
+    -----
+    PsdboundWarning
+        When the orbit leaves some observed satellites or epochs without a
+        position (also in :attr:`ArcSet.warnings`).
     """
     if signals is None:
         if system not in DEFAULT_SIGNALS:
@@ -248,6 +337,8 @@ def find_arcs(
         raise InputError(f"arcs need carrier-phase codes (L..), got {code_a} and {code_b}")
     block = obs.blocks[system]
     interval_s = obs.interval_s
+    coverage = None
+    notes: tuple[str, ...] = ()
     if orbit is not None:
         if receiver_xyz_m is None:
             receiver_xyz_m = obs.header.approx_position_m
@@ -259,6 +350,14 @@ def find_arcs(
             )
         from psdbound.io.geometry import satellite_azel
 
+        coverage = orbit_coverage(orbit, obs, system, satellites=satellites)
+        coverage.require(system)
+        where = coverage.orbit_path or None
+        notes = tuple(warn(m, path=where, stacklevel=3) for m in coverage.warnings(system))
+        channels = getattr(orbit, "glonass_channels", None)
+        if system == "R" and channels:
+            obs = obs.with_glonass_channels(channels)
+
     sats = block.sats if satellites is None else [s for s in block.sats if s in satellites]
     ka, kb = block.codes.index(code_a), block.codes.index(code_b)
     t_all = obs.t_gps_s
@@ -267,14 +366,20 @@ def find_arcs(
     dropped: Counter = Counter()
     dropped_s = 0.0
     arcs: list[Arc] = []
+    tracked: list[str] = []
+    below: list[str] = []
+    counts = [0, 0]
     for sat in sats:
         i = block.sats.index(sat)
         la = obs.phase_m(sat, code_a)
         lb = obs.phase_m(sat, code_b)
-        ok = np.isfinite(la) & np.isfinite(lb)
-        idx = np.flatnonzero(ok)
+        fa, fb = np.isfinite(la), np.isfinite(lb)
+        counts[0] += int(fa.sum())
+        counts[1] += int(fb.sum())
+        idx = np.flatnonzero(fa & fb)
         if idx.size < 2:
             continue
+        tracked.append(sat)
         t = t_all[idx]
         reason = np.full(idx.size, "", dtype=object)
         reason[0] = "first epoch"
@@ -307,6 +412,7 @@ def find_arcs(
             reason[m[slip]] = "cycle slip"
         keep = ~low
         if not keep.any():
+            below.append(sat)
             continue  # never above the mask: no arc
         starts = (reason != "") & keep
         starts |= keep & np.r_[True, ~keep[:-1]]
@@ -345,6 +451,13 @@ def find_arcs(
         breaks=breaks,
         dropped=dropped,
         dropped_s=dropped_s,
+        warnings=notes,
+        tracked=tuple(tracked),
+        below_mask=tuple(below),
+        elevation_mask_deg=None if orbit is None else float(elevation_mask_deg),
+        phase_counts=(counts[0], counts[1]),
+        coverage=coverage,
+        glonass_channels=dict(obs.header.glonass_channels) if system == "R" else {},
     )
     return result
 

@@ -2,13 +2,13 @@
 
 Supported inputs
 ----------------
-* RINEX 2.x GPS navigation files (file type ``N``). RINEX 2 GLONASS (``G``)
-  and GEO/SBAS (``H``) navigation files are read too, but their records are
+* RINEX 2.x GPS (file type ``N``) and GLONASS (``G``) navigation files.
+  GEO/SBAS (``H``) navigation files are read too, but their records are
   only counted (in :attr:`Navigation.skipped`), not parsed.
 * RINEX 3.0x navigation files, single-system or mixed. Keplerian records of
-  GPS (``G``), Galileo (``E``), BeiDou (``C``) and QZSS (``J``) are parsed;
-  GLONASS (``R``), SBAS (``S``) and NavIC/IRNSS (``I``) records are skipped
-  and counted per system.
+  GPS (``G``), Galileo (``E``), BeiDou (``C``) and QZSS (``J``) and the
+  state-vector records of GLONASS (``R``) are parsed; SBAS (``S``) and
+  NavIC/IRNSS (``I``) records are skipped and counted per system.
 
 RINEX 4 navigation files (``> EPH`` record headers) are not supported.
 
@@ -18,14 +18,17 @@ like GPS time in RINEX), BeiDou labels are BDT and get +14 s. The week number
 of each record (GPS week, GST week aligned with GPS, or BDT week + 1356) gives
 the full time of ephemeris ``toe_gps_s``; it is moved by whole weeks to the one
 nearest to ``toc_gps_s`` so that week-rollover or "week of transmission"
-conventions of some writers cannot put it in the wrong week.
+conventions of some writers cannot put it in the wrong week. GLONASS epochs
+are UTC labels and are converted with the leap-second table.
 
 Layout: this module is the front (:func:`read_nav` and the header); the
-containers are :class:`~psdbound.io.navigation.Navigation` and
+containers are :class:`~psdbound.io.navigation.Navigation`,
 :class:`~psdbound.io.kepler.KeplerEphemerides` (propagated by
-:mod:`psdbound.io.ephemeris`); the record parsers are in
-``psdbound.io._nav_records`` (shared layout), ``psdbound.io._nav_rinex2``
-and ``psdbound.io._nav_rinex3``.
+:mod:`psdbound.io.ephemeris`) and
+:class:`~psdbound.io.glonass.GlonassEphemerides` (integrated by
+:mod:`psdbound.io.glonass`); the record parsers are in
+``psdbound.io._nav_records`` (shared layout), ``psdbound.io._nav_glonass``,
+``psdbound.io._nav_rinex2`` and ``psdbound.io._nav_rinex3``.
 """
 
 from __future__ import annotations
@@ -38,10 +41,12 @@ from psdbound.errors import InputError
 from psdbound.io._nav_rinex2 import Rinex2Parser
 from psdbound.io._nav_rinex3 import KEPLER_SYSTEMS, SKIPPED_SYSTEMS, Rinex3Parser
 from psdbound.io._source import read_bytes
+from psdbound.io.glonass import GlonassEphemerides
 from psdbound.io.kepler import KeplerEphemerides
 from psdbound.io.navigation import Navigation
 
 __all__ = [
+    "GlonassEphemerides",
     "KeplerEphemerides",
     "Navigation",
     "read_nav",
@@ -124,8 +129,8 @@ def read_nav(path: str | os.PathLike[str]) -> Navigation:
     Returns
     -------
     Navigation
-        Keplerian ephemerides per system (GPS, Galileo, BeiDou, QZSS) and the
-        counts of skipped GLONASS/SBAS/NavIC records.
+        Keplerian ephemerides per system (GPS, Galileo, BeiDou, QZSS), the
+        GLONASS ephemerides and the counts of skipped SBAS/NavIC records.
 
     Raises
     ------
@@ -139,8 +144,9 @@ def read_nav(path: str | os.PathLike[str]) -> Navigation:
     Warns
     -----
     PsdboundWarning
-        Records with non-finite values, an impossible time of clock or
-        elements no GNSS orbit has are left out (counted in one warning,
+        Records with non-finite values, an impossible time of clock,
+        elements no GNSS orbit has or (GLONASS) an implausible position or
+        frequency number are left out (counted in one warning,
         also in :attr:`Navigation.warnings`).
 
     """
@@ -165,4 +171,5 @@ def read_nav(path: str | os.PathLike[str]) -> Navigation:
         ephemerides=parser.build(),
         skipped=dict(sorted(parser.skipped.items())),
         warnings=(warn(note, path=p),) if note else (),
+        glonass=parser.build_glonass(),
     )

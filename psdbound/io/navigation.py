@@ -1,8 +1,10 @@
 """The content of a broadcast navigation file: :class:`Navigation`.
 
 A :class:`Navigation` holds the Keplerian records of each system
-(:class:`~psdbound.io.kepler.KeplerEphemerides`) and gives satellite
-positions and clocks through the propagation of :mod:`psdbound.io.ephemeris`.
+(:class:`~psdbound.io.kepler.KeplerEphemerides`) and the GLONASS records
+(:class:`~psdbound.io.glonass.GlonassEphemerides`), and gives satellite
+positions and clocks through the propagation of :mod:`psdbound.io.ephemeris`
+and :mod:`psdbound.io.glonass`.
 It is what :func:`psdbound.io.nav.read_nav` returns and what
 :func:`psdbound.io.nominal.nominal_navigation` builds.
 """
@@ -15,8 +17,14 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from psdbound.io.ephemeris import kepler_positions_ecef_m, nan_positions
+from psdbound.io.ephemeris import MAX_AGE_S, kepler_positions_ecef_m, nan_positions
 from psdbound.io.ephemeris import satellite_clock_s as kepler_clock_s
+from psdbound.io.glonass import (
+    GLONASS_MAX_AGE_S,
+    GlonassEphemerides,
+    glonass_clock_s,
+    glonass_positions_ecef_m,
+)
 from psdbound.io.kepler import KeplerEphemerides, check_sat_id
 
 __all__ = ["Navigation"]
@@ -39,11 +47,13 @@ class Navigation:
         only systems with at least one record are present.
     skipped : dict of str to int
         Number of records per system letter that were recognised but not
-        parsed (GLONASS, SBAS, NavIC).
+        parsed (SBAS, NavIC).
     warnings : tuple of str
         Records left out because they are damaged (non-finite values,
         impossible dates or elements), one line per file; also issued as
         :class:`~psdbound.common.notices.PsdboundWarning`.
+    glonass : GlonassEphemerides or None
+        GLONASS records (state vectors in PZ-90), None when the file has none.
 
     """
 
@@ -53,14 +63,58 @@ class Navigation:
     ephemerides: dict[str, KeplerEphemerides] = field(default_factory=dict)
     skipped: dict[str, int] = field(default_factory=dict)
     warnings: tuple[str, ...] = ()
+    glonass: GlonassEphemerides | None = None
 
     @property
     def satellites(self) -> tuple[str, ...]:
-        """Sorted ids of all satellites with Keplerian ephemerides, e.g. ``('E01', 'G01')``."""
+        """Sorted ids of all satellites with ephemerides, e.g. ``('E01', 'G01', 'R03')``."""
         out: set[str] = set()
         for eph in self.ephemerides.values():
             out.update(eph.satellites)
+        if self.glonass is not None:
+            out.update(self.glonass.satellites)
         return tuple(sorted(out))
+
+    @property
+    def systems(self) -> tuple[str, ...]:
+        """Sorted letters of the systems with at least one record, e.g. ``('E', 'G', 'R')``."""
+        out = set(self.ephemerides)
+        if self.glonass is not None and len(self.glonass):
+            out.add("R")
+        return tuple(sorted(out))
+
+    @property
+    def glonass_channels(self) -> dict[str, int]:
+        """GLONASS FDMA frequency number per satellite, e.g. ``{'R01': 1}`` (empty without R)."""
+        return {} if self.glonass is None else self.glonass.channels
+
+    def reference_times_gps_s(self, system: str) -> NDArray[np.float64]:
+        """Return the reference times of a system's healthy records (toe; GLONASS tb).
+
+        Parameters
+        ----------
+        system : str
+            System letter such as ``'G'`` or ``'R'``.
+
+        Returns
+        -------
+        ndarray of float64
+            Sorted reference times, GPS seconds; empty when the system has no
+            healthy record.
+
+        """
+        if system == "R":
+            g = self.glonass
+            t = np.empty(0) if g is None else g.tb_gps_s[g.health == 0]
+        else:
+            eph = self.ephemerides.get(system)
+            t = np.empty(0) if eph is None else eph.toe_gps_s[eph.health == 0]
+        return np.sort(t)
+
+    @staticmethod
+    def validity_s(system: str) -> float:
+        """Return how far from its reference time a record is used, s (4 h; GLONASS 30 min)."""
+        return GLONASS_MAX_AGE_S if system == "R" else MAX_AGE_S.get(system, 4 * 3600.0)
 
     def positions_ecef_m(self, sat: str, t_gps_s: ArrayLike) -> NDArray[np.float64]:
         """Broadcast ECEF positions of one satellite.
@@ -86,10 +140,15 @@ class Navigation:
 
         See Also
         --------
-        psdbound.io.ephemeris.kepler_positions_ecef_m : the propagation.
+        psdbound.io.ephemeris.kepler_positions_ecef_m : the Keplerian propagation.
+        psdbound.io.glonass.glonass_positions_ecef_m : the GLONASS integration.
 
         """
         sat = check_sat_id(sat)
+        if sat[0] == "R":
+            if self.glonass is None:
+                return nan_positions(t_gps_s)
+            return glonass_positions_ecef_m(self.glonass, sat, t_gps_s)
         eph = self.ephemerides.get(sat[0])
         if eph is None:
             return nan_positions(t_gps_s)
@@ -109,10 +168,15 @@ class Navigation:
         -------
         ndarray of float64, shape (n,)
             Clock offset in seconds (polynomial + relativistic correction, no
-            group delay); NaN where no healthy ephemeris is valid.
+            group delay; GLONASS: ``-tau_n + gamma_n (t - tb)``); NaN where no
+            healthy ephemeris is valid.
 
         """
         sat = check_sat_id(sat)
+        if sat[0] == "R":
+            if self.glonass is None:
+                return np.full(np.atleast_1d(np.asarray(t_gps_s)).shape, np.nan)
+            return glonass_clock_s(self.glonass, sat, t_gps_s)
         eph = self.ephemerides.get(sat[0])
         if eph is None:
             return np.full(np.atleast_1d(np.asarray(t_gps_s)).shape, np.nan)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import os
 import re
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -26,7 +26,14 @@ from psdbound.io._source import read_bytes
 from psdbound.io.signals import RINEX2_TO_RINEX3, wavelength_m
 from psdbound.io.timescales import gps_s_to_datetime64
 
-__all__ = ["Observations", "ObsHeader", "SystemBlock", "epoch_interval_s", "read_obs"]
+__all__ = [
+    "Observations",
+    "ObsHeader",
+    "SYSTEM_NAMES",
+    "SystemBlock",
+    "epoch_interval_s",
+    "read_obs",
+]
 
 _SYSTEM_NAMES = {
     "G": "GPS",
@@ -37,6 +44,8 @@ _SYSTEM_NAMES = {
     "S": "SBAS",
     "I": "NavIC",
 }
+#: Name of each satellite system letter, e.g. ``SYSTEM_NAMES['R'] == 'GLONASS'``.
+SYSTEM_NAMES: Mapping[str, str] = _SYSTEM_NAMES
 
 
 @dataclass(frozen=True)
@@ -179,6 +188,33 @@ class Observations:
         out = cycles * lam
         out[cycles == 0.0] = np.nan
         return out
+
+    def with_glonass_channels(self, channels: Mapping[str, int]) -> Observations:
+        """Return these observations with GLONASS frequency numbers added.
+
+        The header's own ``GLONASS SLOT / FRQ #`` values are kept; ``channels``
+        fills the satellites it lacks (e.g. RINEX 2 files, which have no such
+        record, with the numbers of a GLONASS navigation file).
+
+        Parameters
+        ----------
+        channels : mapping of str to int
+            FDMA frequency number ``k`` per satellite (``{'R01': 1, ...}``),
+            e.g. :attr:`psdbound.io.Navigation.glonass_channels`.
+
+        Returns
+        -------
+        Observations
+            ``self`` when nothing is added, else a copy whose
+            :meth:`phase_m` can convert the GLONASS FDMA phases to metres.
+
+        """
+        own = self.header.glonass_channels
+        extra = {str(k): int(v) for k, v in channels.items() if k not in own}
+        if not extra:
+            return self
+        header = replace(self.header, glonass_channels={**extra, **own})
+        return replace(self, header=header)
 
     def summary(self) -> str:
         """Describe the file content in a few lines of text."""

@@ -2,7 +2,9 @@
 
 Frequencies in hertz from the systems' interface-control documents.
 GLONASS FDMA carriers depend on the satellite's frequency channel ``k``
-(RINEX header ``GLONASS SLOT / FRQ #``).
+(RINEX 3 observation header ``GLONASS SLOT / FRQ #``, or the GLONASS records
+of a navigation file: :attr:`psdbound.io.Navigation.glonass_channels`, merged
+by :meth:`psdbound.io.Observations.with_glonass_channels`).
 """
 
 from __future__ import annotations
@@ -86,7 +88,11 @@ def carrier_frequency_hz(
     system, band = sat[0], code[1:2]
     if system == "R" and band in _GLO_FDMA:
         if not glonass_channels or sat not in glonass_channels:
-            raise InputError(f"no GLONASS frequency channel known for {sat} (signal {code})")
+            raise InputError(
+                f"no GLONASS frequency channel known for {sat} (signal {code}); it comes from "
+                "the observation header (GLONASS SLOT / FRQ #) or the GLONASS records of a "
+                "navigation file (Observations.with_glonass_channels)"
+            )
         f0, df = _GLO_FDMA[band]
         return f0 + glonass_channels[sat] * df
     try:

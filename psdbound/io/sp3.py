@@ -73,6 +73,11 @@ class PreciseOrbit:
         """Sorted ids of the satellites listed in the file."""
         return tuple(sorted(self.sats))
 
+    @property
+    def systems(self) -> tuple[str, ...]:
+        """Sorted letters of the systems with at least one listed satellite."""
+        return tuple(sorted({s[0] for s in self.sats}))
+
     def positions_ecef_m(self, sat: str, t_gps_s: ArrayLike) -> NDArray[np.float64]:
         """Interpolated ECEF positions of one satellite.
 

@@ -70,11 +70,8 @@ def isolate_dual_frequency(
     min_len = min_length_s
     if len(arcs) == 0:
         if not arcs.dropped:
-            raise NoDataError(
-                f"no satellite tracked both {arcs.signals[0]} and {arcs.signals[1]} "
-                f"({arcs.system}) at the same epochs: the second frequency is missing",
-                path=arcs.path,
-            )
+            # no satellite on both signals, or none above the mask / with an orbit
+            raise NoDataError(arcs.empty_reason(), path=arcs.path)
         raise NoDataError(
             f"no arc long enough: all {sum(arcs.dropped.values())} tracking stretches of "
             f"{arcs.system} {arcs.signals[0]}-{arcs.signals[1]} are shorter than "

@@ -26,7 +26,7 @@ import numpy as np
 
 from psdbound.common import file_sha256
 from psdbound.errors import InputError, NoDataError
-from psdbound.io import Observations, find_arcs, read_obs, read_orbit
+from psdbound.io import Observations, find_arcs, orbit_coverage, read_obs, read_orbit
 from psdbound.io.geometry import ecef_to_geodetic
 from psdbound.io.merge import merge_observations, same_station, station_key
 from psdbound.io.options import ArcOptions
@@ -148,6 +148,11 @@ def read_inputs(options: InputsConfig, *, progress: Progress = _quiet) -> InputD
     if merged:
         progress("; ".join(merged))
     orbit = read_orbit(nav_path)
+    coverage_notes: list[str] = []
+    for o in obs:  # orbits of another day or without the system: one clear error (exit 2)
+        cov = orbit_coverage(orbit, o, options.system)
+        cov.require(options.system)
+        coverage_notes += [f"{nav_path.name}: {w}" for w in cov.warnings(options.system)]
     rx = tuple(tuple(x) for x in options.receiver_xyz_m) or (None,) * len(obs)
     pos = obs[0].header.approx_position_m if rx[0] is None else np.asarray(rx[0])
     lat = lon = None
@@ -160,7 +165,7 @@ def read_inputs(options: InputsConfig, *, progress: Progress = _quiet) -> InputD
     )
     year = int(str(obs[0].times[0])[:4])
     notes = tuple(str(w) for o in (*obs, orbit) for w in getattr(o, "warnings", ()) or ())
-    notes += tuple(merged)
+    notes += tuple(merged) + tuple(coverage_notes)
     return InputData(method, obs, orbit, files, rx, lat, lon, year, demo, notes)
 
 
@@ -327,7 +332,9 @@ def screen(
     progress("screening (ROTI of the geometry-free phase, carrier-multipath limit)")
     s = isolated.series
     m = choose_mapping(mapping, s.value_m, s.elevation_deg)
-    sc = screen_series(s, options, min_length_s=min_length_s, mapping=m)
+    channels = isolated.arcs.glonass_channels if isolated.arcs is not None else None
+    sc = screen_series(s, options, min_length_s=min_length_s, mapping=m,
+                       glonass_channels=channels)  # fmt: skip
     if sc.series.n_arcs == 0:
         raise NoDataError(
             f"screening excluded all {sc.input_s / 3600:.2f} h of data "
@@ -465,11 +472,12 @@ def _resolve_geometries(inputs: InputData, options: ValidationOptions) -> tuple[
     return out, note
 
 
-def _removed_rms(report: Any, signals: Sequence[str], sat: str, alpha: float) -> list[dict]:
+def _removed_rms(report: Any, signals: Sequence[str], sat: str, alpha: float,
+                 channels: Any = None) -> list[dict]:  # fmt: skip
     """Per geometry: fraction of its power below f_c and the RMS the filter removes, m."""
     from psdbound.io.signals import wavelength_m
 
-    lams = [wavelength_m(sat, s) for s in signals[:2]]
+    lams = [wavelength_m(sat, s, channels) for s in signals[:2]]
     # small-alpha phase error alpha sin(psi): variance alpha^2/2 rad^2 per carrier;
     # the DF series (e_a - e_b)/sqrt(2) has the mean of the two carriers' variances
     var_m2 = float(np.mean([(lam / (2 * np.pi)) ** 2 * alpha**2 / 2 for lam in lams]))
@@ -542,7 +550,9 @@ def validate(
         receiver_xyz_m=pos, sats=sats, system=sats[0][0] if sats else "G",
         elevation_mask_deg=arcs.elevation_mask_deg,
     )  # fmt: skip
-    removed = _removed_rms(report, series.signals, sats[0] if sats else "G01", options.alpha)
+    channels = isolated.arcs.glonass_channels if isolated.arcs is not None else None
+    removed = _removed_rms(report, series.signals, sats[0] if sats else "G01", options.alpha,
+                           channels)  # fmt: skip
     summary = report.to_dict()
     summary.update({
         "applicable": True,

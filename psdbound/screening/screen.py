@@ -71,6 +71,7 @@ of Rate of TEC Index and spread F over European ionosondes. Atmosphere 15(3),
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -230,13 +231,13 @@ class Screening:
         return out
 
 
-def _limit(series: MultipathSeries) -> float:
+def _limit(series: MultipathSeries, channels: Mapping[str, int] | None = None) -> float:
     sat = series.arc_sats[0] if series.arc_sats else "G01"
     sat = sat.split("-")[0]
     if series.method == "DF":
-        lams = [wavelength_m(sat, s) for s in series.signals[:2]]
+        lams = [wavelength_m(sat, s, channels) for s in series.signals[:2]]
     else:
-        lams = [wavelength_m(sat, series.signals[0])] * 4
+        lams = [wavelength_m(sat, series.signals[0], channels)] * 4
     return multipath_limit_m(lams, series.scaling)
 
 
@@ -286,6 +287,7 @@ def screen_series(
     *,
     min_length_s: float = 600.0,
     mapping: Any = None,
+    glonass_channels: Mapping[str, int] | None = None,
 ) -> Screening:
     """Exclude residual ionosphere and physically implausible values from a series.
 
@@ -303,6 +305,9 @@ def screen_series(
         Elevation mapping of the multipath (anything with a
         ``factor(elevation_deg)`` method) for the elevation-scaled ROTI
         threshold; None uses the flat threshold.
+    glonass_channels : mapping, optional
+        GLONASS FDMA frequency numbers per satellite (``{"R01": 1}``), for
+        the wavelengths of a GLONASS series.
 
     Returns
     -------
@@ -312,12 +317,12 @@ def screen_series(
     guard_s = opt.guard_s
     if guard_s is None:
         guard_s = 0.5 / series.cutoff_hz if series.cutoff_hz else 0.0
-    limit = _limit(series)
+    limit = _limit(series, glonass_channels)
     dt = series.interval_s
     m_per_tecu = None
     if series.method == "DF" and series.unfiltered_m is not None:
         sat = series.arc_sats[0] if series.arc_sats else "G01"
-        fa, fb = (carrier_frequency_hz(sat, s) for s in series.signals[:2])
+        fa, fb = (carrier_frequency_hz(sat, s, glonass_channels) for s in series.signals[:2])
         m_per_tecu = geometry_free_m_per_tecu(fa, fb)
     kept: list[dict[str, Any]] = []
     excluded: list[ExcludedSpan] = []

@@ -8,7 +8,7 @@ import sys
 
 import hatanaka
 import pytest
-from conftest import ESBC_NAV, ESBC_OBS, NYA1_NAV, NYA1_OBS, UPC1_OBS, shared_file
+from conftest import ESBC_NAV, ESBC_OBS, GRAS_OBS, NYA1_NAV, NYA1_OBS, UPC1_OBS, shared_file
 
 import psdbound
 from psdbound.pipeline.verdict import VerdictOptions, judge
@@ -173,3 +173,23 @@ def test_files_of_three_stations_are_an_error_naming_them(capsys):
                  str(shared_file(UPC1_OBS)), "--nav", str(shared_file(ESBC_NAV))])  # fmt: skip
     err = capsys.readouterr().err
     assert code == 2 and "3 stations" in err and "ESBC" in err and "NYA1" in err
+
+
+@pytest.mark.realdata
+@pytest.mark.slow
+def test_glonass_dual_frequency_end_to_end():
+    # issue 18: GLONASS broadcast ephemerides (RK4 of the ICD equations) and FDMA channels
+    res = psdbound.fit(shared_file(ESBC_OBS), nav=shared_file(ESBC_NAV), system="R")
+    assert res.document["isolation"]["signals"] == ["L1C", "L2P"]
+    assert res.verdict == "bounded", res.verdict_reasons
+    assert 0.5e-3 < res.bound.sigma_gm_m < 0.01
+
+
+@pytest.mark.realdata
+def test_nav_of_another_year_is_named(capsys):
+    from psdbound.cli.main import main
+
+    code = main(["fit", str(shared_file(GRAS_OBS)), "--nav", str(shared_file(ESBC_NAV))])
+    err = capsys.readouterr().err
+    assert code == 2 and "covers 2020-06-24" in err and "2022-11-11" in err
+    assert "second frequency" not in err
