@@ -143,3 +143,25 @@ V2                                                          MARKER NAME
   22036000.000 7 115801182.000 7  90234416.000 6  22036001.000 6
   22973000.000 7 120725112.000 7  94071440.000 6  22973001.000 6
 """
+
+
+def esbc_hours(path: Path, hours) -> Path:
+    """Write the epochs of the shared ESBC day that fall in the given hours (RINEX 3, plain).
+
+    ``hours``: iterable of hour numbers, e.g. ``range(0, 8)``; the header is kept.
+    """
+    import hatanaka
+    from conftest import ESBC_OBS, shared_file
+
+    text = hatanaka.decompress(shared_file(ESBC_OBS).read_bytes()).decode()
+    head, body = text.split("END OF HEADER", 1)
+    head += "END OF HEADER" + body[: body.index("\n") + 1]
+    wanted = {f"{h:02d}" for h in hours}
+    out, keep = [], False
+    for line in body[body.index("\n") + 1 :].splitlines(keepends=True):
+        if line.startswith(">"):
+            keep = line[13:15] in wanted
+        if keep:
+            out.append(line)
+    path.write_text(head + "".join(out))
+    return path

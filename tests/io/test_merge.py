@@ -4,10 +4,9 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-import hatanaka
 import numpy as np
 import pytest
-from conftest import ESBC_OBS, shared_file
+from samples import esbc_hours
 
 from psdbound.errors import InputError
 from psdbound.io import read_obs
@@ -15,19 +14,7 @@ from psdbound.io.merge import merge_observations, same_station, station_key
 
 
 def _hours(tmp_path, hours, name):
-    text = hatanaka.decompress(shared_file(ESBC_OBS).read_bytes()).decode()
-    head, body = text.split("END OF HEADER", 1)
-    head += "END OF HEADER" + body[: body.index("\n") + 1]
-    wanted = {f"{h:02d}" for h in hours}
-    out, keep = [], False
-    for line in body[body.index("\n") + 1 :].splitlines(keepends=True):
-        if line.startswith(">"):
-            keep = line[13:15] in wanted
-        if keep:
-            out.append(line)
-    p = tmp_path / name
-    p.write_text(head + "".join(out))
-    return read_obs(p, systems="G")
+    return read_obs(esbc_hours(tmp_path / name, hours), systems="G")
 
 
 @pytest.fixture(scope="module")

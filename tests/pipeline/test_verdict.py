@@ -6,9 +6,9 @@ import copy
 import subprocess
 import sys
 
-import hatanaka
 import pytest
 from conftest import ESBC_NAV, ESBC_OBS, GRAS_OBS, NYA1_NAV, NYA1_OBS, UPC1_OBS, shared_file
+from samples import esbc_hours
 
 import psdbound
 from psdbound.pipeline.verdict import VerdictOptions, judge
@@ -70,18 +70,7 @@ def test_thresholds_are_options():
 
 
 def _one_hour_of_esbc(tmp_path):
-    text = hatanaka.decompress(shared_file(ESBC_OBS).read_bytes()).decode()
-    head, body = text.split("END OF HEADER", 1)
-    head += "END OF HEADER" + body[: body.index("\n") + 1]
-    out, keep = [], False
-    for line in body[body.index("\n") + 1 :].splitlines(keepends=True):
-        if line.startswith(">"):
-            keep = line[13:15] == "12"  # 12:00-12:59:30
-        if keep:
-            out.append(line)
-    p = tmp_path / "ESBC1H.rnx"
-    p.write_text(head + "".join(out))
-    return p
+    return esbc_hours(tmp_path / "ESBC1H.rnx", [12])  # 12:00-12:59:30
 
 
 @pytest.mark.realdata
@@ -133,28 +122,11 @@ def test_map_cutoff_on_nya1_never_gives_a_white_noise_bound_with_exit_0():
         assert res.bound.sigma_gm_m > 0
 
 
-def _esbc_hours(tmp_path, hours, name):
-    """Write the ESBC epochs of the given hours (e.g. range(0, 12)) as a RINEX 3 file."""
-    text = hatanaka.decompress(shared_file(ESBC_OBS).read_bytes()).decode()
-    head, body = text.split("END OF HEADER", 1)
-    head += "END OF HEADER" + body[: body.index("\n") + 1]
-    wanted = {f"{h:02d}" for h in hours}
-    out, keep = [], False
-    for line in body[body.index("\n") + 1 :].splitlines(keepends=True):
-        if line.startswith(">"):
-            keep = line[13:15] in wanted
-        if keep:
-            out.append(line)
-    p = tmp_path / name
-    p.write_text(head + "".join(out))
-    return p
-
-
 @pytest.mark.realdata
 @pytest.mark.slow
 def test_consecutive_files_are_merged_into_the_whole_day(tmp_path):
     # issue 18: six files used to fit only the first; now the day in three pieces = the day
-    parts = [_esbc_hours(tmp_path, range(h, h + 8), f"ESBC{h:02d}.rnx") for h in (16, 0, 8)]
+    parts = [esbc_hours(tmp_path / f"ESBC{h:02d}.rnx", range(h, h + 8)) for h in (16, 0, 8)]
     nav = shared_file(ESBC_NAV)
     whole = psdbound.fit(shared_file(ESBC_OBS), nav=nav, cutoff={"f_c_hz": 1.5e-3})
     merged = psdbound.fit(parts, nav=nav, cutoff={"f_c_hz": 1.5e-3})
