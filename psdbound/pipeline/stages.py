@@ -18,7 +18,9 @@ surface of its stage package.
 
 from __future__ import annotations
 
+import tempfile
 from collections.abc import Callable, Sequence
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -27,6 +29,7 @@ import numpy as np
 from psdbound.common import file_sha256
 from psdbound.errors import InputError, NoDataError
 from psdbound.io import Observations, find_arcs, orbit_coverage, read_obs, read_orbit
+from psdbound.io.archive import extract_zip, zip_members
 from psdbound.io.geometry import ecef_to_geodetic
 from psdbound.io.merge import merge_observations, same_station, station_key
 from psdbound.io.options import ArcOptions
@@ -83,6 +86,20 @@ def _method(inputs: InputsConfig, n_stations: int) -> str:
     return m
 
 
+def _read_observations(paths: Sequence[Path], system: str) -> list[Observations]:
+    """Read every observation file; a zip archive of several files gives one per member."""
+    out = []
+    for p in paths:
+        if len(zip_members(p)) > 1:
+            with tempfile.TemporaryDirectory(prefix="psdbound-zip-") as tmp:
+                for member in extract_zip(p, tmp):
+                    o = read_obs(member, systems=system)
+                    out.append(replace(o, path=f"{p}:{member.name}"))
+        else:
+            out.append(read_obs(p, systems=system))
+    return out
+
+
 def _group_stations(obs: Sequence[Observations]) -> list[list[Observations]]:
     """Return the files grouped by antenna, in order of first appearance."""
     groups: list[list[Observations]] = []
@@ -128,7 +145,7 @@ def read_inputs(options: InputsConfig, *, progress: Progress = _quiet) -> InputD
     if nav_path is None:
         raise InputError("a navigation (or SP3) file is needed for elevations: give --nav")
     progress(f"reading {len(obs_paths)} observation file(s) and {nav_path.name}")
-    groups = _group_stations([read_obs(p, systems=options.system) for p in obs_paths])
+    groups = _group_stations(_read_observations(obs_paths, options.system))
     if len(groups) > 2:
         names = ", ".join(f"{station_key(g[0])} ({len(g)} file(s))" for g in groups)
         raise InputError(

@@ -57,3 +57,23 @@ def test_union_of_codes_and_errors(pieces):
                                         ssi=blk.ssi[::2])})  # fmt: skip
     with pytest.raises(InputError, match="different sampling intervals"):
         merge_observations([a, slow])
+
+
+def test_zip_members_and_duplicate_names(tmp_path):
+    import zipfile
+
+    from psdbound.io.archive import extract_zip, zip_members
+
+    plain = tmp_path / "a.rnx"
+    plain.write_text("not a zip\n")
+    assert zip_members(plain) == []
+    z = tmp_path / "two.zip"
+    with zipfile.ZipFile(z, "w") as zf:
+        zf.writestr("x/a.rnx", "1")
+        zf.writestr("y/a.rnx", "2")
+        zf.writestr("y/", "")
+    assert zip_members(z) == ["x/a.rnx", "y/a.rnx"]
+    out = tmp_path / "out"
+    out.mkdir()
+    with pytest.raises(InputError, match="two members named 'a.rnx'"):
+        extract_zip(z, out)

@@ -165,3 +165,21 @@ def test_nav_of_another_year_is_named(capsys):
     err = capsys.readouterr().err
     assert code == 2 and "covers 2020-06-24" in err and "2022-11-11" in err
     assert "second frequency" not in err
+
+
+@pytest.mark.realdata
+@pytest.mark.slow
+def test_zip_of_several_files_is_read_whole(tmp_path):
+    import zipfile
+
+    parts = [esbc_hours(tmp_path / f"ESBC{h:02d}.rnx", range(h, h + 12)) for h in (0, 12)]
+    archive = tmp_path / "esbc_day.zip"
+    with zipfile.ZipFile(archive, "w", compression=zipfile.ZIP_DEFLATED) as z:
+        for p in parts:
+            z.write(p, arcname=f"day/{p.name}")
+    nav = shared_file(ESBC_NAV)
+    zipped = psdbound.fit(archive, nav=nav, cutoff={"f_c_hz": 1.5e-3})
+    whole = psdbound.fit(shared_file(ESBC_OBS), nav=nav, cutoff={"f_c_hz": 1.5e-3})
+    assert zipped.bound.sigma_gm_m == pytest.approx(whole.bound.sigma_gm_m, rel=1e-9)
+    assert any("2 observation files merged" in w for w in zipped.warnings)
+    assert zipped.inputs.observations[0].path.startswith(f"{archive}:ESBC00.rnx")
