@@ -172,7 +172,7 @@ def evaluate(res: Any, truth: Any) -> dict[str, Any]:
     data_s = w_doc.get("data_s")
     if data_s is None and res.series is not None:
         s = res.series
-        data_s = sum(hi - lo for lo, hi in s.arc_bounds()) * s.interval_s
+        data_s = s.data_s
     uncovered = (
         res.windows.uncovered_s if res.windows is not None else w_doc.get("never_stationary_s")
     )

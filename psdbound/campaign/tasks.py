@@ -62,7 +62,7 @@ def station_day_task(item: dict[str, Any]) -> dict[str, Any]:
     b = res.bound
     w = win.windows
     series = scr.series
-    data_s = float(sum(hi - lo for lo, hi in series.arc_bounds()) * series.interval_s)
+    data_s = series.data_s
     psds = res.psds
     values = [p.psd_m2_hz for p in psds]
     if cutoff is not None:  # undo the high-pass where it passes at least half the power

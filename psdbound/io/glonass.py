@@ -37,10 +37,12 @@ removed); the reader converts it to GPS seconds with the leap seconds of
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+
+from psdbound.io.kepler import RecordTable
 
 __all__ = [
     "GLONASS_A_E_M",
@@ -72,7 +74,7 @@ INTEGRATION_STEP_S = 60.0
 
 
 @dataclass(frozen=True, eq=False)
-class GlonassEphemerides:
+class GlonassEphemerides(RecordTable):
     """GLONASS broadcast ephemerides (one row per navigation record, file order).
 
     All attributes are numpy arrays with the records along axis 0.
@@ -130,23 +132,6 @@ class GlonassEphemerides:
         """FDMA frequency number per satellite, from its latest record, e.g. ``{'R01': 1}``."""
         order = np.argsort(self.tb_gps_s, kind="stable")
         return {str(self.sat[i]): int(self.channel[i]) for i in order}
-
-    def select(self, mask: ArrayLike) -> GlonassEphemerides:
-        """Return the records selected by a boolean mask or index array.
-
-        Parameters
-        ----------
-        mask : array_like of bool or int
-            Row selection applied to every attribute.
-
-        Returns
-        -------
-        GlonassEphemerides
-            A new object holding only the selected rows.
-
-        """
-        sel = np.asarray(mask)
-        return GlonassEphemerides(**{f.name: getattr(self, f.name)[sel] for f in fields(self)})
 
 
 def select_glonass_records(

@@ -11,11 +11,12 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, fields
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["KeplerEphemerides", "SAT_ID_RE", "check_sat_id"]
+__all__ = ["KeplerEphemerides", "RecordTable", "SAT_ID_RE", "check_sat_id"]
 
 #: A satellite id: system letter and two digits (the first may be blank), e.g. ``'G05'``.
 SAT_ID_RE = re.compile(r"^[A-Z][ 0-9]\d$")
@@ -46,8 +47,28 @@ def check_sat_id(sat: str) -> str:
     return s
 
 
+class RecordTable:
+    """Mixin of broadcast-record dataclasses: each attribute a 1-D array, one row per record."""
+
+    def select(self, mask: ArrayLike) -> Any:
+        """Return the records selected by a boolean mask or index array.
+
+        Parameters
+        ----------
+        mask : array_like of bool or int
+            Row selection applied to every attribute.
+
+        Returns
+        -------
+        same type as ``self``
+            A new object holding only the selected rows.
+        """
+        sel = np.asarray(mask)
+        return type(self)(**{f.name: getattr(self, f.name)[sel] for f in fields(self)})  # type: ignore[arg-type]
+
+
 @dataclass(frozen=True, eq=False)
-class KeplerEphemerides:
+class KeplerEphemerides(RecordTable):
     """Keplerian broadcast ephemerides of one satellite system.
 
     One row per navigation record, in file order. All attributes are 1-D numpy
@@ -133,20 +154,3 @@ class KeplerEphemerides:
     def satellites(self) -> tuple[str, ...]:
         """Sorted ids of the satellites with at least one record."""
         return tuple(sorted({str(s) for s in self.sat}))
-
-    def select(self, mask: ArrayLike) -> KeplerEphemerides:
-        """Return the records selected by a boolean mask or index array.
-
-        Parameters
-        ----------
-        mask : array_like of bool or int
-            Row selection applied to every attribute.
-
-        Returns
-        -------
-        KeplerEphemerides
-            A new object holding only the selected rows.
-
-        """
-        sel = np.asarray(mask)
-        return KeplerEphemerides(**{f.name: getattr(self, f.name)[sel] for f in fields(self)})

@@ -146,6 +146,11 @@ class MultipathSeries:
             )
         return "\n".join(lines)
 
+    @property
+    def data_s(self) -> float:
+        """Amount of data: samples of every arc times the sampling interval, seconds."""
+        return float(self.t_gps_s.size * self.interval_s)
+
     def arc_bounds(self) -> list[tuple[int, int]]:
         """Return ``[(start, stop), ...]``: each arc's index range in the flat arrays."""
         edges = np.flatnonzero(np.diff(self.arc_id)) + 1

@@ -33,7 +33,6 @@ conflicting options are an error, never a silent choice.
 from __future__ import annotations
 
 import math
-import tomllib
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, field, fields, replace
 from pathlib import Path
@@ -51,6 +50,7 @@ from psdbound.common.options import (
     option,
     show_value,
 )
+from psdbound.common.tomlfile import read_toml
 from psdbound.errors import InputError
 from psdbound.io.options import ArcOptions
 from psdbound.ionosphere.policy import CUTOFF_SOURCES, CutoffOptions
@@ -264,16 +264,7 @@ class FitConfig:
     @classmethod
     def from_toml(cls, path: str | Path) -> FitConfig:
         """Read a TOML configuration file (values are checked; see the module docstring)."""
-        p = Path(path)
-        if not p.is_file():
-            raise InputError("configuration file not found", path=p)
-        try:
-            data = tomllib.loads(p.read_text())
-        except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-            raise InputError(f"not valid TOML: {exc}", path=p) from None
-        except OSError as exc:
-            raise InputError(f"cannot read the file: {exc.strerror}", path=p) from None
-        return cls.from_dict(data, source=str(p))
+        return cls.from_dict(read_toml(path, what="configuration file"), source=str(path))
 
     def check(self, label: Label = default_label) -> FitConfig:
         """Check the rules between options; return ``self``.

@@ -182,8 +182,7 @@ def _windows_section(
          "levene_p": x.levene_p, "ks_p": x.ks_p}
         for x, mg in zip(w.windows, res.margins, strict=True)
     ]  # fmt: skip
-    series = screened.series
-    data_s = float(sum(hi - lo for lo, hi in series.arc_bounds()) * series.interval_s)
+    data_s = screened.series.data_s
     return {
         "count": len(w),
         "total_duration_s": w.total_duration_s,

@@ -22,7 +22,6 @@ import json
 import math
 import os
 import re
-import tomllib
 from collections.abc import Mapping
 from dataclasses import MISSING, asdict, dataclass, field, fields, replace
 from pathlib import Path
@@ -39,6 +38,7 @@ from psdbound.common.options import (
     option,
     spec_of,
 )
+from psdbound.common.tomlfile import read_toml
 from psdbound.errors import InputError
 
 __all__ = ["MAX_MULTIPATH_M", "MULTIPATH_SPEC_EXAMPLE", "IonoDisturbance", "Reflection",
@@ -478,14 +478,7 @@ class Scenario:
             value (the message names the file and the key).
         """
         p = Path(path)
-        if not p.is_file():
-            raise InputError("scenario file not found", path=p)
-        try:
-            data = tomllib.loads(p.read_text())
-        except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-            raise InputError(f"not valid TOML: {exc}", path=p) from None
-        except OSError as exc:
-            raise InputError(f"cannot read the file: {exc.strerror}", path=p) from None
+        data = read_toml(p, what="scenario file")
         nav = data.get("nav_path")
         if isinstance(nav, str) and nav.strip() and not Path(nav).is_absolute():
             data["nav_path"] = str(p.parent / nav)
