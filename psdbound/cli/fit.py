@@ -29,6 +29,11 @@ FLAGS: dict[tuple[str, str], str] = {
     ("inputs", "system"): "--system",
     ("inputs", "signals"): "--signals",
     ("inputs", "da_signal"): "--da-signal",
+    ("inputs", "pair"): "--pair",
+    ("inputs", "position_a_m"): "--position-a",
+    ("inputs", "position_b_m"): "--position-b",
+    ("inputs", "baseline"): "--baseline",
+    ("inputs", "baseline_tolerance_m"): "--baseline-tolerance-m",
     ("arcs", "min_length_s"): "--min-arc-min",
     ("arcs", "elevation_mask_deg"): "--elevation-mask-deg",
     ("cutoff", "f_c_hz"): "--cutoff-hz",
@@ -94,13 +99,29 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "Exit codes: 0 bounded; 3 ran but no trustworthy bound (verdict not-bounded: reasons "
         "printed, outputs written); 2 bad input (nothing written); 1 internal error.",
     )
-    p.add_argument("obs", nargs="*", help="observation file(s): one (DF) or two (DA)")
+    p.add_argument("obs", nargs="*",
+                   help="observation file(s) of one station (consecutive files are merged), or "
+                   "of the two antennas named by --pair")  # fmt: skip
     p.add_argument("--nav", help="navigation (RINEX 2/3) or SP3 file")
     p.add_argument("--config", help="TOML configuration file")
     p.add_argument("--method", choices=("auto", "df", "da"), help="isolation method (auto)")
     p.add_argument("--system", help="satellite system letter (G)")
     p.add_argument("--signals", help="DF phase pair, e.g. L1C,L2W or L1C,L5Q")
     p.add_argument("--da-signal", help="DA phase code (L1C)")
+    p.add_argument("--pair", nargs=2, metavar=("A", "B"),
+                   help="dual-antenna pair: antenna A and antenna B, each a station (marker) "
+                   "name among OBS or an observation file")  # fmt: skip
+    p.add_argument("--position-a", nargs=3, type=float, metavar=("X", "Y", "Z"),
+                   help="ECEF position of the (first) antenna, m (default: the header's)")
+    p.add_argument("--position-b", nargs=3, type=float, metavar=("X", "Y", "Z"),
+                   help="ECEF position of antenna B of a pair, m (default: the header's)")
+    p.add_argument("--baseline", choices=("auto", "estimate", "given"),
+                   help="dual-antenna baseline: auto (default) uses the estimate from the "
+                   "double differences when it moves antenna B by more than "
+                   "--baseline-tolerance-m and 3 standard errors; estimate always; given "
+                   "keeps the positions")  # fmt: skip
+    p.add_argument("--baseline-tolerance-m", type=float,
+                   help="correction above which --baseline auto uses the estimate, m (0.005)")
     p.add_argument("--cutoff-hz", type=float, help="high-pass cutoff frequency, Hz")
     p.add_argument(
         "--cutoff-source", choices=("auto", "given", "map", "computed", "thesis"),
@@ -176,7 +197,12 @@ def _cli_values(args: argparse.Namespace) -> list[tuple[str, dict[str, Any], dic
     mapping = _mapping(args.mapping)
     return [
         ("inputs", dict(obs=tuple(args.obs) or None, nav=args.nav, method=args.method,
-                        system=args.system, signals=args.signals, da_signal=args.da_signal),
+                        system=args.system, signals=args.signals, da_signal=args.da_signal,
+                        pair=tuple(args.pair) if args.pair else None,
+                        position_a_m=tuple(args.position_a) if args.position_a else None,
+                        position_b_m=tuple(args.position_b) if args.position_b else None,
+                        baseline=args.baseline,
+                        baseline_tolerance_m=args.baseline_tolerance_m),
          dict(signals=args.signals)),
         ("arcs", dict(min_length_s=min_len, elevation_mask_deg=args.elevation_mask_deg),
          dict(min_length_s=args.min_arc_min)),
@@ -255,6 +281,9 @@ def build_config(args: argparse.Namespace):
 def _run_name(cfg) -> str:
     if cfg.output.name:
         name = cfg.output.name
+    elif cfg.inputs.pair:
+        a, b = (Path(p).name.split(".")[0] for p in cfg.inputs.pair)
+        name = f"{a}-{b}-da"
     elif cfg.inputs.obs:
         stem = Path(cfg.inputs.obs[0]).name.split(".")[0]
         name = f"{stem}-{cfg.inputs.method}" if cfg.inputs.method != "auto" else stem

@@ -62,6 +62,10 @@ def station_key(obs: Observations) -> str:
 def same_station(a: Observations, b: Observations) -> bool:
     """Return whether two files come from the same antenna (marker name and position).
 
+    The four-character station keys must agree, the full marker names too
+    (one may extend the other, e.g. ``ESBC`` and ``ESBC00DNK``), and the
+    header positions must lie within ``SAME_STATION_M``.
+
     Parameters
     ----------
     a, b : Observations
@@ -72,6 +76,11 @@ def same_station(a: Observations, b: Observations) -> bool:
     """
     if station_key(a) != station_key(b):
         return False
+    ma, mb = ((o.header.marker_name or "").strip().upper() for o in (a, b))
+    if ma and mb and ma != mb:  # "ESBC" and "ESBC00DNK" agree; "DUO-A" and "DUO-B" do not
+        short, long_ = sorted((ma, mb), key=len)
+        if len(short) < 4 or not long_.startswith(short):
+            return False
     pa, pb = a.header.approx_position_m, b.header.approx_position_m
     if pa is None or pb is None or not np.any(pa) or not np.any(pb):
         return True

@@ -4,12 +4,19 @@ Public surface:
 
 * :func:`isolate_dual_frequency` (arcs -> :class:`MultipathSeries`, method.md 1.1)
 * :func:`isolate_dual_antenna` (two observation files -> :class:`MultipathSeries`, 1.2)
+* :func:`estimate_baseline_correction`, :func:`baseline_note` (the dual-antenna
+  baseline from the double differences)
 * :class:`HighPass` (zero-phase high-pass designs and edge handling)
 * :func:`filter_safety_check` (Lomb-Scargle power removed below/above f_c)
 """
 
 from __future__ import annotations
 
+from psdbound.isolation.baseline import (
+    BaselineEstimate,
+    baseline_note,
+    estimate_baseline_correction,
+)
 from psdbound.isolation.dual_antenna import DA_SCALING, isolate_dual_antenna
 from psdbound.isolation.dual_frequency import DF_SCALING, isolate_dual_frequency
 from psdbound.isolation.filters import FILTER_KINDS, HighPass
@@ -18,12 +25,15 @@ from psdbound.isolation.series import ArcView, MultipathSeries
 
 __all__ = [
     "ArcView",
+    "BaselineEstimate",
     "DA_SCALING",
     "DF_SCALING",
     "FILTER_KINDS",
     "HighPass",
     "MultipathSeries",
     "SafetyCheck",
+    "baseline_note",
+    "estimate_baseline_correction",
     "filter_safety_check",
     "isolate_dual_antenna",
     "isolate_dual_frequency",

@@ -54,6 +54,7 @@ class SDArc:
     ci: NDArray[np.intp]  # indices into the common epochs, increasing
     sd_m: NDArray[np.float64]
     el_deg: NDArray[np.float64]
+    los: NDArray[np.float64]  # unit line-of-sight vectors, ECEF, shape (n, 3)
 
 
 def check_not_same(obs1: Observations, obs2: Observations, files: str) -> None:

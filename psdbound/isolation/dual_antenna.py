@@ -51,7 +51,7 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from psdbound.errors import InputError, NoDataError
 from psdbound.io.arcs import ArcSet, find_arcs
@@ -73,6 +73,7 @@ from psdbound.isolation._dd_support import (
     reference_periods,
     resolve_pair,
 )
+from psdbound.isolation.baseline import estimate_baseline_correction
 from psdbound.isolation.series import MultipathSeries
 
 __all__ = ["isolate_dual_antenna"]
@@ -83,6 +84,12 @@ DA_SCALING = 0.5
 #: fraction of the wavelength is an undetected cycle slip: the arc is split.
 DD_JUMP_FRACTION = 0.4
 MIN_ANTENNA_SEPARATION_M = 1e-3
+#: Baseline modes: estimate and use above the tolerance, always use, keep given.
+BASELINE_MODES = ("auto", "estimate", "given")
+#: Default size above which the estimated correction replaces the given position, m.
+BASELINE_TOLERANCE_M = 0.005
+#: With ``baseline="auto"`` the correction must also exceed this many sigmas.
+SIGNIFICANCE = 3.0
 _NOTE = (
     "short-baseline dual-antenna double differences partly cancel multipath that is "
     "common to both antennas; the dual-frequency method is preferred"
@@ -107,6 +114,8 @@ def isolate_dual_antenna(
     min_length_s: float = 600.0,
     elevation_mask_deg: float = 10.0,
     max_baseline_m: float = 20000.0,
+    baseline: str = "auto",
+    baseline_tolerance_m: float = BASELINE_TOLERANCE_M,
 ) -> MultipathSeries:
     """Isolate carrier-phase multipath with double differences of two antennas.
 
@@ -140,6 +149,15 @@ def isolate_dual_antenna(
     max_baseline_m : float, default 20000
         Longest accepted distance between the antennas, metres: beyond it the
         ionosphere and troposphere no longer cancel.
+    baseline : {"auto", "estimate", "given"}, default "auto"
+        What to do with the baseline estimated from the double differences
+        (:mod:`psdbound.isolation.baseline`): ``"auto"`` moves antenna 2 to
+        the estimate when the correction is longer than
+        ``baseline_tolerance_m`` and than three standard errors;
+        ``"estimate"`` always does; ``"given"`` keeps the positions (header
+        or ``receiver*_xyz_m``) and only reports the estimate.
+    baseline_tolerance_m : float, default 0.005
+        Correction length above which ``"auto"`` uses the estimate, metres.
 
     Returns
     -------
@@ -149,8 +167,11 @@ def isolate_dual_antenna(
         minus reference), with the arc mean removed (ambiguity) and values in
         metres scaled by 1/2; ``elevation_deg`` is the lower elevation of the
         pair. ``meta`` holds the files, markers, baseline length, positions
-        and their source, reference periods, receiver-clock estimate, counts
-        of dropped arcs and the elevation mask.
+        and their source (antenna 2 corrected when the estimate is used),
+        ``baseline_estimate`` (mode, whether used, correction in ECEF and
+        ENU with standard errors, double-difference RMS before and after),
+        reference periods, receiver-clock estimate, counts of dropped arcs
+        and the elevation mask.
 
     Raises
     ------
@@ -182,6 +203,10 @@ def isolate_dual_antenna(
     >>> print(da.summary())  # doctest: +SKIP
     """
     files = f"{obs1.path} and {obs2.path}"
+    if baseline not in BASELINE_MODES:
+        raise InputError(f"baseline must be one of {', '.join(BASELINE_MODES)}, got {baseline!r}")
+    if not baseline_tolerance_m >= 0.0:
+        raise InputError(f"baseline_tolerance_m must be >= 0 m, got {baseline_tolerance_m!r}")
     check_not_same(obs1, obs2, files)
     pos1, src1 = antenna_position(obs1, receiver1_xyz_m, "receiver1_xyz_m")
     pos2, src2 = antenna_position(obs2, receiver2_xyz_m, "receiver2_xyz_m")
@@ -263,17 +288,18 @@ def isolate_dual_antenna(
             if ci.size < 2 or t1c[ci[-1]] - t1c[ci[0]] < min_length_s:
                 n_sd_short += int(ci.size > 0)
                 continue
-            rho1 = geometric_range_m(orbit, a1.sat, t_rx1[ci], pos1)[0]
+            rho1, _, sv = geometric_range_m(orbit, a1.sat, t_rx1[ci], pos1)
             rho2 = geometric_range_m(orbit, a1.sat, t_rx2[ci], pos2)[0]
             sd = a1.phase_m[j1, 0] - a2.phase_m[j2, 0] - (rho1 - rho2)
             el = np.minimum(a1.elevation_deg[j1], a2.elevation_deg[j2])
+            los = (sv - pos1) / rho1[:, None]
             ok = np.isfinite(sd) & np.isfinite(el)
             if not ok.all():
-                ci, sd, el = ci[ok], sd[ok], el[ok]
+                ci, sd, el, los = ci[ok], sd[ok], el[ok], los[ok]
                 if ci.size < 2 or t1c[ci[-1]] - t1c[ci[0]] < min_length_s:
                     n_sd_short += 1
                     continue
-            sd_arcs.append(SDArc(a1.sat, ci, sd, el))
+            sd_arcs.append(SDArc(a1.sat, ci, sd, el, los))
     if not sd_arcs:
         raise NoDataError(
             f"no single-difference arc of at least {min_length_s:g} s above "
@@ -286,12 +312,13 @@ def isolate_dual_antenna(
     lam = wavelength_m(sats[0], RINEX2_TO_RINEX3.get(code1, code1), obs1.header.glonass_channels)
     jump_m = DD_JUMP_FRACTION * lam
     periods = reference_periods(sd_arcs)
-    arcs: list[dict[str, Any]] = []
+    pieces: list[tuple[str, NDArray, NDArray, NDArray, NDArray]] = []
     n_dd_short = 0
     n_jump_splits = 0
     for ref, k0, k1 in periods:
         in_period = (ref.ci >= k0) & (ref.ci <= k1)
         rci, rsd, rel = ref.ci[in_period], ref.sd_m[in_period], ref.el_deg[in_period]
+        rlos = ref.los[in_period]
         for other in sd_arcs:
             if other.sat == ref.sat or other.ci[-1] < k0 or other.ci[0] > k1:
                 continue
@@ -300,6 +327,7 @@ def isolate_dual_antenna(
                 continue
             dd = other.sd_m[jo] - rsd[jr]
             el = np.minimum(other.el_deg[jo], rel[jr])
+            g = other.los[jo] - rlos[jr]
             cuts = np.flatnonzero(np.abs(np.diff(dd)) > jump_m) + 1
             n_jump_splits += int(cuts.size)
             for piece in np.split(np.arange(ci.size), cuts):
@@ -307,27 +335,50 @@ def isolate_dual_antenna(
                 if piece.size < 2 or tp[-1] - tp[0] < min_length_s:
                     n_dd_short += 1
                     continue
-                v = dd[piece]
-                arcs.append(
-                    {
-                        "sats": f"{other.sat}-{ref.sat}",
-                        "t_gps_s": tp,
-                        "value_m": DA_SCALING * (v - v.mean()),
-                        "elevation_deg": el[piece],
-                    }
-                )
-    if not arcs:
+                pieces.append((f"{other.sat}-{ref.sat}", tp, dd[piece], el[piece], g[piece]))
+    if not pieces:
         raise NoDataError(
             f"no double-difference arc of at least {min_length_s:g} s in {files} "
             f"({len(sd_arcs)} single-difference arcs, {n_dd_short} double-difference "
             "arcs too short)"
         )
+    est, why_not = estimate_baseline_correction(
+        [p[2] for p in pieces], [p[4] for p in pieces], pos1
+    )
+    use = est is not None and (
+        baseline == "estimate"
+        or (baseline == "auto" and est.length_m > baseline_tolerance_m
+            and est.length_m > SIGNIFICANCE * est.sigma_length_m)
+    )  # fmt: skip
+    arcs: list[dict[str, Any]] = []
+    for sats_name, tp, v, el, g in pieces:
+        if use:
+            assert est is not None
+            v = v - est.correct(g)
+        arcs.append({"sats": sats_name, "t_gps_s": tp, "value_m": DA_SCALING * (v - v.mean()),
+                     "elevation_deg": el})  # fmt: skip
+    pos2_used = pos2 + est.correction_m if use and est is not None else pos2
+    baseline_info: dict[str, Any] = {
+        "mode": baseline,
+        "tolerance_m": float(baseline_tolerance_m),
+        "used": bool(use),
+        "given_baseline_m": baseline_m,
+        "given_positions_m": (pos1.tolist(), pos2.tolist()),
+        "estimate": None if est is None else est.as_dict(),
+        "estimated_baseline_m": None if est is None
+        else float(np.linalg.norm(pos2 + est.correction_m - pos1)),
+        "reason": why_not,
+    }  # fmt: skip
+    if use:
+        baseline_m = float(np.linalg.norm(pos2_used - pos1))
+        src2 = f"{src2} corrected by the double-difference baseline estimate"
     interval_s = float(np.median(np.diff(t1c))) if n_common > 1 else obs1.interval_s
     meta: dict[str, Any] = {
         "files": (obs1.path, obs2.path),
         "markers": (obs1.header.marker_name, obs2.header.marker_name),
         "baseline_m": baseline_m,
-        "positions_m": (pos1.tolist(), pos2.tolist()),
+        "positions_m": (pos1.tolist(), pos2_used.tolist()),
+        "baseline_estimate": baseline_info,
         "position_sources": (src1, src2),
         "codes": (code1, code2),
         "slip_codes": (slip1, slip2),

@@ -80,7 +80,10 @@ _PHASE_CODE = r"L[1-9][A-Z]?"
 
 
 class _Position(Spec):
-    """An ECEF position ``[x, y, z]`` in metres near the Earth's surface."""
+    """An ECEF position ``[x, y, z]`` in metres near the Earth's surface (or None if optional)."""
+
+    def __init__(self, optional: bool = False) -> None:
+        self.optional = optional
 
     def describe(self) -> str:
         """Describe what is allowed."""
@@ -88,6 +91,8 @@ class _Position(Spec):
 
     def check(self, value: Any) -> Any:
         """Check and normalise ``value``."""
+        if value is None and self.optional:
+            return None
         xyz = Tuple(Number(), lengths=(3,)).check(value)
         r = math.sqrt(sum(x * x for x in xyz))
         if not 6.2e6 <= r <= 6.5e6:
@@ -104,8 +109,14 @@ class InputsConfig:
     file, needed with observation files. ``method``: ``auto`` (DF for one
     file, DA for two), ``df`` or ``da``. ``system``: satellite system letter.
     ``signals``: DF phase pair (default per system, GPS L1C-L2W);
-    ``da_signal``: DA phase code. ``receiver_xyz_m``: ECEF position(s) in m,
-    one per observation file, else the header's.
+    ``da_signal``: DA phase code. ``pair``: the two antennas of a
+    dual-antenna pair, A then B, each a station (marker) name or an
+    observation file. ``position_a_m``, ``position_b_m``: ECEF antenna
+    positions in m (default the header's); ``receiver_xyz_m`` is the older
+    list form of the same (one per antenna). ``baseline``: ``auto`` (the
+    baseline estimated from the double differences replaces antenna B's
+    position when the correction exceeds ``baseline_tolerance_m`` and three
+    standard errors), ``estimate`` (always) or ``given`` (keep the positions).
     """
 
     obs: tuple[str, ...] = option(
@@ -123,6 +134,14 @@ class InputsConfig:
     receiver_xyz_m: tuple[tuple[float, float, float], ...] = option(
         (), Tuple(_Position(), max_len=2, what="a list of ECEF positions [x, y, z] in m")
     )
+    pair: tuple[str, ...] = option(
+        (), Tuple(Text(what="a station name or observation file", paths=True), lengths=(0, 2),
+                  what="two stations or files: antenna A, antenna B"),
+    )  # fmt: skip
+    position_a_m: tuple[float, float, float] | None = option(None, _Position(optional=True))
+    position_b_m: tuple[float, float, float] | None = option(None, _Position(optional=True))
+    baseline: str = option("auto", Choice(("auto", "estimate", "given"), noun="baseline mode"))
+    baseline_tolerance_m: float = option(0.005, Number(lo=0.0, hi=1000.0, unit="m"))
 
     def __post_init__(self) -> None:
         check_fields(self)
@@ -351,18 +370,42 @@ def _method(cfg: FitConfig) -> str:
     two stations make a dual-antenna pair), known only once they are read:
     ``"auto"`` then, and the method-specific checks wait for the data.
     """
-    n = len(cfg.inputs.obs)
+    n = _n_files(cfg.inputs)
     if n == 0:
         return "demo"
+    if cfg.inputs.pair:
+        return "da"
     if cfg.inputs.method == "auto":
         return "df" if n == 1 else "auto"
     return cfg.inputs.method
 
 
+def _n_files(inp: InputsConfig) -> int:
+    """Observation files given: the list plus ``pair`` members that are files."""
+    listed = {Path(p).resolve() for p in inp.obs}
+    extra = {Path(p).resolve() for p in inp.pair if Path(p).is_file()} - listed
+    return len(inp.obs) + len(extra)
+
+
 def _rule_inputs(cfg: FitConfig, label: Label) -> None:
     inp = cfg.inputs
-    n = len(inp.obs)
+    n = _n_files(inp)
     lab = label("inputs", "obs")
+    if inp.pair and n == 0:
+        raise InputError(
+            f"{_show(label('inputs', 'pair'), ' '.join(inp.pair))} names stations but no "
+            f"observation file is given: give the files ({lab}) or name the files in the pair"
+        )
+    if inp.pair and inp.method == "df":
+        raise InputError(
+            f"{label('inputs', 'pair')} names a dual-antenna pair but "
+            f"{_show(label('inputs', 'method'), 'df')} asks for dual-frequency: drop one"
+        )
+    if inp.receiver_xyz_m and (inp.position_a_m or inp.position_b_m):
+        raise InputError(
+            f"{label('inputs', 'receiver_xyz_m')} and {label('inputs', 'position_a_m')}/"
+            f"{label('inputs', 'position_b_m')} both give antenna positions: use one form"
+        )
     if inp.method == "da" and n < 2:
         raise InputError(
             f"{_show(label('inputs', 'method'), 'da')} needs the observation files of two "
@@ -374,11 +417,12 @@ def _rule_inputs(cfg: FitConfig, label: Label) -> None:
                 f"{_show(label('inputs', 'nav'), inp.nav)} given without observation files: "
                 "the demo uses its own navigation file; give the observation files too"
             )
-        if inp.receiver_xyz_m:
-            raise InputError(
-                f"{label('inputs', 'receiver_xyz_m')} given without observation files "
-                "(the demo knows its positions)"
-            )
+        for key in ("receiver_xyz_m", "position_a_m", "position_b_m"):
+            if getattr(inp, key):
+                raise InputError(
+                    f"{label('inputs', key)} given without observation files "
+                    "(the demo knows its positions)"
+                )
         return
     if inp.nav is None:
         raise InputError(
@@ -406,16 +450,12 @@ def _rule_method_options(cfg: FitConfig, label: Label) -> None:
             sec, k, v = ignored[0]
             what = "the dual-frequency phase pair" if k == "signals" else "a dual-frequency option"
             raise InputError(
-                f"{_show(label(sec, k), v)} is {what}, but two observation files make the run "
-                "dual-antenna, which applies no high-pass filter and no ionosphere screening; "
-                "remove it, or give one file for dual-frequency"
+                f"{_show(label(sec, k), v)} is {what}, but the run is dual-antenna "
+                "(a pair of antennas), which applies no high-pass filter and no ionosphere "
+                "screening; remove it, or give one station's files for dual-frequency"
             )
-    elif method in ("df", "demo") and inp.da_signal != InputsConfig().da_signal:
-        raise InputError(
-            f"{_show(label('inputs', 'da_signal'), inp.da_signal)} is a dual-antenna option but "
-            "the run is dual-frequency (one observation file); use "
-            f"{label('inputs', 'signals')} for the phase pair"
-        )
+    elif method in ("df", "demo"):
+        _rule_no_da_options(cfg, label)
     if method == "df" and not inp.signals:
         from psdbound.io import DEFAULT_SIGNALS
 
@@ -424,6 +464,24 @@ def _rule_method_options(cfg: FitConfig, label: Label) -> None:
             raise InputError(
                 f"no default dual-frequency signal pair for {system}; give "
                 f"{label('inputs', 'signals')} (defaults exist for {', '.join(DEFAULT_SIGNALS)})"
+            )
+
+
+def _rule_no_da_options(cfg: FitConfig, label: Label) -> None:
+    """Dual-antenna options are errors in a dual-frequency run."""
+    inp, default = cfg.inputs, InputsConfig()
+    if inp.da_signal != default.da_signal:
+        raise InputError(
+            f"{_show(label('inputs', 'da_signal'), inp.da_signal)} is a dual-antenna option but "
+            "the run is dual-frequency (one observation file); use "
+            f"{label('inputs', 'signals')} for the phase pair"
+        )
+    for key in ("position_b_m", "baseline", "baseline_tolerance_m"):
+        if getattr(inp, key) != getattr(default, key):
+            raise InputError(
+                f"{_show(label('inputs', key), getattr(inp, key))} is a dual-antenna option but "
+                "the run is dual-frequency (one station); name the pair with "
+                f"{label('inputs', 'pair')} or remove it"
             )
 
 

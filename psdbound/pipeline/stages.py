@@ -18,30 +18,25 @@ surface of its stage package.
 
 from __future__ import annotations
 
-import tempfile
-from collections.abc import Callable, Sequence
-from dataclasses import replace
-from pathlib import Path
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
-from psdbound.common import file_sha256
 from psdbound.errors import InputError, NoDataError
-from psdbound.io import Observations, find_arcs, orbit_coverage, read_obs, read_orbit
-from psdbound.io.archive import extract_zip, zip_members
-from psdbound.io.geometry import ecef_to_geodetic
-from psdbound.io.merge import merge_observations, same_station, station_key
+from psdbound.io import find_arcs
 from psdbound.io.options import ArcOptions
 from psdbound.ionosphere.policy import CutoffChoice, CutoffOptions
 from psdbound.ionosphere.policy import choose_cutoff as _choose_cutoff
 from psdbound.isolation import (
     HighPass,
+    baseline_note,
     filter_safety_check,
     isolate_dual_antenna,
     isolate_dual_frequency,
 )
 from psdbound.pipeline.config import InputsConfig
+from psdbound.pipeline.inputs import Progress, quiet, read_inputs
 from psdbound.pipeline.products import InputData, Isolated, Screened, Validated, Windowed
 from psdbound.screening import ScreeningOptions, screen_series
 from psdbound.spectra import BoundModel, BoundResults
@@ -64,127 +59,6 @@ __all__ = [
     "validate",
     "window",
 ]
-
-Progress = Callable[[str], None]
-
-
-def _quiet(msg: str) -> None:
-    """Default progress callback: say nothing."""
-
-
-def _method(inputs: InputsConfig, n_stations: int) -> str:
-    """Return the isolation method from the option and the number of antennas."""
-    m = inputs.method.lower()
-    if m == "auto":
-        return "da" if n_stations == 2 else "df"
-    if m not in ("df", "da"):
-        raise InputError(f"--method must be df, da or auto, got {inputs.method!r}")
-    if m == "da" and n_stations != 2:
-        raise InputError(
-            f"--method da needs the files of two antennas, got {n_stations} station(s)"
-        )
-    return m
-
-
-def _read_observations(paths: Sequence[Path], system: str) -> list[Observations]:
-    """Read every observation file; a zip archive of several files gives one per member."""
-    out = []
-    for p in paths:
-        if len(zip_members(p)) > 1:
-            with tempfile.TemporaryDirectory(prefix="psdbound-zip-") as tmp:
-                for member in extract_zip(p, tmp):
-                    o = read_obs(member, systems=system)
-                    out.append(replace(o, path=f"{p}:{member.name}"))
-        else:
-            out.append(read_obs(p, systems=system))
-    return out
-
-
-def _group_stations(obs: Sequence[Observations]) -> list[list[Observations]]:
-    """Return the files grouped by antenna, in order of first appearance."""
-    groups: list[list[Observations]] = []
-    for o in obs:
-        for g in groups:
-            if same_station(g[0], o):
-                g.append(o)
-                break
-        else:
-            groups.append([o])
-    return groups
-
-
-def read_inputs(options: InputsConfig, *, progress: Progress = _quiet) -> InputData:
-    """Read the observation and orbit files (or the embedded demo when none are given).
-
-    Parameters
-    ----------
-    options : InputsConfig
-        Files, method, system, receiver positions.
-    progress : callable, optional
-        Called with a short message.
-
-    Returns
-    -------
-    InputData
-    """
-    obs_paths = [Path(p) for p in options.obs]
-    nav_path = Path(options.nav) if options.nav else None
-    demo = None
-    method_options = options
-    if not obs_paths:
-        from psdbound.simulate import demo_data
-
-        progress("demo data (simulated on first use)")
-        data = demo_data()
-        obs_paths, nav_path = [data.obs_paths[0]], data.nav_path
-        demo = data.truth_meta()
-        method_options = InputsConfig(method="df")
-    for p in obs_paths:
-        if not p.is_file():
-            raise InputError("observation file not found", path=p)
-    if nav_path is None:
-        raise InputError("a navigation (or SP3) file is needed for elevations: give --nav")
-    progress(f"reading {len(obs_paths)} observation file(s) and {nav_path.name}")
-    groups = _group_stations(_read_observations(obs_paths, options.system))
-    if len(groups) > 2:
-        names = ", ".join(f"{station_key(g[0])} ({len(g)} file(s))" for g in groups)
-        raise InputError(
-            f"observation files of {len(groups)} stations: {names}; fit one station (its "
-            "consecutive files are merged) or a dual-antenna pair (the files of two antennas)"
-        )
-    method = _method(method_options, len(groups))
-    if method == "df" and len(groups) == 2:
-        raise InputError(
-            f"--method df needs the files of one station, got two: {station_key(groups[0][0])} "
-            f"and {station_key(groups[1][0])}"
-        )
-    obs = tuple(merge_observations(g) for g in groups)
-    merged = [f"{station_key(g[0])}: {len(g)} observation files merged in time order into one "
-              f"data set ({obs[k].path and len(obs[k].t_gps_s)} epochs)"
-              for k, g in enumerate(groups) if len(g) > 1]  # fmt: skip
-    if merged:
-        progress("; ".join(merged))
-    orbit = read_orbit(nav_path)
-    coverage_notes: list[str] = []
-    for o in obs:  # orbits of another day or without the system: one clear error (exit 2)
-        cov = orbit_coverage(orbit, o, options.system)
-        cov.require(options.system)
-        coverage_notes += [f"{nav_path.name}: {w}" for w in cov.warnings(options.system)]
-    rx = tuple(tuple(x) for x in options.receiver_xyz_m) or (None,) * len(obs)
-    pos = obs[0].header.approx_position_m if rx[0] is None else np.asarray(rx[0])
-    lat = lon = None
-    if pos is not None:
-        la, lo, _ = ecef_to_geodetic(np.asarray(pos))
-        lat, lon = float(la), float(lo)
-    files = tuple(
-        {"role": role, "name": p.name, "path": str(p), "sha256": file_sha256(p)}
-        for role, p in [*(("obs", q) for q in obs_paths), ("nav", nav_path)]
-    )
-    year = int(str(obs[0].times[0])[:4])
-    notes = tuple(str(w) for o in (*obs, orbit) for w in getattr(o, "warnings", ()) or ())
-    notes += tuple(merged) + tuple(coverage_notes)
-    return InputData(method, obs, orbit, files, rx, lat, lon, year, demo, notes)
-
 
 def choose_cutoff(inputs: InputData, options: CutoffOptions) -> CutoffChoice | None:
     """Choose the high-pass cutoff (dual-frequency only; None for dual-antenna).
@@ -251,16 +125,18 @@ def _isolate_df(inputs: InputData, cutoff: CutoffChoice, arcs_opt: ArcOptions,
     return Isolated(series, arcs, details, warnings)
 
 
-def _isolate_da(inputs: InputData, arcs_opt: ArcOptions, signal: str, system: str,
+def _isolate_da(inputs: InputData, arcs_opt: ArcOptions, options: InputsConfig,
                 progress: Progress) -> Isolated:  # fmt: skip
-    progress("dual-antenna double differences (receiver clocks, geometry, re-referencing)")
+    progress("dual-antenna double differences (receiver clocks, geometry, re-referencing, "
+             "baseline)")  # fmt: skip
     rx = inputs.receiver_xyz_m
     series = isolate_dual_antenna(
-        inputs.observations[0], inputs.observations[1], inputs.orbit, signal=signal,
-        system=system, receiver1_xyz_m=_xyz(rx[0]),
+        inputs.observations[0], inputs.observations[1], inputs.orbit,
+        signal=options.da_signal, system=options.system, receiver1_xyz_m=_xyz(rx[0]),
         receiver2_xyz_m=_xyz(rx[1]) if len(rx) > 1 else None,
         min_length_s=min(arcs_opt.min_length_s, 600.0),
         elevation_mask_deg=arcs_opt.elevation_mask_deg,
+        baseline=options.baseline, baseline_tolerance_m=options.baseline_tolerance_m,
     )  # fmt: skip
     m = series.meta
     details = {
@@ -269,15 +145,21 @@ def _isolate_da(inputs: InputData, arcs_opt: ArcOptions, signal: str, system: st
         "scaling_note": "double difference / 2: four independent per-signal terms",
         "n_arcs": series.n_arcs,
         "baseline_m": m.get("baseline_m"),
+        "positions_m": m.get("positions_m"),
+        "position_sources": m.get("position_sources"),
+        "baseline_estimate": m.get("baseline_estimate"),
         "reference_periods": m.get("reference_periods"),
         "receiver_clock": m.get("receiver_clock"),
     }
-    warning = (
+    warnings = [
         "dual-antenna differences cancel the multipath common to both antennas "
         f"({m.get('baseline_m', float('nan')):.1f} m baseline): the bound may be "
         "optimistic for a single antenna; the dual-frequency method is preferred"
-    )
-    return Isolated(series, None, details, (warning,))
+    ]
+    note = baseline_note(m.get("baseline_estimate"), m.get("markers"))
+    if note:
+        warnings.append(note)
+    return Isolated(series, None, details, tuple(warnings))
 
 
 def isolate(
@@ -287,7 +169,7 @@ def isolate(
     arcs: ArcOptions,
     highpass: HighPass,
     options: InputsConfig,
-    progress: Progress = _quiet,
+    progress: Progress = quiet,
 ) -> Isolated:
     """Isolate the multipath: dual-frequency (with the high-pass) or dual-antenna.
 
@@ -313,7 +195,7 @@ def isolate(
             raise InputError("dual-frequency isolation needs a cutoff frequency")
         return _isolate_df(inputs, cutoff, arcs, highpass, tuple(options.signals),
                            options.system, progress)  # fmt: skip
-    return _isolate_da(inputs, arcs, options.da_signal, options.system, progress)
+    return _isolate_da(inputs, arcs, options, progress)
 
 
 def screen(
@@ -322,7 +204,7 @@ def screen(
     options: ScreeningOptions,
     mapping: MappingOptions,
     min_length_s: float,
-    progress: Progress = _quiet,
+    progress: Progress = quiet,
 ) -> Screened:
     """Exclude residual ionosphere (ROTI) and physically implausible values.
 
@@ -372,7 +254,7 @@ def window(
     *,
     mapping: MappingOptions,
     options: StationarityOptions,
-    progress: Progress = _quiet,
+    progress: Progress = quiet,
 ) -> Windowed:
     """Map the series by elevation and cut it into stationary windows.
 
@@ -430,7 +312,7 @@ def bound(
     options: BoundOptions,
     cutoff: CutoffChoice | None = None,
     highpass: HighPass | None = None,
-    progress: Progress = _quiet,
+    progress: Progress = quiet,
 ) -> BoundResults:
     """Estimate every window's PSD and fit the tightest GM + white-noise bound.
 
@@ -518,7 +400,7 @@ def validate(
     isolated: Isolated,
     arcs: ArcOptions,
     options: ValidationOptions,
-    progress: Progress = _quiet,
+    progress: Progress = quiet,
 ) -> Validated:
     """Check how much multipath the cutoff removes, for reflectors around this antenna.
 

@@ -201,6 +201,7 @@ def simulate(scenario: Scenario, out_dir: str | os.PathLike[str]) -> SimulationR
     rx_a = geodetic_to_ecef(sc.lat_deg, sc.lon_deg, sc.height_m)
     rx_b = rx_a + enu_rotation(sc.lat_deg, sc.lon_deg).T @ np.asarray(sc.baseline_enu_m, float)
     antennas = [rx_a, rx_b] if sc.dual_antenna else [rx_a]
+    header_error = enu_rotation(sc.lat_deg, sc.lon_deg).T @ np.asarray(sc.header_error_enu_m, float)
     n_ant = len(antennas)
     sats = tuple(s for s in nav.satellites if s[0] in sc.systems)
     ns = len(sats)
@@ -337,7 +338,7 @@ def simulate(scenario: Scenario, out_dir: str | os.PathLike[str]) -> SimulationR
             marker_name=f"{sc.name.upper()[:56]}-{'AB'[a]}",
             receiver_type="PSDBOUND SIMULATOR",
             antenna_type="SIMULATED",
-            approx_position_m=antennas[a],
+            approx_position_m=antennas[a] + (header_error if a == 1 else 0.0),
             antenna_delta_hen_m=np.zeros(3),
             interval_s=sc.interval_s,
             time_system="GPS",

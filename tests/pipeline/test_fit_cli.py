@@ -168,6 +168,10 @@ def test_fit_real_data(tmp_path, case):
     # the ESBC day runs through the library in tests/pipeline/test_regression_pins.py
     args = [shared_file(UPC1_OBS), shared_file(UPC2_OBS), "--nav", shared_file(UPC_NAV)]
     r = run_cli("fit", *args, "--name", case, "--quiet", cwd=tmp_path)
+    assert r.returncode == 2  # two stations: a pair is named explicitly
+    assert "--pair UPC1 UPC2" in r.stderr and r.stderr.count("\n") == 1
+    assert not (tmp_path / "reports").exists()
+    r = run_cli("fit", *args, "--pair", "UPC1", "UPC2", "--name", case, "--quiet", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     out = tmp_path / "reports" / case
     d = psdbound.load(out / "result.json").document
@@ -178,6 +182,8 @@ def test_fit_real_data(tmp_path, case):
     assert 1e-4 < b["sigma_gm_m"] < 0.05
     assert d["method"] == "DA"
     assert any("cancel" in w for w in d["warnings"])
+    est = d["isolation"]["baseline_estimate"]  # UPC's header positions agree with the phases
+    assert est["used"] is False and est["estimate"]["correction_length_m"] < 0.05
     assert (out / "report.html").stat().st_size > 100_000
     assert (out / "report.pdf").stat().st_size > 50_000
 

@@ -80,13 +80,16 @@ FILES = {
     "nya1": ((NYA1_OBS,), NYA1_NAV),
     "upc": ((UPC1_OBS, UPC2_OBS), UPC_NAV),
 }
+#: a dual-antenna pair is named explicitly
+OPTIONS = {"upc": {"pair": ("UPC1", "UPC2")}}
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("case", sorted(PINS))
 def test_pinned_bound(case):
     obs, nav = FILES[case]
-    res = psdbound.fit([shared_file(o) for o in obs], nav=shared_file(nav) if nav else None)
+    res = psdbound.fit([shared_file(o) for o in obs], nav=shared_file(nav) if nav else None,
+                       **OPTIONS.get(case, {}))
     b, d = res.bound, res.document
     sigma_gm, tau, sigma_wn, n_windows = PINS[case]
     print(f"{case}: {b.sigma_gm_m!r} {b.tau_s!r} {b.sigma_wn_m!r} {d['windows']['count']}")
