@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from psdbound.errors import InputError
+from psdbound.io._body_fast import Scan, scan_v3
 from psdbound.io._fields import FIELD_WIDTH, FieldError, pad_lines, parse_fields
 from psdbound.io._header import ObsHeader
 from psdbound.io.timescales import calendar_to_gps_s, utc_to_gps_s
@@ -53,6 +54,8 @@ _DATE_V3 = re.compile(rb"> (\d{4}) ([ \d]\d) ([ \d]\d) ([ \d]\d) ([ \d]\d)([ \d]
 _DATE_V2 = re.compile(rb" ([ \d]\d) ([ \d]\d) ([ \d]\d) ([ \d]\d) ([ \d]\d)([ \d]{2}\d\.\d{7})")
 _LETTER = np.zeros(256, dtype=bool)
 _LETTER[np.frombuffer(b"GRECJSI", dtype=np.uint8)] = True
+#: records parsed at a time (bounds the temporary arrays of :func:`parse_fields`)
+_PARSE_ROWS = 32768
 
 
 @dataclass
@@ -120,6 +123,18 @@ class _Collector:
         self.epoch_of: dict[str, list[int]] = {}
         self.sat_of: dict[str, list[str]] = {}
         self.warnings: list[str] = []
+        self.sat_key: dict[str, np.ndarray] = {}
+
+    def load(self, scan: Scan) -> None:
+        """Take the epochs and records of a vectorised scan (records as character arrays)."""
+        self.times = scan.dates  # type: ignore[assignment]
+        self.lines = scan.lines  # type: ignore[assignment]
+        self.flags = scan.flags  # type: ignore[assignment]
+        self.records = scan.chars  # type: ignore[assignment]
+        self.line_of = scan.line_of  # type: ignore[assignment]
+        self.epoch_of = scan.epoch_of  # type: ignore[assignment]
+        self.sat_of = scan.sat_of
+        self.sat_key = scan.sat_key
 
     def fail(self, message: str, idx: int) -> InputError:
         return InputError(message, path=self.path, line=_error_line(self.header, idx))
@@ -245,7 +260,7 @@ class _Collector:
         self, codes_wanted: Collection[str] | None, offset: int
     ) -> tuple[np.ndarray, np.ndarray, dict[str, RawBlock], tuple[str, ...]]:
         """Return epochs (GPS s), epoch flags, the per-system blocks and warnings."""
-        if not self.times:
+        if len(self.times) == 0:
             return np.zeros(0), np.zeros(0, np.int8), {}, ()
         labels = self._epochs(offset == 3)
         t = _to_gps_s(labels, self.header)
@@ -300,6 +315,16 @@ def _check_values(acc: _Collector, system: str, codes: list[str], values: np.nda
             )
 
 
+def _unique_sats(acc: _Collector, system: str) -> tuple[np.ndarray, np.ndarray]:
+    """Sorted distinct satellite ids of a system's records and each record's index into them."""
+    key = acc.sat_key.get(system)
+    if key is None:
+        return np.unique(np.array(acc.sat_of[system]), return_inverse=True)
+    uk, first, inv = np.unique(key, return_index=True, return_inverse=True)
+    ids = acc.sat_of[system]
+    return np.array([ids[k] for k in first]), inv
+
+
 def _build_blocks(
     acc: _Collector, n_epoch: int, codes_wanted: Collection[str] | None, offset: int
 ) -> dict[str, RawBlock]:
@@ -312,16 +337,16 @@ def _build_blocks(
                 f"satellite {acc.sat_of[system][0]} has no observation types in the header",
                 acc.line_of[system][0],
             )
-        sats, sat_idx = np.unique(np.array(acc.sat_of[system]), return_inverse=True)
+        sats, sat_idx = _unique_sats(acc, system)
         _check_sats(acc, system, sats)
         n_types = len(types)
         width = offset + FIELD_WIDTH * n_types
-        if offset:
+        if offset and not isinstance(recs, np.ndarray):  # arrays: checked by the scan
             _check_widths(acc, system, recs, width)
         ep = np.asarray(acc.epoch_of[system])
         key = ep * len(sats) + sat_idx
-        if np.unique(key).size != key.size:
-            order = np.argsort(key, kind="stable")
+        order = np.argsort(key, kind="stable")
+        if np.any(np.diff(key[order]) == 0):
             r = int(order[np.flatnonzero(np.diff(key[order]) == 0)[0] + 1])
             raise acc.fail(
                 f"satellite {acc.sat_of[system][r]} has two records in the same epoch",
@@ -333,17 +358,8 @@ def _build_blocks(
             cols = [k for k, c in enumerate(types) if c in codes_wanted]
         if not cols:
             continue
-        chars = pad_lines(recs, width)[:, offset:].reshape(len(recs), n_types, FIELD_WIDTH)
-        chars = chars[:, cols, :]
-        try:
-            values, lli, ssi = parse_fields(chars)
-        except FieldError as exc:
-            raise acc.fail(
-                f"satellite {acc.sat_of[system][exc.row]}, observation "
-                f"{types[cols[exc.field]]}: {exc.text!r} is not an F14.3 number with its "
-                "indicators (line cut short or columns shifted?)",
-                acc.line_of[system][exc.row],
-            ) from None
+        lines = recs if isinstance(recs, np.ndarray) else pad_lines(recs, width)
+        values, lli, ssi = _parse_block(acc, system, lines[:, offset:width], n_types, cols)
         _check_values(acc, system, [types[k] for k in cols], values)
         shape = (n_epoch, len(sats), len(cols))
         v = np.full(shape, np.nan)
@@ -356,6 +372,49 @@ def _build_blocks(
             system, tuple(str(s) for s in sats), tuple(types[k] for k in cols), v, li, si
         )
     return blocks
+
+
+def _parse_block(acc: _Collector, system: str, chars: np.ndarray, n_types: int,
+                 cols: list[int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
+    """Parse the fields ``cols`` of every record, a chunk of rows at a time.
+
+    Parameters
+    ----------
+    acc : _Collector
+        For error messages (satellite and line of a bad field).
+    system : str
+        System letter.
+    chars : ndarray of uint8, shape (n_record, 16 * n_types)
+        The records' observation columns.
+    n_types : int
+        Observation types of the system in the header.
+    cols : list of int
+        Indices of the types to parse.
+
+    Returns
+    -------
+    values : ndarray of float64, shape (n_record, len(cols))
+    lli, ssi : ndarray of int8, same shape
+    """
+    n = chars.shape[0]
+    types = acc.header.obs_types[system]
+    values = np.empty((n, len(cols)))
+    lli = np.empty((n, len(cols)), dtype=np.int8)
+    ssi = np.empty((n, len(cols)), dtype=np.int8)
+    fields = chars.reshape(n, n_types, FIELD_WIDTH)
+    for lo in range(0, n, _PARSE_ROWS):
+        hi = min(n, lo + _PARSE_ROWS)
+        try:
+            values[lo:hi], lli[lo:hi], ssi[lo:hi] = parse_fields(fields[lo:hi][:, cols, :])
+        except FieldError as exc:
+            row = lo + exc.row
+            raise acc.fail(
+                f"satellite {acc.sat_of[system][row]}, observation "
+                f"{types[cols[exc.field]]}: {exc.text!r} is not an F14.3 number with its "
+                "indicators (line cut short or columns shifted?)",
+                acc.line_of[system][row],
+            ) from None
+    return values, lli, ssi
 
 
 _REDEFINING = (b"SYS / # / OBS TYPES", b"# / TYPES OF OBSERV")
@@ -400,6 +459,12 @@ def parse_v3(
     codes_wanted: Collection[str] | None,
 ) -> tuple[np.ndarray, np.ndarray, dict[str, RawBlock], tuple[str, ...]]:
     """Parse a RINEX 3 data section; return epochs (GPS s), flags, blocks and warnings."""
+    widths = {s: 3 + FIELD_WIDTH * len(t) for s, t in header.obs_types.items()}
+    scan = scan_v3(body, systems, widths)
+    if scan is not None:  # a regular data section, scanned at once
+        fast = _Collector(header, path, systems)
+        fast.load(scan)
+        return fast.finish(codes_wanted, 3)
     lines = _lines(body)
     n_lines = len(lines)
     first = np.frombuffer(b"".join([ln[:1] or b" " for ln in lines]), dtype=np.uint8)

@@ -12,7 +12,8 @@ ionosphere) and little above it (the multipath):
     fraction of the unfiltered power at ``f >= f_c`` that the filter removed.
 
 Powers are sums of periodogram values on a common grid from ``1/T`` to just
-below the Nyquist frequency with spacing ``1/(4T)`` (``T`` the arc span).
+below the Nyquist frequency with spacing ``1/(4T)`` (``T`` the arc span),
+computed exactly by FFT (the samples are on the interval grid).
 Both series are multiplied by a Hann taper (normalised to unit mean square)
 before the periodogram: without it, the sidelobes of metre-level ionosphere
 leak far above ``f_c`` and swamp millimetre multipath (an untapered check on
@@ -107,8 +108,9 @@ def filter_safety_check(series: MultipathSeries) -> SafetyCheck:
         t = arc.t_gps_s - arc.t_gps_s[0]
         span = max(t[-1], series.interval_s)
         f = np.arange(1.0 / span, 0.98 * nyq, 0.25 / span)
-        p_raw = tapered_lomb_scargle(t, arc.unfiltered_m - arc.unfiltered_m.mean(), f)
-        p_flt = tapered_lomb_scargle(t, arc.value_m / series.scaling, f)
+        dt = series.interval_s
+        p_raw = tapered_lomb_scargle(t, arc.unfiltered_m - arc.unfiltered_m.mean(), f, dt_s=dt)
+        p_flt = tapered_lomb_scargle(t, arc.value_m / series.scaling, f, dt_s=dt)
         below = f < fc
         removed = p_raw - p_flt
         pb.append(p_raw[below].sum())

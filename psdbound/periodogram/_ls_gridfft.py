@@ -15,7 +15,9 @@ extirpolation/NUFFT approximation, at O(M log M) cost. The formulas are the
 floating-mean (generalised) periodogram of Zechmeister & Kurster (2009) with
 the time shift tau, unit weights, as astropy's ``LombScargle`` with
 ``fit_mean=True, center_data=True`` computes it; ``normalization="psd"``
-matches astropy's.
+matches astropy's. With ``fit_mean=False`` (and the data not centred) the
+mean terms vanish and the formulas are the classical periodogram's
+(astropy ``fit_mean=False, center_data=False``).
 """
 
 from __future__ import annotations
@@ -45,7 +47,35 @@ def lombscargle_gridfft(
     copies: int = 1,
     period_s: float = 0.0,
     normalization: str = "psd",
+    fit_mean: bool = True,
 ) -> NDArray[np.float64]:
+    """Exact Lomb-Scargle power of on-grid (gappy, replicated) samples by FFT.
+
+    Parameters
+    ----------
+    t_s : ndarray of float64
+        Sample times, s, on a grid of step ``dt_s`` (gaps allowed).
+    y : ndarray of float64
+        Values (any unit ``u``).
+    frequency_hz : ndarray of float64
+        Regular grid ``k / (M dt_s)``, Hz (integer ``k``, ``M`` at least the span in samples).
+    dt_s : float
+        Grid step, s.
+    copies : int, default 1
+        Replicas of the series.
+    period_s : float, default 0
+        Shift between replicas, s.
+    normalization : {"psd", "standard"}
+        As astropy's.
+    fit_mean : bool, default True
+        Floating mean and centred data (astropy ``fit_mean=True, center_data=True``);
+        False: neither (``fit_mean=False, center_data=False``).
+
+    Returns
+    -------
+    ndarray of float64
+        Power at each frequency (``u^2`` for ``"psd"``).
+    """
     n = grid_indices(t_s, dt_s)
     if n is None:
         raise ValueError("times are not on a regular grid of step dt_s")
@@ -60,7 +90,7 @@ def lombscargle_gridfft(
         raise ValueError(f"series spans {n[-1] + 1} samples, more than the FFT length {m}")
     n_total = y.size * copies
     w = 1.0 / n_total
-    yc = y - np.mean(y)
+    yc = y - np.mean(y) if fit_mean else np.asarray(y, dtype=np.float64)
 
     def half_spectrum(values: NDArray[np.float64]) -> NDArray[np.complex128]:
         x = np.zeros(m)
@@ -91,7 +121,7 @@ def lombscargle_gridfft(
     zw1 = w * g1 * at(ones, k)
     zw2 = w * g2 * at(ones, 2 * k)
     ch, sh = zy.real, zy.imag
-    c, s = zw1.real, zw1.imag
+    c, s = (zw1.real, zw1.imag) if fit_mean else (np.zeros(k.size), np.zeros(k.size))
     c2, s2 = zw2.real, zw2.imag
     two_wtau = np.arctan2(s2 - 2.0 * s * c, c2 - (c * c - s * s))
     cw, sw = np.cos(0.5 * two_wtau), np.sin(0.5 * two_wtau)

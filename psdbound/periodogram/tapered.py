@@ -16,6 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from psdbound.periodogram._ls_astropy import lombscargle_astropy
+from psdbound.periodogram._ls_gridfft import lombscargle_gridfft
 
 __all__ = ["hann_taper", "tapered_lomb_scargle", "tapered_periodogram"]
 
@@ -39,12 +40,17 @@ def hann_taper(n: int) -> NDArray[np.float64]:
 
 
 def tapered_lomb_scargle(
-    t_s: ArrayLike, y: ArrayLike, frequency_hz: ArrayLike
+    t_s: ArrayLike, y: ArrayLike, frequency_hz: ArrayLike, *, dt_s: float | None = None
 ) -> NDArray[np.float64]:
     """Lomb-Scargle power of a Hann-tapered series (astropy, ``"psd"`` normalisation).
 
     The series is multiplied by :func:`hann_taper` and analysed without a
-    floating mean or centring: remove the mean first if it matters.
+    floating mean or centring: remove the mean first if it matters. With
+    ``dt_s``, times on that grid and frequencies ``k / (M dt_s)`` (``M`` at
+    least the span in samples), the same periodogram is computed exactly by
+    FFT (:func:`psdbound.periodogram._ls_gridfft.lombscargle_gridfft`; it
+    agrees with astropy's to ~1e-14 relative and is 10-40 times faster);
+    otherwise by astropy.
 
     Parameters
     ----------
@@ -54,6 +60,9 @@ def tapered_lomb_scargle(
         Values (any unit ``u``), one per time.
     frequency_hz : array_like of float
         Frequencies, Hz.
+    dt_s : float, optional
+        Sampling interval, s: use the exact FFT form when the times and
+        frequencies allow it.
 
     Returns
     -------
@@ -63,6 +72,11 @@ def tapered_lomb_scargle(
     t = np.asarray(t_s, dtype=np.float64)
     v = np.asarray(y, dtype=np.float64) * hann_taper(t.size)
     f = np.asarray(frequency_hz, dtype=np.float64)
+    if dt_s is not None and f.size > 1:
+        try:
+            return lombscargle_gridfft(t, v, f, dt_s=dt_s, fit_mean=False)
+        except ValueError:
+            pass  # off-grid times or frequencies: astropy
     return lombscargle_astropy(t, v, f, fit_mean=False, center_data=False)
 
 

@@ -49,15 +49,34 @@ def _title(r: dict[str, Any]) -> str:
     return ", ".join(names) or "result"
 
 
-def render_html(document: dict[str, Any]) -> str:
-    """Return the self-contained HTML report (figures inline as PNG) of a result document."""
+def _png(fig: Any) -> str:
+    """Base64 PNG of a figure (110 dpi)."""
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=110)
+    return base64.b64encode(buf.getvalue()).decode()
+
+
+def render_html(document: dict[str, Any], *, figures: list[tuple[str, Any]] | None = None) -> str:
+    """Return the self-contained HTML report (figures inline as PNG) of a result document.
+
+    Parameters
+    ----------
+    document : dict
+        The result document.
+    figures : list of (str, Figure), optional
+        Captions and figures already drawn (they are left open); by default
+        every figure is drawn (and closed) here.
+
+    Returns
+    -------
+    str
+    """
     r = document
     figs = []
-    for caption, fig in _figures(r):
-        buf = io.BytesIO()
-        fig.savefig(buf, format="png", dpi=110)
-        plt.close(fig)
-        figs.append({"caption": caption, "png": base64.b64encode(buf.getvalue()).decode()})
+    for caption, fig in figures if figures is not None else _figures(r):
+        figs.append({"caption": caption, "png": _png(fig)})
+        if figures is None:
+            plt.close(fig)
     env = jinja2.Environment(
         loader=jinja2.PackageLoader("psdbound.reports", "templates"),
         autoescape=jinja2.select_autoescape(["html", "j2"]),
@@ -138,8 +157,24 @@ def _summary_page(r: dict[str, Any]):
     return fig
 
 
-def render_pdf(document: dict[str, Any], path: str | os.PathLike[str]) -> Path:
-    """Write the PDF report (summary and caveats page, then every figure) of a result document."""
+def render_pdf(document: dict[str, Any], path: str | os.PathLike[str], *,
+               figures: list[tuple[str, Any]] | None = None) -> Path:  # fmt: skip
+    """Write the PDF report (summary and caveats page, then every figure) of a result document.
+
+    Parameters
+    ----------
+    document : dict
+        The result document.
+    path : str or path-like
+        The PDF file.
+    figures : list of (str, Figure), optional
+        Captions and figures already drawn (their HTML PNGs already made:
+        the PDF adds the caption as a title); by default drawn here.
+
+    Returns
+    -------
+    Path
+    """
     r = document
     p = Path(path)
     with PdfPages(p, metadata={"Title": f"psdbound report: {_title(r)}", "Creator": "psdbound",
@@ -147,7 +182,7 @@ def render_pdf(document: dict[str, Any], path: str | os.PathLike[str]) -> Path:
         page = _summary_page(r)
         pdf.savefig(page)
         plt.close(page)
-        for caption, fig in _figures(r):
+        for caption, fig in figures if figures is not None else _figures(r):
             fig.suptitle(caption, fontsize=10, y=0.995)
             pdf.savefig(fig)
             plt.close(fig)
@@ -198,9 +233,14 @@ def write_report_folder(
     out = Path(out_dir)
     with output_folder(out, overwrite=overwrite, option=option) as tmp:
         write_document(tmp / "result.json", document)
-        (tmp / "report.html").write_text(render_html(document))
-        if pdf:
-            render_pdf(document, tmp / "report.pdf")
+        figures = _figures(document)  # drawn once: PNGs for the HTML, then the PDF pages
+        try:
+            (tmp / "report.html").write_text(render_html(document, figures=figures))
+            if pdf:
+                render_pdf(document, tmp / "report.pdf", figures=figures)
+        finally:
+            for _, fig in figures:
+                plt.close(fig)
     paths = {"result": out / "result.json", "html": out / "report.html"}
     if pdf:
         paths["pdf"] = out / "report.pdf"

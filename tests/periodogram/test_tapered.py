@@ -11,6 +11,7 @@ from astropy.timeseries import LombScargle
 
 import psdbound.periodogram as pg
 from psdbound.ionosphere import SIDEREAL_DAY_S
+from psdbound.periodogram._ls_gridfft import lombscargle_gridfft
 
 ALLOWED = ("psdbound.errors", "psdbound.common", "psdbound.periodogram")
 
@@ -26,6 +27,25 @@ def test_tapered_lomb_scargle_is_hann_times_series_without_mean_fit():
     expected = LombScargle(t, y * w, fit_mean=False, center_data=False, normalization="psd")
     np.testing.assert_array_equal(pg.tapered_lomb_scargle(t, y, f), expected.power(f))
     np.testing.assert_allclose(np.mean(pg.hann_taper(t.size) ** 2), 1.0)
+
+
+def test_tapered_lomb_scargle_on_a_grid_uses_the_exact_fft():
+    """With dt_s (gappy samples on the grid) the FFT path equals astropy's exact sums."""
+    rng = np.random.default_rng(8)
+    dt = 30.0
+    t = np.arange(2000) * dt
+    t = t[rng.uniform(size=t.size) > 0.1]  # 10 % gaps
+    t -= t[0]
+    y = np.sin(2 * np.pi * t / 5000.0) + rng.normal(0, 0.1, t.size)
+    span = t[-1]
+    f = np.arange(1.0 / span, 0.98 / (2 * dt), 0.25 / span)
+    w = pg.hann_taper(t.size)
+    exact = LombScargle(t, y * w, fit_mean=False, center_data=False, normalization="psd")
+    np.testing.assert_allclose(pg.tapered_lomb_scargle(t, y, f, dt_s=dt),
+                               exact.power(f, method="slow"), rtol=1e-9, atol=1e-12)  # fmt: skip
+    # and it was the FFT form (it raises off the grid instead of falling back)
+    fft = lombscargle_gridfft(t, y * w, f, dt_s=dt, fit_mean=False)
+    np.testing.assert_array_equal(fft, pg.tapered_lomb_scargle(t, y, f, dt_s=dt))
 
 
 def test_tapered_periodogram_of_a_sine():
