@@ -24,7 +24,7 @@ the line):
 from __future__ import annotations
 
 import re
-from collections.abc import Collection
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -298,7 +298,8 @@ def _check_widths(acc: _Collector, system: str, recs: list[bytes], width: int) -
             )
 
 
-def _check_values(acc: _Collector, system: str, codes: list[str], values: np.ndarray) -> None:
+def _check_values(acc: _Collector, system: str, codes: Sequence[str], values: np.ndarray,
+                  row0: int = 0) -> None:  # fmt: skip
     for k, code in enumerate(codes):
         lim = VALUE_LIMITS.get(code[0])
         if lim is None:
@@ -306,9 +307,10 @@ def _check_values(acc: _Collector, system: str, codes: list[str], values: np.nda
         v = values[:, k]
         bad = (v < lim[0]) | (v > lim[1])
         if bad.any():
-            r = int(np.argmax(bad))
+            j = int(np.argmax(bad))
+            r = row0 + j
             raise acc.fail(
-                f"satellite {acc.sat_of[system][r]}, observation {code}: {v[r]:.3f} is not a "
+                f"satellite {acc.sat_of[system][r]}, observation {code}: {v[j]:.3f} is not a "
                 f"{lim[2]} (expected {lim[0]:g} to {lim[1]:g}; columns shifted against the "
                 "header's observation types?)",
                 acc.line_of[system][r],
@@ -330,7 +332,8 @@ def _build_blocks(
 ) -> dict[str, RawBlock]:
     blocks = {}
     header = acc.header
-    for system, recs in acc.records.items():
+    for system in list(acc.records):
+        recs = acc.records.pop(system)  # released once parsed (tens of MB a day at 1 Hz)
         types = header.obs_types.get(system)
         if types is None:
             raise acc.fail(
@@ -359,8 +362,9 @@ def _build_blocks(
         if not cols:
             continue
         lines = recs if isinstance(recs, np.ndarray) else pad_lines(recs, width)
+        del recs
         values, lli, ssi = _parse_block(acc, system, lines[:, offset:width], n_types, cols)
-        _check_values(acc, system, [types[k] for k in cols], values)
+        del lines
         shape = (n_epoch, len(sats), len(cols))
         v = np.full(shape, np.nan)
         li = np.full(shape, -1, dtype=np.int8)
@@ -376,7 +380,11 @@ def _build_blocks(
 
 def _parse_block(acc: _Collector, system: str, chars: np.ndarray, n_types: int,
                  cols: list[int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
-    """Parse the fields ``cols`` of every record, a chunk of rows at a time.
+    """Parse every field of every record, a chunk of rows at a time; keep ``cols``.
+
+    All fields are parsed and range-checked, also those not kept: a column
+    shift in a field the run does not use must still be refused, never turn
+    into a wrong value in one it does use.
 
     Parameters
     ----------
@@ -405,15 +413,17 @@ def _parse_block(acc: _Collector, system: str, chars: np.ndarray, n_types: int,
     for lo in range(0, n, _PARSE_ROWS):
         hi = min(n, lo + _PARSE_ROWS)
         try:
-            values[lo:hi], lli[lo:hi], ssi[lo:hi] = parse_fields(fields[lo:hi][:, cols, :])
+            v, li, si = parse_fields(fields[lo:hi])
         except FieldError as exc:
             row = lo + exc.row
             raise acc.fail(
                 f"satellite {acc.sat_of[system][row]}, observation "
-                f"{types[cols[exc.field]]}: {exc.text!r} is not an F14.3 number with its "
+                f"{types[exc.field]}: {exc.text!r} is not an F14.3 number with its "
                 "indicators (line cut short or columns shifted?)",
                 acc.line_of[system][row],
             ) from None
+        _check_values(acc, system, types, v, lo)
+        values[lo:hi], lli[lo:hi], ssi[lo:hi] = v[:, cols], li[:, cols], si[:, cols]
     return values, lli, ssi
 
 
@@ -452,7 +462,7 @@ def _lines(body: bytes) -> list[bytes]:
 
 
 def parse_v3(
-    body: bytes,
+    body: bytes | memoryview,
     header: ObsHeader,
     path: Path,
     systems: Collection[str] | None,
@@ -464,8 +474,9 @@ def parse_v3(
     if scan is not None:  # a regular data section, scanned at once
         fast = _Collector(header, path, systems)
         fast.load(scan)
+        del scan  # the collector owns the records now and releases them as it parses
         return fast.finish(codes_wanted, 3)
-    lines = _lines(body)
+    lines = _lines(bytes(body))
     n_lines = len(lines)
     first = np.frombuffer(b"".join([ln[:1] or b" " for ln in lines]), dtype=np.uint8)
     is_epoch = first == ord(">")

@@ -64,7 +64,7 @@ def read_bytes(path: str | os.PathLike[str]) -> bytes:
         detail = " ".join(str(exc).split()) or type(exc).__name__
         raise InputError(f"cannot decompress: {detail} (damaged or truncated file?)",
                          path=p) from None  # fmt: skip
-    if not raw.strip():
+    if not raw or raw.isspace():  # (no stripped copy of a large file)
         raise InputError("file is empty after decompression", path=p)
     if b"\r" in raw:
         raw = raw.replace(b"\r\n", b"\n")

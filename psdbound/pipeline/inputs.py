@@ -51,18 +51,34 @@ def _method(inputs: InputsConfig, n_stations: int) -> str:
     return m
 
 
-def _read_observations(paths: Sequence[Path], system: str) -> list[Observations]:
-    """Read every observation file; a zip archive of several files gives one per member."""
+def _read_observations(
+    paths: Sequence[Path], system: str, codes: Sequence[str] | None = None
+) -> list[Observations]:
+    """Read every observation file; a zip archive of several files gives one per member.
+
+    ``codes``: the only observation codes kept (a dual-frequency run needs its
+    phase pair only: a third of the memory of a typical file).
+    """
     out = []
     for p in paths:
         if len(zip_members(p)) > 1:
             with tempfile.TemporaryDirectory(prefix="psdbound-zip-") as tmp:
                 for member in extract_zip(p, tmp):
-                    o = read_obs(member, systems=system)
+                    o = read_obs(member, systems=system, codes=codes)
                     out.append(replace(o, path=f"{p}:{member.name}"))
         else:
-            out.append(read_obs(p, systems=system))
+            out.append(read_obs(p, systems=system, codes=codes))
     return out
+
+
+def _codes_needed(options: InputsConfig) -> tuple[str, ...] | None:
+    """Codes a run reads: the phase pair for dual-frequency, everything for a pair."""
+    from psdbound.io import DEFAULT_SIGNALS
+
+    if options.pair or options.method.lower() != "df" and options.method.lower() != "auto":
+        return None  # dual-antenna: the clock estimate may use any pseudorange
+    signals = tuple(options.signals) or DEFAULT_SIGNALS.get(options.system)
+    return tuple(signals) if signals else None
 
 
 def _name(group: list[Observations]) -> str:
@@ -213,7 +229,8 @@ def read_inputs(options: InputsConfig, *, progress: Progress = quiet) -> InputDa
     if nav_path is None:
         raise InputError("a navigation (or SP3) file is needed for elevations: give --nav")
     progress(f"reading {len(obs_paths)} observation file(s) and {nav_path.name}")
-    groups = _group_stations(_read_observations(obs_paths, options.system), options.pair)
+    codes = _codes_needed(method_options)
+    groups = _group_stations(_read_observations(obs_paths, options.system, codes), options.pair)
     _check_stations(groups, method_options)
     method = _method(method_options, len(groups))
     if method == "df":

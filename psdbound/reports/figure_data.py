@@ -17,6 +17,9 @@ from numpy.typing import NDArray
 __all__ = ["MAX_POINTS", "MAX_PSD_POINTS", "figure_data", "psd_outline"]
 
 MAX_POINTS = 1500
+#: Points of all arcs of the mapped-series figure together, and the least per arc.
+MAX_TOTAL_POINTS = 30000
+MIN_ARC_POINTS = 200
 MAX_PSD_POINTS = 300
 
 
@@ -88,13 +91,22 @@ def _df_filter(series: Any) -> dict[str, Any] | None:
 
 
 def _mapped(series: Any, windows: Any) -> list[dict[str, Any]]:
+    """Every arc's mapped series, decimated to share ``MAX_TOTAL_POINTS`` by length.
+
+    Values are rounded for plotting (0.1 s, 0.01 mm, 0.01 deg): a 24 h, 1 Hz
+    day would otherwise put megabytes of full-precision digits into result.json.
+    """
+    bounds = list(series.arc_bounds())
+    total = max(1, sum(hi - lo for lo, hi in bounds))
     out = []
-    for k, (lo, hi) in enumerate(series.arc_bounds()):
-        sl = _decimate(hi - lo)
+    for k, (lo, hi) in enumerate(bounds):
+        limit = min(MAX_POINTS, max(MIN_ARC_POINTS, int(MAX_TOTAL_POINTS * (hi - lo) / total)))
+        sl = _decimate(hi - lo, limit)
         out.append(
             {"arc": k, "sats": series.arc_sats[k],
-             "t_gps_s": series.t_gps_s[lo:hi][sl], "mapped_m": windows.mapped_m[lo:hi][sl],
-             "elevation_deg": series.elevation_deg[lo:hi][sl]}
+             "t_gps_s": np.round(series.t_gps_s[lo:hi][sl], 1),
+             "mapped_m": np.round(windows.mapped_m[lo:hi][sl], 5),
+             "elevation_deg": np.round(series.elevation_deg[lo:hi][sl], 2)}
         )  # fmt: skip
     return out
 

@@ -96,6 +96,13 @@ def number_problems(document: dict[str, Any]) -> list[str]:
     return out
 
 
+_PLAIN = (int, str, bool, type(None))
+
+
+def _finite_or_none(x: float) -> float | None:
+    return x if math.isfinite(x) else None
+
+
 def to_jsonable(obj: Any) -> Any:
     """Convert numpy arrays/scalars, tuples and paths to plain JSON data.
 
@@ -104,8 +111,18 @@ def to_jsonable(obj: Any) -> Any:
     if isinstance(obj, dict):
         return {str(k): to_jsonable(v) for k, v in obj.items()}
     if isinstance(obj, list | tuple):
-        return [to_jsonable(v) for v in obj]
+        return [v if type(v) in _PLAIN else _finite_or_none(v) if type(v) is float
+                else to_jsonable(v) for v in obj]  # fmt: skip
     if isinstance(obj, np.ndarray):
+        if obj.dtype.kind in "biu":
+            return obj.tolist()
+        if obj.dtype.kind == "f":
+            bad = ~np.isfinite(obj)
+            if not bad.any():
+                return obj.tolist()
+            out = obj.astype(object)
+            out[bad] = None
+            return out.tolist()
         return to_jsonable(obj.tolist())
     if isinstance(obj, np.generic):
         return to_jsonable(obj.item())

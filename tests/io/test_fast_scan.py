@@ -49,3 +49,23 @@ def test_simulated_file(monkeypatch, kw):
 def test_real_files(monkeypatch, name):
     fast, slow = _read_both(shared_file(name), monkeypatch)
     _assert_same(fast, slow)
+
+
+def test_reading_some_codes_still_checks_the_columns(tmp_path):
+    """With ``codes=`` the pseudoranges the column check needs are read (then dropped)."""
+    from psdbound.errors import InputError
+    from psdbound.io._source import read_bytes
+
+    text = read_bytes(demo_data().obs_paths[0])
+    good = b"G    6 C1C L1C S1C C2W L2W S2W"
+    assert good in text
+    bad = tmp_path / "swapped.rnx"
+    bad.write_bytes(text.replace(good, b"G    6 L1C C1C S1C C2W L2W S2W"))  # two labels swapped
+    for codes in (None, ["L1C", "L2W"]):
+        with pytest.raises(InputError, match=r"swapped.rnx, line \d+: observation L1C of system G "
+                           "does not follow the range"):  # fmt: skip
+            read_obs(bad, codes=codes)
+    some = read_obs(demo_data().obs_paths[0], codes=["L1C", "L2W"])
+    assert some.blocks["G"].codes == ("L1C", "L2W")
+    every = read_obs(demo_data().obs_paths[0])
+    np.testing.assert_array_equal(some.phase_m("G05", "L1C"), every.phase_m("G05", "L1C"))
