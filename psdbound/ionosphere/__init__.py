@@ -1,4 +1,4 @@
-"""Ionosphere high-pass cutoff selection (method.md section 2).
+"""Ionosphere high-pass cutoff selection (docs/method/cutoff.rst).
 
 Pipeline: satellite geometry (navigation, SP3, YUMA almanac, or a nominal
 constellation) -> slant ionospheric delay from PyIRI electron density (the

@@ -1,6 +1,6 @@
 """Batch cutoff runs: days x satellites for a station, and the station map.
 
-(method.md section 2, steps 6-7.) Each station-day is one task
+(docs/method/cutoff.rst, step 6-7.) Each station-day is one task
 (:func:`~psdbound.ionosphere.tasks.station_day`) run by
 :func:`psdbound.compute.run_tasks`: on a Dask ``distributed`` cluster, by
 default a :class:`~dask.distributed.LocalCluster` of ``workers``

@@ -1,4 +1,4 @@
-"""Cutoff frequency of one series: LS PSD -> envelope -> criterion (method.md section 2, step 5).
+"""Cutoff frequency of one series: LS PSD -> envelope -> criterion (docs/method/cutoff.rst, step 5).
 
 Two criteria on the envelope ``E(f)`` of the one-sided LS PSD (m^2/Hz):
 
@@ -6,7 +6,7 @@ Two criteria on the envelope ``E(f)`` of the one-sided LS PSD (m^2/Hz):
   stays ``drop_db`` (40 dB) below the reference level. The reference is
   the periodogram's largest value (``reference="psd"``, default: the
   thesis's "maximal power peak") or the envelope's own peak over the range
-  of the local maxima (``reference="envelope"``, method.md's wording). The
+  of the local maxima (``reference="envelope"``, the original specification's wording). The
   default is the periodogram maximum because a polynomial envelope through
   a few low harmonics followed by a long decay overshoots them: on Chicago
   2020 the envelope peak lies 5 dB (median; up to 14 dB) above the
@@ -93,7 +93,7 @@ def one_day_series(
     of the satellite's first visibility gap (or at the first epoch if it is
     never out of view, or if the simulated span is too short), so every join
     falls in a gap. Arcs shorter than ``min_arc_s`` are then dropped, as the
-    dual-frequency isolation drops them (method.md section 1.1).
+    dual-frequency isolation drops them (docs/method/isolation.rst).
 
     Parameters
     ----------

@@ -1,6 +1,6 @@
 """Upper envelope of a periodogram: local maxima + high-quantile regression, log-log.
 
-(method.md section 2, step 4.) The envelope is a polynomial in
+(docs/method/cutoff.rst, step 4.) The envelope is a polynomial in
 ``x = log10(f)`` (centred and scaled) for ``log10(PSD)``:
 
 1. **Local maxima** of the PSD (strictly above the left neighbour, not below

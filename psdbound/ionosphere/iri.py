@@ -1,7 +1,7 @@
 """PyIRI electron density, evaluated once per day on a grid and interpolated.
 
 The density model behind :func:`~psdbound.ionosphere.slant.simulate_slant_delay`
-(method.md section 2, step 1). Decisions, with the evidence in the tests and
+(docs/method/cutoff.rst, step 1). Decisions, with the evidence in the tests and
 the closing note of issue #4:
 
 * **Electron density**: PyIRI, version-independent entry points

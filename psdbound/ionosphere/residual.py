@@ -33,7 +33,7 @@ Why not a periodogram criterion: satellite passes are windows a few hours
 long, and the spectrum of a windowed smooth signal leaks at ``f^-2`` from
 the arc edges (Harris 1978; Percival & Walden 1993, section 6.4), so the
 40 dB point of an untapered Lomb-Scargle measures the passes, not the
-ionosphere (docs/cutoff.md gives the numbers). A time-domain residual has no
+ionosphere (docs/method/cutoff.rst gives the numbers). A time-domain residual has no
 such floor: what the fit's filter leaves is what the criterion measures,
 edge transients included.
 """

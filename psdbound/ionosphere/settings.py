@@ -17,7 +17,7 @@ the fit filters, sampled at 30 s (the usual RINEX rate), rays every 2 min,
 an 11 x 11 horizontal grid, 1 h UT nodes and the coarse altitude nodes, at
 a fifth of the cost of 12 s sampling, 1 min rays, 21 x 21 nodes, 30 min
 and fine altitudes. On Chicago 2020 they move the station's mean cutoff by
-1 % and its maximum by -12 % (docs/cutoff.md gives the table; the maximum
+1 % and its maximum by -12 % (docs/method/cutoff.rst gives the table; the maximum
 of ~300 series is the statistic most sensitive to the interpolation). :meth:`CutoffSettings.legacy`
 gives the issue-#4 defaults (40 dB Lomb-Scargle criterion at L1, 12 s).
 """
@@ -183,7 +183,7 @@ class CutoffSettings:
         """Return the issue-#4 defaults: 40 dB Lomb-Scargle criterion, L1, 12 s, fine grids.
 
         The benchmark times these side by side with the defaults; they also
-        reproduce the periodogram numbers quoted in docs/cutoff.md.
+        reproduce the periodogram numbers quoted in docs/method/cutoff.rst.
 
         Parameters
         ----------

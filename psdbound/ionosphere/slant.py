@@ -1,4 +1,4 @@
-"""Slant ionospheric delay of every satellite in view (method.md section 2, step 1).
+"""Slant ionospheric delay of every satellite in view (docs/method/cutoff.rst, step 1).
 
 For a static station, a date and an orbit source, :func:`simulate_slant_delay`
 gives the first-order ionospheric group delay (m) of every satellite above an

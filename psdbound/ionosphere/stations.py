@@ -1,6 +1,6 @@
 """Stations: the worldwide cutoff map's, position checks and nearest-station lookup.
 
-The 20 stations of the thesis's appendix C (table C.1, method.md section 2,
+The 20 stations of the thesis's appendix C (table C.1, docs/method/cutoff.rst,
 step 7), plus the thesis's Chicago rooftop site (not part of the map);
 :func:`validate_station` checks a position for every entry point,
 :func:`nearest_station` finds the map station nearest a receiver.

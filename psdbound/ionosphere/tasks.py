@@ -1,6 +1,6 @@
 """The station-day task of batch cutoff runs, its cache key and its cache.
 
-One **task** is one station-day (method.md section 2, steps 6-7): the slant
+One **task** is one station-day (docs/method/cutoff.rst, step 6-7): the slant
 delays of every satellite (one PyIRI grid per day), then one cutoff per
 satellite series: by the time-domain residual criterion (all series of the
 day at once, :func:`~psdbound.ionosphere.residual.residual_cutoffs`) or by

@@ -17,7 +17,7 @@ map adds a regular latitude-longitude grid and solar activity:
   these four days equals the maximum over the thesis's twelve, the June
   value);
 * **criterion**: the default :class:`~psdbound.ionosphere.CutoffSettings`
-  (the residual criterion, docs/cutoff.md); each site-layer records the
+  (the residual criterion, docs/method/cutoff.rst); each site-layer records the
   recommended (maximum), mean and minimum cutoff, and the recommended
   cutoff at the margins of :data:`~psdbound.ionosphere.settings.LEVELS_DB`.
 

@@ -2,12 +2,14 @@
 
 Public surface:
 
-* :func:`isolate_dual_frequency` (arcs -> :class:`MultipathSeries`, method.md 1.1)
-* :func:`isolate_dual_antenna` (two observation files -> :class:`MultipathSeries`, 1.2)
+* :func:`isolate_dual_frequency` (arcs -> :class:`MultipathSeries`)
+* :func:`isolate_dual_antenna` (two observation files -> :class:`MultipathSeries`)
 * :func:`estimate_baseline_correction`, :func:`baseline_note` (the dual-antenna
   baseline from the double differences)
 * :class:`HighPass` (zero-phase high-pass designs and edge handling)
 * :func:`filter_safety_check` (Lomb-Scargle power removed below/above f_c)
+
+The method: docs/method/isolation.rst.
 """
 
 from __future__ import annotations

@@ -17,6 +17,7 @@ export), :mod:`~psdbound.kalman.augment`, :mod:`~psdbound.kalman.covariance`
 (the analysis front), :mod:`~psdbound.kalman.process` and
 :mod:`~psdbound.kalman.truth` (true errors), :mod:`~psdbound.kalman.analysis`
 (the result), :mod:`~psdbound.kalman.aviation`.
+
 * aviation utilities (:mod:`psdbound.kalman.aviation`): airborne sigma curves,
   iono-free factor, carrier-smoothing inflation, ``xi(tau)``, Gaussian
   overbound

@@ -1,6 +1,8 @@
 """Aviation error models that filter engineers combine with a multipath bound.
 
-From the seeds (``../shared/seeds``):
+From the aviation literature (docs/bibliography.rst): seed 000 is Blanch,
+Walter & Phelts (2019), seed 001 Blanch, Phelts, Chen & Enge (2017), seed 004
+Nam, Kim, Kim, Lee & Pullen (LADGNSS smoothing):
 
 * airborne multipath and noise sigma curves vs elevation, and the
   dual-frequency iono-free factor (seed 001 eq. 1, seed 000 eqs. 1-3);

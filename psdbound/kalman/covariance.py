@@ -1,6 +1,6 @@
 """Covariance analysis: check that a filter designed with the bound over-estimates its error.
 
-Set-up (method.md section 6; the "sub-optimal filter" analysis of the
+Set-up (docs/method/kalman.rst; the "sub-optimal filter" analysis of the
 airport-surface seed, appendix). The filter's own model ``(F, Q, H, R)``
 (kinematics, clocks, non-multipath noise) is right; multipath is modelled in
 the filter by the bound (one Gauss-Markov state per measurement, see

@@ -3,11 +3,14 @@
 This is the one owner of the result format. The front door
 (:func:`psdbound.fit`, :func:`psdbound.load`), the reports and the Kalman
 filter tools (:meth:`psdbound.kalman.GaussMarkovBound.from_result`) all read
-and write through it.
+and write through it. The JSON Schema of the document,
+``result.schema.json``, is shipped beside it (:func:`load_schema`,
+:func:`validate`).
 """
 
 from __future__ import annotations
 
+from psdbound.results.jsonschema import SCHEMA_FILE, load_schema, schema_errors, validate
 from psdbound.results.schema import (
     NUMBER_FIELDS,
     REQUIRED_FIELDS,
@@ -22,10 +25,14 @@ from psdbound.results.schema import (
 __all__ = [
     "NUMBER_FIELDS",
     "REQUIRED_FIELDS",
+    "SCHEMA_FILE",
     "SCHEMA_VERSION",
     "get_field",
+    "load_schema",
     "number_problems",
     "read_document",
+    "schema_errors",
     "to_jsonable",
+    "validate",
     "write_document",
 ]

@@ -59,7 +59,7 @@ def _required(spec: Spec) -> Any:
 
 @dataclass(frozen=True)
 class Reflection:
-    """A deterministic specular reflector (method.md section 3).
+    """A deterministic specular reflector (docs/method/isolation.rst).
 
     Parameters
     ----------

@@ -1,4 +1,4 @@
-"""Carrier-phase and code observation simulator with ground truth (method.md physics).
+"""Carrier-phase and code observation simulator with ground truth (docs/method/isolation.rst).
 
 For antenna ``a``, satellite ``s`` and signal ``f`` (phase in metres)::
 

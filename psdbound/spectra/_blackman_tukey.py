@@ -1,6 +1,6 @@
 """Blackman-Tukey PSD estimate: lag-windowed biased sample autocorrelation.
 
-This is the thesis's estimator (method.md section 5): the Fourier transform
+This is the thesis's estimator (docs/method/spectra.rst): the Fourier transform
 of the sample autocorrelation of the data multiplied by a "smoothed
 rectangular" lag window that is flat over 80 % of the lags and rolls off
 with a cosine over the remaining 20 % -- a Tukey window with ``alpha = 0.2``

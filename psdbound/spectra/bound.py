@@ -1,4 +1,4 @@
-"""The tightest Gauss-Markov + white-noise PSD bound (method.md section 5).
+"""The tightest Gauss-Markov + white-noise PSD bound (docs/method/bound.rst).
 
 Model (one-sided, per hertz, sampled at ``dt`` -- see
 :mod:`psdbound.spectra.models`)::

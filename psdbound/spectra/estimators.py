@@ -6,7 +6,7 @@ returns a :class:`PSDEstimate`: a one-sided, per-hertz PSD on ``0 < f <= f_N``
 of freedom for chi-square confidence intervals.
 
 ``"blackman-tukey"`` (default)
-    The thesis's estimate (method.md section 5): Fourier transform of the
+    The thesis's estimate (docs/method/spectra.rst): Fourier transform of the
     biased sample ACF times a Tukey lag window flat over 80 % of the lags.
     Options ``max_lag_fraction`` (default 1.0: every lag), ``alpha`` (0.2),
     ``nfft``. With every lag the degrees of freedom are ~1.1 and the

@@ -2,8 +2,8 @@
 
 A cutoff that removes multipath along with the ionosphere makes the PSD
 bound optimistic. This package predicts the fraction of multipath power
-below the cutoff ``f_c`` for specular ground and wall reflections (method.md
-section 3, thesis section 2.7) and gives a pass/fail verdict against a
+below the cutoff ``f_c`` for specular ground and wall reflections (thesis section 2.7;
+docs/method/validation.rst) and gives a pass/fail verdict against a
 threshold (default 10 %):
 
 * :func:`validate_cutoff` -> :class:`ValidationReport` runs everything;

@@ -1,7 +1,7 @@
 """Specular reflection geometries and the two phase conventions.
 
-Two limit cases of the thesis (section 2.7, equations 2.7-2.8; method.md
-section 3), for a direct and a reflected ray arriving parallel, at angle
+Two limit cases of the thesis (section 2.7, equations 2.7-2.8; see
+docs/method/validation.rst), for a direct and a reflected ray arriving parallel, at angle
 ``theta`` above the horizontal reference of the reflector:
 
 ``ground``
