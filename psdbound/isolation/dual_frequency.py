@@ -1,4 +1,4 @@
-"""Dual-frequency (DF) multipath isolation (method.md section 1.1).
+"""Dual-frequency (DF) multipath isolation (docs/method/isolation.rst).
 
 For each continuous arc of a satellite tracked on two carriers ``a`` and
 ``b`` (phases in metres),
