@@ -20,13 +20,26 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "station's days, and test every day against the bound of the station's other days. "
         "Writes campaign.json, campaign.html and campaign.pdf.",
     )
-    p.add_argument("obs", nargs="+", help="observation files (any stations and days)")
-    p.add_argument("--nav", nargs="+", required=True,
-                   help="navigation/SP3 files: one, or one per day (matched by day of year)")
-    p.add_argument("--out", default="reports/campaign", help="output folder (reports/campaign)")
-    p.add_argument("--workers", type=int, default=2,
-                   help="local Dask worker processes (2; 0 runs in this process)")
-    p.add_argument("--scheduler", help="address of a running Dask scheduler (overrides --workers)")
+    p.add_argument("obs", nargs="+", help="observation files (any stations and days; required)")
+    p.add_argument(
+        "--nav",
+        nargs="+",
+        required=True,
+        help="navigation/SP3 files: one, or one per day (matched by day of year; required)",
+    )
+    p.add_argument(
+        "--out", default="reports/campaign", help="output folder (default: reports/campaign)"
+    )
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=2,
+        help="local Dask worker processes, count (default: 2; 0 runs in this process)",
+    )
+    p.add_argument(
+        "--scheduler",
+        help="address of a running Dask scheduler (overrides --workers; default: a local cluster)",
+    )
     p.add_argument("--cache-dir", help="task cache folder (default: the psdbound cache)")
     p.add_argument("--no-pdf", action="store_true", help="skip campaign.pdf")
     p.set_defaults(func=run)

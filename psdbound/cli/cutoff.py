@@ -56,10 +56,14 @@ def add_parser(subparsers: Any) -> None:
         "Recommended cutoff = maximum over all series.",
     )
     where = p.add_argument_group("station or map")
-    where.add_argument("--lat", type=float, help="station latitude, degrees (-90..90)")
-    where.add_argument("--lon", type=float, help="station longitude, degrees east")
-    where.add_argument("--height-m", type=float, default=0.0, help="station height, m (0)")
-    where.add_argument("--name", default="", help="station name for outputs")
+    where.add_argument(
+        "--lat", type=float, help="station latitude, degrees, -90 to 90 (required without --map)"
+    )
+    where.add_argument(
+        "--lon", type=float, help="station longitude, degrees east (required without --map)"
+    )
+    where.add_argument("--height-m", type=float, default=0.0, help="station height, m (default: 0)")
+    where.add_argument("--name", default="", help="station name for outputs (default: none)")
     where.add_argument(
         "--map",
         action="store_true",
@@ -69,7 +73,7 @@ def add_parser(subparsers: Any) -> None:
     where.add_argument(
         "--grid-step",
         metavar="LAT,LON",
-        help="map grid steps, degrees (20,90)",
+        help="map grid steps, degrees (default: 20,90)",
     )
     where.add_argument(
         "--install",
@@ -77,7 +81,9 @@ def add_parser(subparsers: Any) -> None:
         help="with --map: also replace the shipped map (psdbound/ionosphere/data/cutoff_map.json)",
     )
     when = p.add_argument_group("days")
-    when.add_argument("--year", type=int, default=2020, help="year of the day selection (2020)")
+    when.add_argument(
+        "--year", type=int, default=2020, help="year of the day selection, count (default: 2020)"
+    )
     when.add_argument("--days", help=_DAYS_HELP + " (--map: first-monday-quarterly)")
     sim = p.add_argument_group("simulation")
     sim.add_argument(
@@ -85,41 +91,43 @@ def add_parser(subparsers: Any) -> None:
         dest="f107_sfu",
         metavar="F107",
         type=float,
-        help="F10.7 solar flux, sfu (70; the map uses each layer's year)",
+        help="F10.7 solar flux, sfu (default: 70; the map uses each layer's year)",
     )
     sim.add_argument(
         "--mask-deg",
         dest="elevation_mask_deg",
         metavar="MASK_DEG",
         type=float,
-        help="elevation mask, deg (10)",
+        help="elevation mask, deg (default: 10)",
     )
     sim.add_argument(
         "--method",
         choices=("line-of-sight", "thin-shell"),
         help="slant TEC by line-of-sight integral (default) or thin shell at 350 km",
     )
-    sim.add_argument("--iri-model", choices=("ursi", "ccir", "sh"), help="PyIRI model (ursi)")
+    sim.add_argument(
+        "--iri-model", choices=("ursi", "ccir", "sh"), help="PyIRI model (default: ursi)"
+    )
     sim.add_argument(
         "--frequency",
         dest="carrier",
         metavar="FREQUENCY",
         help="carrier: L1, L2, L5, E1, E5a, E5b, a value in MHz, or a pair like L1-L2 "
-        "for the dual-frequency difference (L1-L2, what the fit filters; --legacy: L1)",
+        "for the dual-frequency difference (default: L1-L2, what the fit filters; --legacy: L1)",
     )
     orbit = sim.add_mutually_exclusive_group()
-    orbit.add_argument("--nav", help="RINEX navigation file covering the days")
-    orbit.add_argument("--sp3", help="SP3 precise orbit file covering the days")
-    orbit.add_argument("--almanac", help="YUMA almanac file")
+    orbit.add_argument("--nav", help="RINEX navigation file covering the days (default: none)")
+    orbit.add_argument("--sp3", help="SP3 precise orbit file covering the days (default: none)")
+    orbit.add_argument("--almanac", help="YUMA almanac file (default: none; nominal constellation)")
     sim.add_argument(
         "--sampling-s",
         type=float,
-        help="sampling interval of the simulated delays, s (30; --legacy: 12)",
+        help="sampling interval of the simulated delays, s (default: 30; --legacy: 12)",
     )
     sim.add_argument(
         "--systems",
         help="nominal constellation when no orbit file: G (GPS 24-slot), E (Galileo "
-        "Walker 24/3/1) or GE (G)",
+        "Walker 24/3/1) or GE (default: G)",
     )
     crit = p.add_argument_group("criterion")
     crit.add_argument(
@@ -134,12 +142,14 @@ def add_parser(subparsers: Any) -> None:
         help="the issue-#4 settings: 40 dB Lomb-Scargle criterion at L1, 12 s, fine grids",
     )
     crit.add_argument(
-        "--mp-sigma-m", type=float, help="residual criterion: reference multipath sigma, m (1e-3)"
+        "--mp-sigma-m",
+        type=float,
+        help="residual criterion: reference multipath sigma, m (default: 1e-3)",
     )
     crit.add_argument(
-        "--margin-db", type=float, help="residual criterion: margin below it, dB (40)"
+        "--margin-db", type=float, help="residual criterion: margin below it, dB (default: 40)"
     )
-    crit.add_argument("--drop-db", type=float, help="relative criterion, dB (40)")
+    crit.add_argument("--drop-db", type=float, help="relative criterion, dB (default: 40)")
     crit.add_argument(
         "--reference",
         choices=("psd", "envelope"),
@@ -148,16 +158,26 @@ def add_parser(subparsers: Any) -> None:
     crit.add_argument(
         "--variance-m2",
         type=float,
-        help="absolute criterion: allowed residual variance, m^2 (1e-6)",
+        help="absolute criterion: allowed residual variance, m^2 (default: 1e-6)",
     )
-    crit.add_argument("--degree", type=int, help="envelope polynomial degree (3)")
-    crit.add_argument("--quantile", type=float, help="envelope quantile (0.99)")
+    crit.add_argument("--degree", type=int, help="envelope polynomial degree, count (default: 3)")
+    crit.add_argument(
+        "--quantile", type=float, help="envelope quantile, probability (default: 0.99)"
+    )
     run_ = p.add_argument_group("execution and output")
-    run_.add_argument("--workers", type=int, default=2, help="local Dask workers (2; 0: no Dask)")
-    run_.add_argument("--scheduler", metavar="ADDRESS", help="use a running Dask scheduler")
-    run_.add_argument("--cache-dir", help="cache directory ($PSDBOUND_CACHE or ~/.cache/...)")
+    run_.add_argument(
+        "--workers", type=int, default=2, help="local Dask workers, count (default: 2; 0: no Dask)"
+    )
+    run_.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="use a running Dask scheduler (default: a local cluster)",
+    )
+    run_.add_argument(
+        "--cache-dir", help="cache directory (default: $PSDBOUND_CACHE or ~/.cache/...)"
+    )
     run_.add_argument("--no-cache", action="store_true", help="neither read nor write the cache")
-    run_.add_argument("--out", default=".", help="output directory (.)")
+    run_.add_argument("--out", default=".", help="output directory (default: .)")
     run_.add_argument("--no-figures", action="store_true", help="write no PNG")
     p.set_defaults(func=run)
 

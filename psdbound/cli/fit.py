@@ -84,6 +84,46 @@ def add_output_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--verbose", action="store_true", help="print stage timings and tracebacks")
 
 
+#: Command-line options in other units than their configuration field: (factor, unit).
+_CLI_UNITS = {"--min-arc-min": (1 / 60.0, "min")}
+
+
+def _default_text(flag: str) -> str | None:
+    """Return the default of a ``fit`` option from :class:`FitConfig` (so they never differ)."""
+    from psdbound.common.options import spec_of
+    from psdbound.pipeline import FitConfig
+
+    keys = [k for k, f in FLAGS.items() if f == flag]
+    if len(keys) != 1:
+        return None
+    section, name = keys[0]
+    obj = getattr(FitConfig(), section)
+    value = getattr(obj, name)
+    if value is None or value == () or isinstance(value, bool):
+        return None
+    unit = getattr(spec_of(obj, name), "unit", "") or ""
+    if flag in _CLI_UNITS:
+        factor, unit = _CLI_UNITS[flag]
+        value = value * factor
+    if isinstance(value, float):
+        text = f"{value:g}"
+    elif isinstance(value, tuple):
+        text = ",".join(map(str, value))
+    else:
+        text = str(value)
+    return f"{text} {unit}".strip()
+
+
+def _state_defaults(p: argparse.ArgumentParser) -> None:
+    """Append "(default: VALUE UNIT)" to every option whose help does not state it."""
+    for action in p._actions:
+        if not action.option_strings or "default" in (action.help or ""):
+            continue
+        text = _default_text(action.option_strings[0])
+        if text is not None:
+            action.help = f"{action.help} (default: {text})"
+
+
 def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register the ``fit`` subcommand."""
     p = sub.add_parser(
@@ -101,74 +141,74 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument("obs", nargs="*",
                    help="observation file(s) of one station (consecutive files are merged), or "
-                   "of the two antennas named by --pair")  # fmt: skip
-    p.add_argument("--nav", help="navigation (RINEX 2/3) or SP3 file")
-    p.add_argument("--config", help="TOML configuration file")
-    p.add_argument("--method", choices=("auto", "df", "da"), help="isolation method (auto)")
-    p.add_argument("--system", help="satellite system letter (G)")
-    p.add_argument("--signals", help="DF phase pair, e.g. L1C,L2W or L1C,L5Q")
-    p.add_argument("--da-signal", help="DA phase code (L1C)")
+                   "of the two antennas named by --pair (default: none, the embedded demo)")
+    p.add_argument("--nav", help="navigation (RINEX 2/3) or SP3 file (required with OBS)")
+    p.add_argument("--config", help="TOML configuration file (default: none)")
+    p.add_argument("--method", choices=("auto", "df", "da"),
+                   help="isolation method: df dual-frequency, da dual-antenna, auto by the inputs")
+    p.add_argument("--system", help="satellite system letter")
+    p.add_argument("--signals", help="dual-frequency phase pair, e.g. L1C,L2W or L1C,L5Q "
+                   "(default: the system's usual pair, GPS L1C,L2W)")
+    p.add_argument("--da-signal", help="dual-antenna phase code")
     p.add_argument("--pair", nargs=2, metavar=("A", "B"),
                    help="dual-antenna pair: antenna A and antenna B, each a station (marker) "
-                   "name among OBS or an observation file")  # fmt: skip
+                   "name among OBS or an observation file (default: none)")
     p.add_argument("--position-a", nargs=3, type=float, metavar=("X", "Y", "Z"),
                    help="ECEF position of the (first) antenna, m (default: the header's)")
     p.add_argument("--position-b", nargs=3, type=float, metavar=("X", "Y", "Z"),
                    help="ECEF position of antenna B of a pair, m (default: the header's)")
     p.add_argument("--baseline", choices=("auto", "estimate", "given"),
-                   help="dual-antenna baseline: auto (default) uses the estimate from the "
-                   "double differences when it moves antenna B by more than "
-                   "--baseline-tolerance-m and 3 standard errors; estimate always; given "
-                   "keeps the positions")  # fmt: skip
+                   help="dual-antenna baseline: auto uses the estimate from the double "
+                   "differences when it moves antenna B by more than --baseline-tolerance-m and "
+                   "3 standard errors; estimate always; given keeps the positions")
     p.add_argument("--baseline-tolerance-m", type=float,
-                   help="correction above which --baseline auto uses the estimate, m (0.005)")
-    p.add_argument("--cutoff-hz", type=float, help="high-pass cutoff frequency, Hz")
-    p.add_argument(
-        "--cutoff-source", choices=("auto", "given", "map", "computed", "thesis"),
-        help="cutoff source (auto: --cutoff-hz if given, else the shipped world map)"
-    )
-    p.add_argument("--min-arc-min", type=float, help="minimum arc length, minutes (30)")
-    p.add_argument("--elevation-mask-deg", type=float, help="elevation mask, degrees (10)")
-    p.add_argument(
-        "--roti-threshold",
-        type=float,
-        help="screening: ROTI above this is ionosphere, TECU/min (0.15)",
-    )
+                   help="correction above which --baseline auto uses the estimate, m")
+    p.add_argument("--cutoff-hz", type=float, help="high-pass cutoff frequency, Hz (default: "
+                   "none; the cutoff comes from --cutoff-source)")
+    p.add_argument("--cutoff-source", choices=("auto", "given", "map", "computed", "thesis"),
+                   help="cutoff source (auto: --cutoff-hz if given, else the shipped world map)")
+    p.add_argument("--min-arc-min", type=float, help="minimum arc length, min")
+    p.add_argument("--elevation-mask-deg", type=float, help="elevation mask, deg")
+    p.add_argument("--roti-threshold", type=float,
+                   help="screening: ROTI above this is ionosphere, TECU/min")
     p.add_argument("--filter", choices=("butter", "cheby2", "fir"), help="high-pass design")
-    p.add_argument("--filter-order", type=float, help="IIR filter order, 1 to 20 (4)")
-    p.add_argument("--edge", choices=("trim", "pad"), help="filter edge handling (trim)")
-    p.add_argument("--mapping", help="elevation mapping: thesis, fit, or a,b,c (c in degrees)")
+    p.add_argument("--filter-order", type=float, help="IIR filter order, 1 to 20 (dimensionless)")
+    p.add_argument("--edge", choices=("trim", "pad"), help="filter edge handling")
+    p.add_argument("--mapping", help="elevation mapping: thesis, fit, or a,b,c (a, b "
+                   "dimensionless, c in deg) (default: fit, fitted to the data)")
     p.add_argument("--stationarity", choices=("spectral", "thesis"),
                    help="stationarity test: spectral homogeneity of the window halves, valid "
-                   "for correlated samples (default), or thesis (Levene then K-S)")
+                   "for correlated samples, or thesis (Levene then K-S)")
     p.add_argument("--windows", choices=("disjoint", "slide"),
-                   help="windows: disjoint tiles (default, needed by --rule pooled) or the "
-                   "thesis's overlapping slide rule")
-    p.add_argument("--alpha", type=float, help="stationarity significance level (0.05)")
-    p.add_argument("--p-slide", type=float, help="windowing slide coefficient (1.2)")
-    p.add_argument("--p-trim", type=float, help="windowing trim coefficient (0.8)")
-    p.add_argument("--min-window-s", type=float, help="minimum window length, s (600)")
-    p.add_argument(
-        "--estimator", choices=("multitaper", "welch", "blackman-tukey"), help="PSD estimator"
-    )
+                   help="windows: disjoint tiles (needed by --rule pooled) or the thesis's "
+                   "overlapping slide rule")
+    p.add_argument("--alpha", type=float, help="stationarity significance level (probability)")
+    p.add_argument("--p-slide", type=float, help="windowing slide coefficient (dimensionless)")
+    p.add_argument("--p-trim", type=float, help="windowing trim coefficient (dimensionless)")
+    p.add_argument("--min-window-s", type=float,
+                   help="minimum window length, s; the spectral test needs at least 68 samples "
+                   "(34 min at 30 s), a shorter value is an error")
+    p.add_argument("--estimator", choices=("multitaper", "welch", "blackman-tukey"),
+                   help="PSD estimator")
     p.add_argument("--rule", choices=("pooled", "envelope"),
-                   help="bound pooled confidence limits of the windows' spectra (default) or "
-                   "the thesis's envelope of every window's PSD (use with --windows slide)")
+                   help="bound pooled confidence limits of the windows' spectra or the thesis's "
+                   "envelope of every window's PSD (use with --windows slide)")
     p.add_argument("--confidence-level", type=float,
-                   help="family-wise confidence of the pooled bound (0.95)")
+                   help="family-wise confidence of the pooled bound (probability)")
     p.add_argument("--coverage", type=float,
-                   help="pooled rule: fraction of differing windows covered (0.99)")
+                   help="pooled rule: fraction of differing windows covered (probability)")
     p.add_argument("--objective", choices=("variance", "area"), help="tightness objective")
     p.add_argument("--target", choices=("point", "upper"),
-                   help="envelope rule: bound estimates or CI tops (point)")
-    p.add_argument("--level", type=float, help="envelope rule: level for --target upper (0.95)")
-    p.add_argument(
-        "--geometry",
-        action="append",
-        help="reflection geometry for the cutoff check, e.g. wall:d=25 (repeatable)",
-    )
-    p.add_argument("--validation-threshold", type=float, help="max fraction below f_c (0.10)")
+                   help="envelope rule: bound the estimates or their confidence-interval tops")
+    p.add_argument("--level", type=float,
+                   help="envelope rule: confidence level for --target upper (probability)")
+    p.add_argument("--geometry", action="append",
+                   help="reflection geometry for the cutoff check, e.g. wall:d=25 (d, h in m; "
+                   "repeatable)")
+    p.add_argument("--validation-threshold", type=float,
+                   help="largest fraction of reflector multipath power below f_c (fraction)")
     add_output_options(p)
+    _state_defaults(p)
     p.set_defaults(func=run)
 
 

@@ -24,17 +24,19 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "also the orbit file's coverage of the observations (systems, span, satellites "
         "without ephemerides).",
     )
-    p.add_argument("obs", nargs="+", help="RINEX observation file(s)")
-    p.add_argument("--nav", help="navigation (RINEX) or SP3 file for elevations")
+    p.add_argument("obs", nargs="+", help="RINEX observation file(s) (required)")
+    p.add_argument(
+        "--nav", help="navigation (RINEX) or SP3 file for elevations (default: none, no elevations)"
+    )
     p.add_argument("--system", default="G", help="satellite system letter (default G)")
     p.add_argument(
         "--signals", help="phase signal pair, e.g. L1C,L2W (default: per-system default)"
     )
     p.add_argument(
-        "--min-arc-min", type=float, default=30.0, help="minimum arc length, minutes (30)"
+        "--min-arc-min", type=float, default=30.0, help="minimum arc length, minutes (default: 30)"
     )
     p.add_argument(
-        "--elevation-mask-deg", type=float, default=0.0, help="elevation mask, degrees (0)"
+        "--elevation-mask-deg", type=float, default=0.0, help="elevation mask, degrees (default: 0)"
     )
     p.set_defaults(func=run)
 
@@ -55,8 +57,15 @@ def _options(args: argparse.Namespace) -> tuple[list[str] | None, float, float]:
     signals = None
     if args.signals is not None:
         code = Text(r"L[1-9][A-Z]?", what="a phase code such as 'L1C'")
-        signals = list(Tuple(code, lengths=(2,), split=",", distinct=True,
-                             what="two phase codes such as 'L1C,L2W'")("--signals", args.signals))
+        signals = list(
+            Tuple(
+                code,
+                lengths=(2,),
+                split=",",
+                distinct=True,
+                what="two phase codes such as 'L1C,L2W'",
+            )("--signals", args.signals)
+        )
     return signals, arcs.min_length_s, arcs.elevation_mask_deg
 
 

@@ -15,7 +15,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         help="re-render report.html and report.pdf from a result.json",
         description="Redraw every figure and the reports from a result file alone.",
     )
-    p.add_argument("result", help="result.json written by psdbound fit")
+    p.add_argument("result", help="result.json written by psdbound fit (required)")
     p.add_argument("--out", help="output folder (default: the result file's folder)")
     p.add_argument("--no-pdf", action="store_true", help="skip the PDF report")
     p.add_argument(

@@ -22,27 +22,36 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument("--preset", default="demo", help="named scenario: demo, short (default demo)")
     p.add_argument("--out", help="output folder (default: the demo cache for the demo preset)")
-    p.add_argument("--seed", type=int, help="random seed (overrides the preset's)")
-    p.add_argument("--duration-h", type=float, help="duration, hours")
-    p.add_argument("--interval-s", type=float, help="sampling interval, seconds")
-    p.add_argument("--lat-deg", type=float, help="latitude of antenna A, degrees")
-    p.add_argument("--lon-deg", type=float, help="longitude of antenna A, degrees")
-    p.add_argument("--start", help="start epoch, ISO date-time in GPS time")
+    p.add_argument("--seed", type=int, help="random seed, count (default: the preset's)")
+    p.add_argument("--duration-h", type=float, help="duration, hours (default: the preset's)")
+    p.add_argument(
+        "--interval-s", type=float, help="sampling interval, seconds (default: the preset's)"
+    )
+    p.add_argument(
+        "--lat-deg", type=float, help="latitude of antenna A, degrees (default: the preset's)"
+    )
+    p.add_argument(
+        "--lon-deg", type=float, help="longitude of antenna A, degrees (default: the preset's)"
+    )
+    p.add_argument("--start", help="start epoch, ISO date-time in GPS time (default: the preset's)")
     p.add_argument("--nav", help="navigation file for the geometry (default: nominal GPS)")
     p.add_argument("--single-antenna", action="store_true", help="write antenna A only")
     p.add_argument(
         "--scenario",
         metavar="FILE",
-        help="TOML file of scenario fields, with a [multipath] table (overrides the preset)",
+        help="TOML file of scenario fields, with a [multipath] table (overrides the preset; "
+        "default: none)",
     )
     p.add_argument(
         "--multipath",
         metavar="SPEC",
         help="injected multipath, any of sigma_gm_m=M,tau_s=S,sigma_wn_m=M,mapping=A,B,C_DEG "
-        "(zenith scale; sigmas <= 0.05 m, 0 < tau_s <= 86400 s)",
+        "(zenith scale; sigmas <= 0.05 m, 0 < tau_s <= 86400 s; default: the preset's)",
     )
     p.add_argument(
-        "--receiver-noise-m", type=float, help="white receiver phase noise per signal, metres"
+        "--receiver-noise-m",
+        type=float,
+        help="white receiver phase noise per signal, metres (default: the preset's)",
     )
     p.set_defaults(func=run)
 

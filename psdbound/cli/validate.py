@@ -40,13 +40,15 @@ def add_parser(subparsers: Any) -> None:
         epilog="example: psdbound validate --cutoff-hz 9.55e-4 --geometry wall:d=25 "
         "--geometry ground:h=1.5 --rate orbit --out out/",
     )
-    p.add_argument("--cutoff-hz", type=float, required=True, help="high-pass cutoff f_c, Hz")
+    p.add_argument(
+        "--cutoff-hz", type=float, required=True, help="high-pass cutoff f_c, Hz (required)"
+    )
     p.add_argument(
         "--geometry",
         action="append",
         default=[],
         metavar="SPEC",
-        help="reflection, repeatable: wall:d=METRES or ground:h=METRES",
+        help="reflection, repeatable: wall:d=METRES or ground:h=METRES (required, at least one)",
     )
     p.add_argument(
         "--rate",
@@ -55,48 +57,61 @@ def add_parser(subparsers: Any) -> None:
         "orbit-beidou, an aircraft mode (phugoid, spiral, or from --modes), or a frequency "
         "in Hz (default orbit)",
     )
-    p.add_argument("--modes", metavar="FILE", help="TOML file adding aircraft modes")
+    p.add_argument(
+        "--modes", metavar="FILE", help="TOML file adding aircraft modes (default: none)"
+    )
     p.add_argument(
         "--theta0-deg",
         type=float,
         default=30.0,
-        help="aircraft modes: mean angle of arrival relative to the reflector, deg (30)",
+        help="aircraft modes: mean angle of arrival relative to the reflector, deg (default: 30)",
     )
     p.add_argument(
         "--amplitude-deg",
         type=float,
         help="aircraft modes: attitude oscillation amplitude, deg (default: the mode's, 2)",
     )
-    p.add_argument("--nav", metavar="FILE", help="navigation or SP3 file: simulate real passes")
+    p.add_argument(
+        "--nav", metavar="FILE", help="navigation or SP3 file: simulate real passes (default: none)"
+    )
     p.add_argument(
         "--receiver-ecef",
         type=float,
         nargs=3,
         metavar=("X", "Y", "Z"),
-        help="receiver ECEF position for --nav, m",
+        help="receiver ECEF position for --nav, m (required with --nav)",
     )
-    p.add_argument("--system", default="G", help="satellite system of the passes (G)")
+    p.add_argument("--system", default="G", help="satellite system of the passes (default: G)")
     p.add_argument("--sat", action="append", help="satellite for --nav, repeatable (default all)")
     p.add_argument(
-        "--elevation-mask-deg", type=float, default=5.0, help="elevation mask of the passes (5)"
+        "--elevation-mask-deg",
+        type=float,
+        default=5.0,
+        help="elevation mask of the passes, deg (default: 5)",
     )
     p.add_argument(
-        "--min-pass-min", type=float, default=60.0, help="shortest pass simulated, minutes (60)"
+        "--min-pass-min",
+        type=float,
+        default=60.0,
+        help="shortest pass simulated, minutes (default: 60)",
     )
     p.add_argument(
-        "--alpha", type=float, default=0.1, help="reflected/direct amplitude ratio (0.1)"
+        "--alpha",
+        type=float,
+        default=0.1,
+        help="reflected/direct amplitude ratio, dimensionless (default: 0.1)",
     )
     p.add_argument(
         "--threshold",
         type=float,
         default=0.10,
-        help="largest acceptable fraction of multipath power below f_c (0.10)",
+        help="largest acceptable fraction of multipath power below f_c, fraction (default: 0.10)",
     )
     p.add_argument(
         "--convention",
         choices=("both", "physical", "thesis"),
         default="both",
-        help="phase convention(s) to report (both)",
+        help="phase convention(s) to report (default: both)",
     )
     p.add_argument(
         "--wavelength-m", type=float, help="carrier wavelength, m (default GPS L1, 0.190294)"
@@ -105,9 +120,14 @@ def add_parser(subparsers: Any) -> None:
         "--distance-tolerance-m",
         type=float,
         default=0.0,
-        help="also sweep each distance over +- this many metres and judge the worst (0)",
+        help="also sweep each distance over +- this many metres and judge the worst, m "
+        "(default: 0)",
     )
-    p.add_argument("--out", metavar="DIR", help="write table (CSV, JSON) and PNG figures here")
+    p.add_argument(
+        "--out",
+        metavar="DIR",
+        help="write table (CSV, JSON) and PNG figures here (default: print only)",
+    )
     p.add_argument("--no-figures", action="store_true", help="with --out: skip the PNG figures")
     p.set_defaults(func=run)
 

@@ -34,18 +34,32 @@ def stage_warnings(
     bounded: BoundResults,
     validated: Validated,
     interval_s: float,
-) -> list[str]:
-    """Return every stage's warnings, in pipeline order."""
-    out = list(inputs.warnings)
-    out += list(cutoff.warnings if cutoff is not None else ())
-    out += [*isolated.warnings, *screened.warnings, *windowed.warnings]
+) -> list[dict[str, Any]]:
+    """Return every stage's warnings, grouped by stage, in pipeline order.
+
+    Returns
+    -------
+    list of dict
+        ``{"stage": name, "warnings": [...]}`` for every stage with warnings
+        (``reading``, ``cutoff``, ``isolation``, ``screening``, ``windows``,
+        ``bound``, ``validation``).
+    """
+    bound: list[str] = []
     if bounded.bound.sigma_wn_m == 0.0:
-        out.append(
+        bound.append(
             f"no white-noise floor resolved at {interval_s:g} s sampling (Nyquist "
             f"{0.5 / interval_s:.4g} Hz): sigma_WN = 0; the bound says nothing above Nyquist"
         )
-    out += list(validated.warnings)
-    return out
+    groups = [
+        ("reading", inputs.warnings),
+        ("cutoff", cutoff.warnings if cutoff is not None else ()),
+        ("isolation", isolated.warnings),
+        ("screening", screened.warnings),
+        ("windows", windowed.warnings),
+        ("bound", bound),
+        ("validation", validated.warnings),
+    ]
+    return [{"stage": name, "warnings": list(w)} for name, w in groups if w]
 
 
 def _bound_section(res: BoundResults) -> dict[str, Any]:
@@ -266,6 +280,8 @@ def build_document(
         cutoff_info=None if cutoff is None else cutoff.info,
         validation_report=validated.report, screening=screened.screening,
     )  # fmt: skip
+    grouped = stage_warnings(inputs, cutoff, isolated, screened, windowed, bounded, validated,
+                             interval_s)  # fmt: skip
     doc: dict[str, Any] = {
         "schema_version": SCHEMA_VERSION,
         "method": inputs.method.upper(),
@@ -283,8 +299,8 @@ def build_document(
         },
         "windows": _windows_section(windowed, bounded, screened),
         "validation": validated.summary,
-        "warnings": stage_warnings(inputs, cutoff, isolated, screened, windowed, bounded, validated,
-                                   interval_s),
+        "warnings": [w for g in grouped for w in g["warnings"]],
+        "warnings_by_stage": grouped,
         "provenance": {
             "inputs": list(inputs.files),
             "versions": package_versions(),

@@ -140,8 +140,11 @@ class FitResults:
                 f"{demo['min_psd_ratio']:.2f} over the bound's band"
             )
         if d["warnings"]:
-            lines.append(f"  {len(d['warnings'])} warning(s):")
-            lines += [f"  - {x}" for x in d["warnings"]]
+            lines.append(f"  {len(d['warnings'])} warning(s), by stage:")
+            groups = d.get("warnings_by_stage") or [{"stage": "run", "warnings": d["warnings"]}]
+            for g in groups:
+                lines.append(f"  {g['stage']}:")
+                lines += [f"    - {x}" for x in g["warnings"]]
         return "\n".join(lines)
 
     def __repr__(self) -> str:

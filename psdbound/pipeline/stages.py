@@ -41,7 +41,7 @@ from psdbound.pipeline.products import InputData, Isolated, Screened, Validated,
 from psdbound.screening import ScreeningOptions, screen_series
 from psdbound.spectra import BoundModel, BoundResults
 from psdbound.spectra.options import BoundOptions, SpectraOptions
-from psdbound.stationarity import find_stationary_windows
+from psdbound.stationarity import find_stationary_windows, min_samples
 from psdbound.stationarity.options import MappingOptions, StationarityOptions, choose_mapping
 from psdbound.validation.options import ValidationOptions
 
@@ -249,6 +249,32 @@ def screen(
     return Screened(sc, warnings + sc.notes)
 
 
+def _check_min_window(options: StationarityOptions, interval_s: float) -> str:
+    """Refuse a minimum window the spectral test cannot use; say when the default is raised.
+
+    The spectral test needs ``min_samples()`` samples: a shorter minimum window
+    the user asked for is an error naming the option and what to give instead
+    (it used to fail late, inside the PSD estimator); the default is raised
+    with a warning.
+    """
+    if options.test != "spectral":
+        return ""
+    need_s = (min_samples() - 1) * interval_s
+    if options.min_window_s >= need_s:
+        return ""
+    if options.min_window_s != StationarityOptions().min_window_s:
+        raise InputError(
+            f"--min-window-s ([stationarity] min_window_s) = {options.min_window_s:g} s is "
+            f"shorter than the spectral stationarity test needs at {interval_s:g} s sampling "
+            f"({min_samples()} samples = {need_s:g} s): give --min-window-s {need_s:g} or "
+            "more, or --stationarity thesis"
+        )
+    return (
+        f"minimum window raised from the default {options.min_window_s:g} s to {need_s:g} s: "
+        f"the spectral stationarity test needs {min_samples()} samples at {interval_s:g} s"
+    )
+
+
 def window(
     screened: Screened,
     *,
@@ -277,6 +303,7 @@ def window(
     series = screened.series
     test = "Levene, then K-S" if options.test == "thesis" else "spectral homogeneity"
     progress(f"elevation mapping and stationarity windows ({test}, {options.windows})")
+    raised = _check_min_window(options, series.interval_s)
     m = choose_mapping(mapping, series.value_m, series.elevation_deg)
     windows = find_stationary_windows(
         series, mapping=m, alpha=options.alpha, p_slide=options.p_slide,
@@ -288,7 +315,7 @@ def window(
             f"no stationary window of at least {options.min_window_s:g} s in {series.n_arcs} "
             f"arcs ({windows.n_tests} tests)"
         )
-    warnings: tuple[str, ...] = ()
+    warnings: tuple[str, ...] = (raised,) if raised else ()
     if windows.rejected_s > 0:
         warnings += (
             f"{windows.rejected_s / 60:.1f} min of data failed every stationarity test and are "

@@ -176,7 +176,7 @@ def estimate_psd(
     x_m: ArrayLike,
     dt_s: float,
     *,
-    method: str = "blackman-tukey",
+    method: str = "multitaper",
     **options: Any,
 ) -> PSDEstimate:
     """Estimate the one-sided PSD of an evenly sampled, gap-free series.
@@ -188,8 +188,8 @@ def estimate_psd(
         mean is removed.
     dt_s : float
         Sampling interval, seconds (> 0).
-    method : {"blackman-tukey", "welch", "multitaper"}, default "blackman-tukey"
-        Estimator (see the module docstring).
+    method : {"multitaper", "welch", "blackman-tukey"}, default "multitaper"
+        Estimator (see the module docstring); the default is ``fit``'s.
     **options
         Keyword options of the chosen estimator:
 

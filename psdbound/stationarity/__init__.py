@@ -9,7 +9,11 @@ from psdbound.stationarity.options import (
     StationarityOptions,
     choose_mapping,
 )
-from psdbound.stationarity.spectral import SpectralHomogeneityTest, test_spectral_homogeneity
+from psdbound.stationarity.spectral import (
+    SpectralHomogeneityTest,
+    min_samples,
+    test_spectral_homogeneity,
+)
 from psdbound.stationarity.tests import StationarityTest, test_stationarity
 from psdbound.stationarity.windowing import (
     Window,
@@ -19,6 +23,7 @@ from psdbound.stationarity.windowing import (
 )
 
 __all__ = [
+    "min_samples",
     "MAPPING_KINDS",
     "THESIS_MAPPING",
     "MappingOptions",

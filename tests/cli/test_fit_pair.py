@@ -82,3 +82,10 @@ def test_pair_of_files_with_a_wrong_position(pair, tmp_path, capsys):
     assert iso["position_sources"][1].startswith("user")
     assert iso["baseline_m"] == pytest.approx(5.0, abs=0.05)  # the simulated 5 m baseline
     assert d["windows"]["covered_fraction"] > 0.9
+    # the console shows every warning of the run, grouped by stage in pipeline order
+    assert d["warnings"] and all(w in " ".join(stdout.split()) for w in d["warnings"])
+    stages = [g["stage"] for g in d["warnings_by_stage"]]
+    assert stages == sorted(stages, key=["reading", "cutoff", "isolation", "screening",
+                                         "windows", "bound", "validation"].index)  # fmt: skip
+    assert [w for g in d["warnings_by_stage"] for w in g["warnings"]] == d["warnings"]
+    assert f"{stages[0]}:" in stdout

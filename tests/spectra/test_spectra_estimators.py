@@ -188,7 +188,7 @@ def test_welch_dof_hann_half_overlap():
 def test_blackman_tukey_dof_formula(fraction):
     n = 5000
     x = np.random.default_rng(3).normal(size=n)
-    est = estimate_psd(x, 1.0, max_lag_fraction=fraction)
+    est = estimate_psd(x, 1.0, method="blackman-tukey", max_lag_fraction=fraction)
     m = round(fraction * (n - 1))
     assert est.params["max_lag"] == m
     w = windows.tukey(2 * m + 1, alpha=0.2)
@@ -221,7 +221,7 @@ def test_recorded_dof_against_empirical(method, options):
 def test_blackman_tukey_matches_direct_sum():
     n, dt = 40, 2.0
     x = np.random.default_rng(6).normal(size=n)
-    est = estimate_psd(x, dt, max_lag_fraction=0.5)
+    est = estimate_psd(x, dt, method="blackman-tukey", max_lag_fraction=0.5)
     m = est.params["max_lag"]
     assert m == round(0.5 * (n - 1))
     xc = x - x.mean()
@@ -238,7 +238,7 @@ def test_blackman_tukey_matches_direct_sum():
 
 def test_blackman_tukey_negative_values_counted():
     x = np.random.default_rng(7).normal(size=4096)
-    est = estimate_psd(x, 1.0)
+    est = estimate_psd(x, 1.0, method="blackman-tukey")
     assert est.params["n_negative"] == np.count_nonzero(est.psd_m2_hz < 0)
     assert est.params["n_negative"] > 0  # the Tukey lag window's side lobes, full lags
     lower, upper = est.confidence_interval()
@@ -283,7 +283,8 @@ def test_confidence_interval_formula():
 
 def test_estimate_is_frozen_and_read_only():
     x = np.random.default_rng(12).normal(size=101)
-    est = estimate_psd(x, 2.0)
+    assert estimate_psd(x, 2.0).method == "multitaper"  # the default, as in fit
+    est = estimate_psd(x, 2.0, method="blackman-tukey")
     assert isinstance(est, PSDEstimate)
     assert est.method == "blackman-tukey" and est.n_samples == 101 and est.dt_s == 2.0
     assert est.nyquist_hz == 0.25
@@ -317,8 +318,9 @@ def test_methods_tuple_and_case_insensitive_name():
         (np.zeros(32), float("nan"), {}, "positive"),
         (np.zeros(32), 1.0, {"method": "periodogram"}, "blackman-tukey, welch, multitaper"),
         (np.zeros(32), 1.0, {"method": "welch", "nw": 3}, "valid options: nperseg"),
-        (np.zeros(32), 1.0, {"max_lag_fraction": 0.0}, "max_lag_fraction"),
-        (np.zeros(32), 1.0, {"nfft": 16}, "nfft"),
+        (np.zeros(32), 1.0, {"method": "blackman-tukey", "max_lag_fraction": 0.0},
+         "max_lag_fraction"),
+        (np.zeros(32), 1.0, {"method": "blackman-tukey", "nfft": 16}, "nfft"),
         (np.zeros(32), 1.0, {"method": "welch", "nperseg": 64}, "nperseg"),
         (np.zeros(32), 1.0, {"method": "welch", "noverlap": 32}, "noverlap"),
         (np.zeros(32), 1.0, {"method": "multitaper", "nw": 16}, "nw"),
