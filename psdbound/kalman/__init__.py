@@ -18,6 +18,17 @@ export), :mod:`~psdbound.kalman.augment`, :mod:`~psdbound.kalman.covariance`
 :mod:`~psdbound.kalman.truth` (true errors), :mod:`~psdbound.kalman.analysis`
 (the result), :mod:`~psdbound.kalman.aviation`.
 
+* :class:`GaussMarkovSet` -> :meth:`~GaussMarkovSet.design` ->
+  :class:`UncertainGMBound` -- a design model safe for every Gauss-Markov
+  process with ``tau`` and ``sigma`` in intervals (non-stationary start,
+  [Langel2021]_, [GarciaCrespillo2023]_), its export ``(phi, q, r, p0)`` and
+  :func:`verify_design` (covariance analysis over a grid of true processes)
+  (:mod:`psdbound.kalman.uncertain`)
+* KF-ARAIM building blocks (:mod:`psdbound.kalman.kf_araim`): a
+  position-velocity-clock filter with one multipath state per satellite,
+  its design position covariance (:func:`predict_position_covariance`) and
+  a Monte Carlo run on given multipath series
+  (:func:`monte_carlo_position_covariance`)
 * aviation utilities (:mod:`psdbound.kalman.aviation`): airborne sigma curves,
   iono-free factor, carrier-smoothing inflation, ``xi(tau)``, Gaussian
   overbound
@@ -46,8 +57,22 @@ from psdbound.kalman.aviation import (
 )
 from psdbound.kalman.bound import WHITE_NOISE_MODES, GaussMarkovBound, GMStateSpace
 from psdbound.kalman.covariance import analyze_covariance
+from psdbound.kalman.kf_araim import (
+    PositionCovariance,
+    monte_carlo_position_covariance,
+    predict_position_covariance,
+    pvt_model,
+)
 from psdbound.kalman.process import ErrorProcess
 from psdbound.kalman.truth import ErrorSequences, SampledPSD
+from psdbound.kalman.uncertain import (
+    DesignCheck,
+    GaussMarkovSet,
+    UncertainGMBound,
+    UncertainGMStateSpace,
+    minimum_initial_variance_m2,
+    verify_design,
+)
 
 __all__ = [
     "F_L1_HZ",
@@ -55,11 +80,16 @@ __all__ = [
     "WHITE_NOISE_MODES",
     "AugmentedModel",
     "CovarianceAnalysis",
+    "DesignCheck",
     "ErrorProcess",
     "ErrorSequences",
     "GMStateSpace",
     "GaussMarkovBound",
+    "GaussMarkovSet",
+    "PositionCovariance",
     "SampledPSD",
+    "UncertainGMBound",
+    "UncertainGMStateSpace",
     "alpha_for_inflation",
     "alpha_from_tau",
     "analyze_covariance",
@@ -67,6 +97,10 @@ __all__ = [
     "gaussian_overbound_sigma",
     "hatch_filter_variance",
     "iono_free_factor",
+    "minimum_initial_variance_m2",
+    "monte_carlo_position_covariance",
+    "predict_position_covariance",
+    "pvt_model",
     "qq_ratio",
     "running_mean_variance",
     "sigma_air_m",
@@ -75,4 +109,5 @@ __all__ = [
     "smoothing_sigma_factor",
     "smoothing_time_ratio",
     "smoothing_variance_factor",
+    "verify_design",
 ]

@@ -61,6 +61,7 @@ methods are in ``psdbound.kalman._methods``.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -107,13 +108,14 @@ def analyze_covariance(
     elevation_deg: ArrayLike | None = None,
     white_noise: str = "conservative",
     steady_state: bool = True,
+    p0_gm_m2: ArrayLike | None = None,
 ) -> CovarianceAnalysis:
     """Compare a bound-designed filter's covariance with its true error covariance.
 
     The filter is the model ``(F, Q, H, R)`` augmented with one Gauss-Markov
     state per measurement from ``bounds`` (:func:`augment_gm_states`),
-    initialised with ``blockdiag(p0_base, sigma_gm^2)``, first measurement at
-    step 0. The truth has the same ``F, Q, H, R`` and initial error, and the
+    initialised with ``blockdiag(p0_base, sigma_gm^2)`` (or ``p0_gm_m2``),
+    first measurement at step 0. The truth has the same ``F, Q, H, R`` and initial error, and the
     true multipath ``truth`` (independent across measurements, stationary
     from step 0, raw metres at the measurement). See the module docstring for
     the equations.
@@ -147,6 +149,11 @@ def analyze_covariance(
         truth that is not sample paths, and a stabilising Riccati solution --
         e.g. not a filter whose states have no process noise). When it cannot
         be computed the steady-state fields are None and ``notes`` says why.
+    p0_gm_m2 : float or array_like, shape (m,), optional
+        The filter's initial variance of each multipath state (normalised
+        scale), m^2; default the bounds' stationary ``sigma_gm^2``. A
+        non-stationary design model gives its own here
+        (:meth:`psdbound.kalman.UncertainGMBound.p0_m2`).
 
     Returns
     -------
@@ -178,6 +185,11 @@ def analyze_covariance(
         elevation_deg=elevation_deg,
         white_noise=white_noise,
     )
+    if p0_gm_m2 is not None:
+        p0g = np.broadcast_to(np.asarray(p0_gm_m2, dtype=float), (m,)).copy()
+        if not (np.isfinite(p0g).all() and (p0g >= 0).all()):
+            raise InputError("p0_gm_m2 must be finite and >= 0")
+        aug = replace(aug, p0_gm_m2=p0g)
     bl = broadcast_bounds(bounds, m)
     truths = broadcast_truth(truth, m, float(dt_s))
     p0b = np.asarray(p0_base, dtype=float)

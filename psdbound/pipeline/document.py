@@ -90,6 +90,7 @@ def _bound_section(res: BoundResults) -> dict[str, Any]:
             else "per window: bound / bounded estimate (>= 1)"
         ),
         "pooled": _pooled_section(res),
+        **_model_set_section(res),
         "gap_db_median": b.gap_db_median,
         "gap_db_p05": b.gap_db_p05,
         "band_hz": [b.f_min_hz, b.f_max_hz],
@@ -152,6 +153,21 @@ def _mapping_section(windowed: Windowed, res: BoundResults, screened: Screened) 
             "covers (bound.pooled.between_window_log_sd)"
         )
     return out
+
+
+def _model_set_section(res: BoundResults) -> dict[str, Any]:
+    """Return the intervals of the models consistent with the data (pooled rule)."""
+    ms = res.model_set
+    if ms is None:
+        why = res.model_set_note or "envelope rule: no pooled spectrum"
+        return {"tau_interval_s": None, "sigma_gm_interval_m": None, "sigma_wn_interval_m": None,
+                "model_set": {"reason": why}}  # fmt: skip
+    return {
+        "tau_interval_s": list(ms.tau_interval_s),
+        "sigma_gm_interval_m": list(ms.sigma_gm_interval_m),
+        "sigma_wn_interval_m": list(ms.sigma_wn_interval_m),
+        "model_set": ms.as_dict(),
+    }
 
 
 def _pooled_section(res: BoundResults) -> dict[str, Any] | None:

@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 from psdbound.errors import InputError, NoDataError
 from psdbound.spectra.bound import RULES, BoundFit, fit_bound
 from psdbound.spectra.estimators import PSDEstimate, estimate_psd
+from psdbound.spectra.intervals import ModelSet, model_set
 from psdbound.spectra.pooled import BandSpectra, PooledLimits, fit_pooled_bound
 from psdbound.stationarity.windowing import WindowSet
 
@@ -45,6 +46,10 @@ class BoundResults:
         How the bounded data were formed.
     bands, pooled : BandSpectra, PooledLimits or None
         The pooled rule's band spectra and limits (None for the envelope).
+    model_set : ModelSet or None
+        The GM + white-noise models consistent with the pooled spectrum
+        (:func:`psdbound.spectra.intervals.model_set`; None for the envelope
+        rule or with too few bands, ``model_set_note`` says why).
     """
 
     bound: BoundFit
@@ -55,6 +60,8 @@ class BoundResults:
     rule: str = "envelope"
     bands: BandSpectra | None = None
     pooled: PooledLimits | None = None
+    model_set: ModelSet | None = None
+    model_set_note: str = ""
 
     @property
     def margins(self) -> NDArray[np.float64]:
@@ -234,4 +241,8 @@ class BoundModel:
             homogeneity_alpha=homogeneity_alpha, bands_per_decade=bands_per_decade,
             power_response=power_response, objective=objective, n_grid=n_grid,
         )  # fmt: skip
-        return BoundResults(bound, rule="pooled", bands=bands, pooled=pooled, **common)
+        smoothing = [p.params.get("bandwidth_hz", 0.0) for p in psds]
+        ms, why = model_set(bands, pooled, dt, confidence_level=confidence_level,
+                            smoothing_hz=float(np.median(smoothing)))  # fmt: skip
+        return BoundResults(bound, rule="pooled", bands=bands, pooled=pooled, model_set=ms,
+                            model_set_note=why, **common)  # fmt: skip

@@ -72,6 +72,7 @@ from psdbound.spectra.bound import BoundFit, fit_bound
 from psdbound.spectra.estimators import PSDEstimate
 
 __all__ = ["BandSpectra", "PooledLimits", "band_spectra", "fit_pooled_bound", "merge_bands",
+           "random_effects_mean",
            "pool_bands", "excess_statistic"]
 
 
@@ -239,8 +240,20 @@ def merge_bands(bands: BandSpectra, *, min_window_dof: float = 4.0) -> BandSpect
     return BandSpectra(edges, np.sqrt(edges[:-1] * edges[1:]), psd, dof)
 
 
-def _q_gen(z: NDArray, v: NDArray, tau2: float) -> tuple[float, float, float]:
-    """Generalised Cochran Q, weighted mean and its variance at heterogeneity ``tau2``."""
+def random_effects_mean(z: NDArray, v: NDArray, tau2: float) -> tuple[float, float, float]:
+    """Return the generalised Cochran Q, the weighted mean and its variance at ``tau2``.
+
+    Parameters
+    ----------
+    z, v : ndarray
+        Values and their sampling variances.
+    tau2 : float
+        Between-value variance (random effects).
+
+    Returns
+    -------
+    q, mean, variance_of_mean : float
+    """
     w = 1.0 / (v + tau2)
     mu = float(np.sum(w * z) / np.sum(w))
     return float(np.sum(w * (z - mu) ** 2)), mu, float(1.0 / np.sum(w))
@@ -251,7 +264,7 @@ def _band_limit(
 ) -> tuple[float, float, float]:
     """Random-effects upper limit of one band's log level: (log U, tau^2, homogeneity p)."""
     k = z.size
-    q0, _, _ = _q_gen(z, v, 0.0)
+    q0, _, _ = random_effects_mean(z, v, 0.0)
     tau2 = 0.0
     p_hom = 1.0
     if k > 1:
@@ -260,7 +273,7 @@ def _band_limit(
         c = float(np.sum(w) - np.sum(w**2) / np.sum(w))
         if p_hom < alpha_h and c > 0:  # heterogeneous: DerSimonian-Laird spread
             tau2 = max(0.0, (q0 - (k - 1)) / c)
-    _, mu, var_mu = _q_gen(z, v, tau2)
+    _, mu, var_mu = random_effects_mean(z, v, tau2)
     return mu + float(stats.norm.isf(a)) * np.sqrt(var_mu) + z_p * np.sqrt(tau2), tau2, p_hom
 
 
