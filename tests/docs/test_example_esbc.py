@@ -1,0 +1,22 @@
+"""The KF-ARAIM worked example on the ESBC day runs as documented (real data)."""
+
+from __future__ import annotations
+
+import doctest
+from pathlib import Path
+
+import pytest
+from conftest import ESBC_NAV, ESBC_OBS, shared_file
+
+PAGE = Path(__file__).resolve().parents[2] / "docs" / "examples" / "kf_araim_esbc.rst"
+
+
+@pytest.mark.realdata
+@pytest.mark.slow
+def test_worked_example_runs(monkeypatch):
+    folder = Path(shared_file(ESBC_OBS)).parent
+    assert Path(shared_file(ESBC_NAV)).parent == folder
+    monkeypatch.chdir(folder)  # the page names the files as a user in their folder would
+    result = doctest.testfile(str(PAGE), module_relative=False,
+                              optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)  # fmt: skip
+    assert result.attempted > 20 and result.failed == 0
