@@ -325,6 +325,26 @@ def find_arcs(
     PsdboundWarning
         When the orbit leaves some observed satellites or epochs without a
         position (also in :attr:`ArcSet.warnings`).
+
+    See Also
+    --------
+    psdbound.isolation.isolate_dual_frequency : The multipath of these arcs.
+    read_obs, read_orbit : The inputs.
+
+    References
+    ----------
+    .. [1] Blewitt, G. (1990). An automatic editing algorithm for GPS data.
+       *Geophysical Research Letters*, 17(3), 199-202 (slips in the
+       geometry-free combination).
+
+    Examples
+    --------
+    >>> from psdbound.simulate import demo_data
+    >>> d = demo_data()
+    >>> obs, nav = read_obs(d.obs_paths[0], systems="G"), read_orbit(d.nav_path)
+    >>> arcs = find_arcs(obs, ("L1C", "L2W"), orbit=nav, elevation_mask_deg=10)
+    >>> len(arcs) > 10 and all(a.duration_s >= 1800 for a in arcs)
+    True
     """
     if signals is None:
         if system not in DEFAULT_SIGNALS:

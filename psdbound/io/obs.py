@@ -325,11 +325,28 @@ def read_obs(
         a RINEX observation file, an unknown code, or a requested system with
         no epochs.
 
+    See Also
+    --------
+    read_orbit : Broadcast or precise orbits for the same period.
+    find_arcs : Continuous tracking arcs of a phase pair.
+    psdbound.io.merge.merge_observations : Consecutive files of one station as one data set.
+
+    References
+    ----------
+    .. [1] IGS RINEX Working Group and RTCM-SC104 (2020). RINEX, The Receiver
+       Independent Exchange Format, Version 3.05.
+    .. [2] Gurtner, W., & Estey, L. (2007). RINEX, Version 2.11.
+    .. [3] Hatanaka, Y. (2008). A compression format and tools for GNSS
+       observation data. *Bulletin of the Geographical Survey Institute*, 55.
+
     Examples
     --------
-    >>> obs = read_obs("ESBC00DNK_R_20201770000_01D_30S_MO.crx.gz",
-    ...                systems="GE")  # doctest: +SKIP
-    >>> obs.phase_m("G05", "L1C")  # doctest: +SKIP
+    >>> from psdbound.simulate import demo_data
+    >>> obs = read_obs(demo_data().obs_paths[0], systems="G")
+    >>> obs.interval_s, obs.blocks["G"].codes
+    (1.0, ('C1C', 'L1C', 'S1C', 'C2W', 'L2W', 'S2W'))
+    >>> obs.phase_m("G05", "L1C").shape == obs.t_gps_s.shape   # metres, NaN where absent
+    True
     """
     p = Path(path)
     text = read_bytes(p)

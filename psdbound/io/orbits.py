@@ -24,6 +24,25 @@ def read_orbit(path: str | os.PathLike[str]) -> Navigation | PreciseOrbit:
     -------
     Navigation or PreciseOrbit
         Both provide ``positions_ecef_m(sat, t_gps_s)`` and ``satellites``.
+
+    See Also
+    --------
+    read_obs : The observations the orbits serve.
+    psdbound.io.orbit_coverage : Whether the orbits cover the observed systems and epochs.
+
+    References
+    ----------
+    .. [1] IS-GPS-200 (Navstar GPS Space Segment / Navigation User Interfaces),
+       Table 20-IV (broadcast ephemeris to ECEF).
+    .. [2] Hilla, S. (2016). The Extended Standard Product 3 Orbit Format (SP3-d).
+    .. [3] GLONASS ICD, edition 5.1 (2008), appendix A.3.1.2 (numerical integration).
+
+    Examples
+    --------
+    >>> from psdbound.simulate import demo_data
+    >>> nav = read_orbit(demo_data().nav_path)
+    >>> type(nav).__name__
+    'Navigation'
     """
     p = Path(path)
     if read_bytes(p)[:2] in (b"#c", b"#d", b"#a", b"#b"):

@@ -64,6 +64,30 @@ def isolate_dual_frequency(
         If no arc is long enough (the message gives the counts).
     InputError
         For a cutoff outside (0, Nyquist).
+
+    See Also
+    --------
+    isolate_dual_antenna : The double-difference alternative for two antennas.
+    HighPass : The zero-phase high-pass designs.
+    filter_safety_check : How much power the filter removed below and above f_c.
+
+    References
+    ----------
+    .. [1] Benz, C. (2022). *Carrier Phase Multipath Characterization and
+       Frequency-Domain Bounding*. M.S. thesis, Illinois Institute of Technology
+       (the method psdbound started from; docs/method/index.rst says where it differs).
+    .. [2] docs/method/isolation.rst (scaling, filter, edges).
+
+    Examples
+    --------
+    >>> from psdbound.io import find_arcs, read_obs, read_orbit
+    >>> from psdbound.simulate import demo_data
+    >>> d = demo_data()
+    >>> arcs = find_arcs(read_obs(d.obs_paths[0], systems="G"), ("L1C", "L2W"),
+    ...                  orbit=read_orbit(d.nav_path))
+    >>> series = isolate_dual_frequency(arcs, 1.5e-3)
+    >>> series.method, round(series.scaling, 4)
+    ('DF', 0.7071)
     """
     hp = HighPass() if highpass is None else highpass
     interval_s = arcs.interval_s

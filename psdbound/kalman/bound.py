@@ -129,6 +129,28 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
     source : str
         Where the numbers came from (``"params"``, ``"fit"`` or the result
         file path); informational.
+
+    See Also
+    --------
+    analyze_covariance : Check a filter built on the bound against true errors.
+    augment_gm_states : One Gauss-Markov state per satellite in a filter.
+    psdbound.kalman.uncertain.GaussMarkovSet : A design safe for a set of processes.
+
+    References
+    ----------
+    .. [1] Brown, R. G., & Hwang, P. Y. C. (2012). *Introduction to Random
+       Signals and Applied Kalman Filtering* (4th ed.), ch. 2-3. Wiley.
+    .. [2] Langel, S., Garcia Crespillo, O., & Joerger, M. (2021). Overbounding
+       the effect of uncertain Gauss-Markov noise in Kalman filtering.
+       *NAVIGATION*, 68(2), 259-276.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> b = GaussMarkovBound.from_params(0.004, 30.0, 0.001, 1.0)
+    >>> phi, qd, r = b.to_state_space(1.0)
+    >>> bool(np.isclose(phi, np.exp(-1 / 30))), bool(np.isclose(qd, 0.004**2 * (1 - phi**2)))
+    (True, True)
     """
 
     mapping: ElevationMapping | None = None

@@ -178,6 +178,24 @@ def simulate(scenario: Scenario, out_dir: str | os.PathLike[str]) -> SimulationR
     -------
     SimulationResult
         Paths and the truth arrays.
+
+    See Also
+    --------
+    psdbound.simulate.preset : The named scenarios (``demo``, ``short``).
+    psdbound.simulate.compare_to_truth : A fit against the injected truth.
+
+    References
+    ----------
+    .. [1] docs/method/isolation.rst (the observation equations simulated).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from psdbound.simulate import preset
+    >>> sc = preset("demo").replace(name="tiny", duration_s=600.0, dual_antenna=False)
+    >>> out = simulate(sc, tempfile.mkdtemp())
+    >>> [p.name for p in out.obs_paths]
+    ['tiny-A_MO.rnx.gz']
     """
     sc = scenario
     mp = sc.multipath

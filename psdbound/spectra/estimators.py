@@ -214,6 +214,20 @@ def estimate_psd(
         non-positive sampling interval, an unknown method or option, or an
         option value out of range.
 
+    See Also
+    --------
+    psdbound.spectra.BoundModel : Estimate every window and bound them.
+    scipy.signal.welch : The segment-averaged periodogram used for ``"welch"``.
+
+    References
+    ----------
+    .. [1] Thomson, D. J. (1982). Spectrum estimation and harmonic analysis.
+       *Proceedings of the IEEE*, 70(9), 1055-1096.
+    .. [2] Percival, D. B., & Walden, A. T. (1993). *Spectral Analysis for
+       Physical Applications*. Cambridge University Press.
+    .. [3] Welch, P. D. (1967). The use of fast Fourier transform for the
+       estimation of power spectra. *IEEE Trans. Audio Electroacoustics*, 15(2).
+
     Examples
     --------
     >>> import numpy as np

@@ -134,6 +134,32 @@ class BoundModel:
         taper leaks, which inflated its DF bound.
     **estimator_options
         Passed to :func:`psdbound.spectra.estimate_psd`.
+
+    See Also
+    --------
+    psdbound.spectra.pooled.fit_pooled_bound : The pooled rule.
+    psdbound.fit : The whole pipeline, of which this is the bound stage.
+
+    References
+    ----------
+    .. [1] DerSimonian, R., & Laird, N. (1986). Meta-analysis in clinical trials.
+       *Controlled Clinical Trials*, 7(3), 177-188.
+    .. [2] Cochran, W. G. (1954). The combination of estimates from different
+       experiments. *Biometrics*, 10(1), 101-129.
+    .. [3] docs/method/bound.rst.
+
+    Examples
+    --------
+    >>> from psdbound.io import find_arcs, read_obs, read_orbit
+    >>> from psdbound.isolation import isolate_dual_frequency
+    >>> from psdbound.stationarity import find_stationary_windows
+    >>> from psdbound.simulate import demo_data
+    >>> d = demo_data()
+    >>> arcs = find_arcs(read_obs(d.obs_paths[0], systems="G"), ("L1C", "L2W"),
+    ...                  orbit=read_orbit(d.nav_path))
+    >>> results = BoundModel(find_stationary_windows(isolate_dual_frequency(arcs, 1.5e-3))).fit()
+    >>> results.rule, results.bound.level
+    ('pooled', 0.95)
     """
 
     def __init__(

@@ -304,6 +304,32 @@ def find_stationary_windows(
     ------
     NoDataError
         If no arc is at least ``min_length_s`` long.
+
+    See Also
+    --------
+    psdbound.stationarity.test_spectral_homogeneity : The test of each split.
+    psdbound.spectra.BoundModel : Bound the windows found.
+
+    References
+    ----------
+    .. [1] Priestley, M. B., & Subba Rao, T. (1969). A test for non-stationarity
+       of time-series. *JRSS B*, 31(1), 140-149.
+    .. [2] Vostrikova, L. J. (1981). Detecting "disorder" in multidimensional
+       random processes. *Soviet Mathematics Doklady*, 24, 55-59 (binary
+       segmentation).
+    .. [3] docs/method/stationarity.rst.
+
+    Examples
+    --------
+    >>> from psdbound.io import find_arcs, read_obs, read_orbit
+    >>> from psdbound.isolation import isolate_dual_frequency
+    >>> from psdbound.simulate import demo_data
+    >>> d = demo_data()
+    >>> arcs = find_arcs(read_obs(d.obs_paths[0], systems="G"), ("L1C", "L2W"),
+    ...                  orbit=read_orbit(d.nav_path))
+    >>> windows = find_stationary_windows(isolate_dual_frequency(arcs, 1.5e-3))
+    >>> len(windows) > 10
+    True
     """
     mp = THESIS_MAPPING if mapping is None else mapping
     mapped = mp.apply(series.value_m, series.elevation_deg)
