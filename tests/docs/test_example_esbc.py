@@ -17,6 +17,6 @@ def test_worked_example_runs(monkeypatch):
     folder = Path(shared_file(ESBC_OBS)).parent
     assert Path(shared_file(ESBC_NAV)).parent == folder
     monkeypatch.chdir(folder)  # the page names the files as a user in their folder would
-    result = doctest.testfile(str(PAGE), module_relative=False,
-                              optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)  # fmt: skip
+    flags = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
+    result = doctest.testfile(str(PAGE), module_relative=False, optionflags=flags)
     assert result.attempted > 20 and result.failed == 0

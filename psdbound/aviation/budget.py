@@ -1,0 +1,419 @@
+"""LADGNSS / GBAS error budget and vertical protection level (seed 004).
+
+Per satellite ``i`` at elevation ``theta_i`` the corrected-range variance is
+(seed 004 eq. 13) ``sigma_i^2 = sigma_gnd^2 + sigma_air^2 + sigma_iono^2 +
+sigma_trop^2``:
+
+ground (eqs. 16, 18, 19, derived again below)
+    ``xi(tau_gnd)^2 k_f^2 sigma_mp*^2 + sigma_SIS^2`` with, for ``M``
+    reference receivers whose multipath is correlated with coefficient
+    ``rho`` and ``N`` satellites in the correction,
+    ``sigma_mp*^2 = c_rho / (M N^2) * ((N - 1)^2 g_i^2 + sum_{j != i} g_j^2)``.
+    The exact variance of the receiver average minus the satellite average
+    has ``c_rho = 1 + rho (M - 1)``; the seed prints ``1 + 2 rho (M - 1)``
+    (``rho_formula="seed"``). ``g`` is the per-receiver GAD curve
+    ``a0 + a1 exp(-theta / theta0)`` and ``sigma_SIS`` its ``a2`` term
+    (RTCA DO-245A [RTCADO245A]_; the split is our assumption, the seed does
+    not print its GAD_mp / GAD_n curves).
+airborne (eq. 21)
+    ``xi(tau_air)^2 k_f^2 (sigma_mp,air^2 + sigma_n,air^2)``, AAD-A curves of
+    :mod:`psdbound.kalman.aviation`.
+ionosphere (eqs. 22-27)
+    single frequency: ``sqrt((F_pp s_vig (x + 2 tau_air v))^2 + (2 s_rate
+    |tau_gnd - tau_air|)^2)``; divergence free ``F_pp s_vig x``; iono free 0;
+    times ``(f_L1 / f_L5)^2`` (the seed's 1.79) for L5-based processing.
+troposphere (eqs. 28-30)
+    ``sigma_N h0 1e-6 / sqrt(0.002 + sin^2 theta) (1 - exp(-dh / h0))`` (the
+    seed prints ``exp(+dh / h0)``, a sign slip: the standard form decays)
+    combined with ``F_pp s_trop x``.
+
+``k_f`` is 1 (L1-based), 0.7 (L5-based, seed 004 Table 2), or the iono-free
+multiplier (:func:`iono_free_multiplier`, 2.4267 for L1/L5 with the Table 2
+ratio). ``xi`` is :func:`psdbound.kalman.aviation.smoothing_time_ratio`.
+
+The VPL (eq. 10, with the square root the seed's print omits) is
+``K_ffmd sqrt(sum S_vert,i^2 sigma_i^2)``, ``S`` the weighted-least-squares
+projection ``(G^T W G)^-1 G^T W``, ``W = diag(sigma_i^-2)``; the ephemeris
+VPL (eqs. 11-12) is ``max_k |S_vert,k| x P_k + K_md sqrt(...)``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from psdbound.errors import InputError
+from psdbound.kalman.aviation import (
+    F_L1_HZ,
+    F_L5_HZ,
+    sigma_multipath_airborne_m,
+    sigma_noise_airborne_m,
+    smoothing_time_ratio,
+)
+
+__all__ = [
+    "GAD_PARAMETERS",
+    "K_FFMD",
+    "K_MD",
+    "PROCESSES",
+    "BudgetTerms",
+    "budget_report",
+    "error_budget",
+    "ground_sigma_pr_m",
+    "iono_free_multiplier",
+    "los_from_az_el",
+    "obliquity_factor",
+    "projection_matrix",
+    "vpl",
+]
+
+PROCESSES = ("SF", "DF", "IF")
+L5_TO_L1_SIGMA = 0.7  # seed 004 Table 2
+#: GAD curve parameters (a0 m, a1 m, theta0 deg, a2 m), RTCA DO-245A / ICAO Annex 10;
+#: GAD-C switches to a flat 0.24 m below 35 deg (multipath-limiting antenna).
+GAD_PARAMETERS: dict[str, tuple[float, float, float, float]] = {
+    "A": (0.50, 1.65, 14.3, 0.08),
+    "B": (0.16, 1.07, 15.5, 0.08),
+    "C": (0.15, 0.84, 15.5, 0.04),
+}
+#: Fault-free and missed-detection multipliers by number of reference receivers M
+#: (RTCA DO-253 / DO-245A values for precision approach).
+K_FFMD: dict[int, float] = {2: 5.762, 3: 5.810, 4: 5.847}
+K_MD: dict[int, float] = {2: 2.935, 3: 2.898, 4: 2.878}
+R_EARTH_M = 6378136.3
+H_IONO_M = 350e3
+
+
+def _el(elevation_deg: ArrayLike) -> NDArray[np.float64]:
+    el = np.asarray(elevation_deg, dtype=float).reshape(-1)
+    if el.size == 0 or not np.isfinite(el).all() or (el <= 0).any() or (el > 90).any():
+        raise InputError("elevations must be finite, in (0, 90] degrees")
+    return el
+
+
+def ground_sigma_pr_m(elevation_deg: ArrayLike, designator: str = "B") -> NDArray[np.float64]:
+    """Per-receiver GAD curve ``a0 + a1 exp(-theta / theta0)``, metres (100 s smoothing).
+
+    Parameters
+    ----------
+    elevation_deg : array_like
+        Elevations, degrees.
+    designator : {"A", "B", "C"}, default "B"
+        Ground accuracy designator.
+
+    Returns
+    -------
+    ndarray
+    """
+    if designator not in GAD_PARAMETERS:
+        raise InputError(f"unknown GAD {designator!r}; choose from {sorted(GAD_PARAMETERS)}")
+    a0, a1, th0, _ = GAD_PARAMETERS[designator]
+    el = _el(elevation_deg)
+    g = a0 + a1 * np.exp(-el / th0)
+    if designator == "C":
+        g = np.where(el < 35.0, 0.24, g)
+    return g
+
+
+def obliquity_factor(elevation_deg: ArrayLike) -> NDArray[np.float64]:
+    """Thin-shell ionospheric obliquity ``F_pp = (1 - (R cos theta / (R + h))^2)^-1/2``.
+
+    ``R = 6378.1363 km``, ``h = 350 km`` (DO-245A).
+
+    Parameters
+    ----------
+    elevation_deg : array_like
+        Elevations, degrees.
+
+    Returns
+    -------
+    ndarray
+        Dimensionless, 1 at zenith.
+    """
+    c = R_EARTH_M * np.cos(np.radians(_el(elevation_deg))) / (R_EARTH_M + H_IONO_M)
+    return 1.0 / np.sqrt(1.0 - c * c)
+
+
+def iono_free_multiplier(
+    sigma_ratio_y_to_x: float = L5_TO_L1_SIGMA, f_x_hz: float = F_L1_HZ, f_y_hz: float = F_L5_HZ
+) -> float:
+    """Iono-free noise multiplier ``sqrt((1 - 1/a)^2 + r^2 / a^2)``, ``a = 1 - f_x^2 / f_y^2``.
+
+    Seed 004 eq. (9) without the ``sqrt(T / 2 tau)`` smoothing factor, for a
+    code sigma on frequency ``y`` that is ``r`` times the one on ``x``.
+
+    Parameters
+    ----------
+    sigma_ratio_y_to_x : float, default 0.7
+        ``sigma_y / sigma_x`` (seed 004 Table 2: L5 = 0.7 L1).
+    f_x_hz, f_y_hz : float
+        Frequencies, Hz (default L1, L5).
+
+    Returns
+    -------
+    float
+    """
+    if not (f_x_hz > 0 and f_y_hz > 0) or f_x_hz == f_y_hz or sigma_ratio_y_to_x < 0:
+        raise InputError("need two different positive frequencies and a ratio >= 0")
+    a = 1.0 - (f_x_hz / f_y_hz) ** 2
+    return math.sqrt((1.0 - 1.0 / a) ** 2 + (sigma_ratio_y_to_x / a) ** 2)
+
+
+def los_from_az_el(azimuth_deg: ArrayLike, elevation_deg: ArrayLike) -> NDArray[np.float64]:
+    """Build unit line-of-sight vectors receiver -> satellite in East-North-Up.
+
+    Parameters
+    ----------
+    azimuth_deg, elevation_deg : array_like, shape (n,)
+        Azimuth (from north, clockwise) and elevation, degrees.
+
+    Returns
+    -------
+    ndarray, shape (n, 3)
+    """
+    az = np.radians(np.asarray(azimuth_deg, dtype=float).reshape(-1))
+    el = np.radians(np.asarray(elevation_deg, dtype=float).reshape(-1))
+    if az.size != el.size or not (np.isfinite(az).all() and np.isfinite(el).all()):
+        raise InputError("azimuth and elevation must be finite and of the same length")
+    return np.column_stack([np.cos(el) * np.sin(az), np.cos(el) * np.cos(az), np.sin(el)])
+
+
+def projection_matrix(los_enu: ArrayLike, sigma_m: ArrayLike) -> NDArray[np.float64]:
+    """Weighted-least-squares projection ``S = (G^T W G)^-1 G^T W``, shape (4, n).
+
+    Rows: East, North, Up, clock; ``G_i = [-u_i, 1]``, ``W = diag(sigma^-2)``.
+
+    Parameters
+    ----------
+    los_enu : array_like, shape (n, 3)
+        Unit line-of-sight vectors (n >= 4).
+    sigma_m : array_like, shape (n,)
+        Range error sigmas, metres (> 0).
+
+    Returns
+    -------
+    ndarray, shape (4, n)
+    """
+    u = np.asarray(los_enu, dtype=float)
+    s = np.asarray(sigma_m, dtype=float).reshape(-1)
+    if u.ndim != 2 or u.shape[1] != 3 or u.shape[0] < 4 or s.size != u.shape[0]:
+        raise InputError("need n >= 4 line-of-sight vectors (n, 3) and n sigmas")
+    if not (s > 0).all():
+        raise InputError("sigmas must be > 0")
+    g = np.column_stack([-u, np.ones(u.shape[0])])
+    w = 1.0 / s**2
+    gtw = g.T * w
+    a = gtw @ g
+    if np.linalg.cond(a) > 1e12:
+        raise InputError("singular geometry: the satellites do not fix position and clock")
+    return np.linalg.solve(a, gtw)
+
+
+@dataclass(frozen=True)
+class BudgetTerms:
+    """Per-satellite sigmas of the LADGNSS budget, metres.
+
+    Attributes
+    ----------
+    elevation_deg : ndarray
+        Elevations, degrees.
+    ground, air, iono, trop : ndarray
+        Term sigmas, metres.
+    """
+
+    elevation_deg: NDArray[np.float64]
+    ground: NDArray[np.float64]
+    air: NDArray[np.float64]
+    iono: NDArray[np.float64]
+    trop: NDArray[np.float64]
+
+    @property
+    def total(self) -> NDArray[np.float64]:
+        """Root-sum-square of the four terms, metres (seed 004 eq. 13)."""
+        return np.sqrt(self.ground**2 + self.air**2 + self.iono**2 + self.trop**2)
+
+
+def error_budget(
+    elevation_deg: ArrayLike,
+    *,
+    process: str = "SF",
+    base_frequency: str = "L1",
+    tau_gnd_s: float = 100.0,
+    tau_air_s: float = 100.0,
+    tau_corr_s: float = 30.0,
+    xi_formula: str = "seed",
+    gad: str = "B",
+    n_receivers: int = 3,
+    rho: float = 0.1,
+    rho_formula: str = "exact",
+    x_air_m: float = 5000.0,
+    v_air_mps: float = 15.0,
+    sigma_vig: float = 4e-6,
+    sigma_iono_rate_mps: float = 0.004,
+    dh_m: float = 0.0,
+    sigma_n_refractivity: float = 23.0,
+    h0_m: float = 15730.0,
+    sigma_trop_nonnominal: float = 5e-6,
+) -> BudgetTerms:
+    """Per-satellite ground, airborne, ionosphere and troposphere sigmas (seed 004).
+
+    Defaults are seed 004 Table 4 (first scenario: GAD-B, ``rho = 0.1``,
+    ``M = 3``, ``x_air = 5 km``, ``v_air = 15 m/s``, ``sigma_vig = 4 mm/km``).
+
+    Parameters
+    ----------
+    elevation_deg : array_like, shape (N,)
+        Elevations of all satellites of the epoch, degrees (the ground term
+        depends on the whole set).
+    process : {"SF", "DF", "IF"}, default "SF"
+        Single-frequency, divergence-free or iono-free smoothing.
+    base_frequency : {"L1", "L5"}, default "L1"
+        Frequency of the code (SF, DF): L5 scales noise by 0.7, iono by 1.79.
+    tau_gnd_s, tau_air_s : float, default 100
+        Ground and airborne smoothing time constants, seconds.
+    tau_corr_s : float, default 30
+        Code-error correlation time in ``xi``, seconds.
+    xi_formula : str, default "seed"
+        Passed to :func:`~psdbound.kalman.aviation.smoothing_time_ratio`.
+    gad : {"A", "B", "C"}, default "B"
+    n_receivers : int, default 3
+        Reference receivers ``M``.
+    rho : float, default 0.1
+        Ground multipath correlation between receivers.
+    rho_formula : {"exact", "seed"}, default "exact"
+        ``1 + rho (M - 1)`` or the seed's ``1 + 2 rho (M - 1)``.
+    x_air_m : float, default 5000
+        User to reference distance, metres.
+    v_air_mps : float, default 15
+        Horizontal user speed, m/s.
+    sigma_vig : float, default 4e-6
+        Vertical ionospheric gradient sigma, m/m (4 mm/km).
+    sigma_iono_rate_mps : float, default 0.004
+        Ionospheric delay-rate sigma, m/s.
+    dh_m : float, default 0
+        User height above the reference, metres.
+    sigma_n_refractivity : float, default 23
+        Refractivity uncertainty ``sigma_N`` (N units).
+    h0_m : float, default 15730
+        Tropospheric scale height, metres.
+    sigma_trop_nonnominal : float, default 5e-6
+        Anomalous tropospheric gradient sigma, m/m (5 mm/km).
+
+    Returns
+    -------
+    BudgetTerms
+    """
+    el = _el(elevation_deg)
+    if process not in PROCESSES:
+        raise InputError(f"unknown process {process!r}; choose from {PROCESSES}")
+    if base_frequency not in ("L1", "L5"):
+        raise InputError(f"base_frequency must be 'L1' or 'L5', got {base_frequency!r}")
+    if n_receivers < 1 or not 0 <= rho <= 1 or rho_formula not in ("exact", "seed"):
+        raise InputError("need n_receivers >= 1, 0 <= rho <= 1, rho_formula 'exact' or 'seed'")
+    n = el.size
+    if process == "IF":
+        k_f, k_iono = iono_free_multiplier(), 0.0
+    elif base_frequency == "L5":
+        k_f, k_iono = L5_TO_L1_SIGMA, (F_L1_HZ / F_L5_HZ) ** 2
+    else:
+        k_f, k_iono = 1.0, 1.0
+    xi_g, xi_a = smoothing_time_ratio(
+        [tau_gnd_s, tau_air_s], tau_corr_s=tau_corr_s, formula=xi_formula
+    )
+    g = ground_sigma_pr_m(el, gad)
+    c_rho = 1.0 + (2.0 if rho_formula == "seed" else 1.0) * rho * (n_receivers - 1)
+    others = np.sum(g**2) - g**2
+    mp_star2 = c_rho / (n_receivers * n**2) * ((n - 1) ** 2 * g**2 + others)
+    sis = GAD_PARAMETERS[gad][3]
+    ground = np.sqrt(xi_g**2 * k_f**2 * mp_star2 + sis**2)
+    air = xi_a * k_f * np.hypot(sigma_multipath_airborne_m(el), sigma_noise_airborne_m(el))
+    fpp = obliquity_factor(el)
+    if process == "SF":
+        sg = fpp * sigma_vig * (x_air_m + 2.0 * tau_air_s * v_air_mps)
+        tg = 2.0 * sigma_iono_rate_mps * abs(tau_gnd_s - tau_air_s)
+        iono = k_iono * np.hypot(sg, tg)
+    else:
+        iono = k_iono * fpp * sigma_vig * x_air_m
+    s2 = np.sin(np.radians(el)) ** 2
+    nominal = sigma_n_refractivity * h0_m * 1e-6 / np.sqrt(0.002 + s2)
+    nominal = nominal * (1.0 - math.exp(-dh_m / h0_m))
+    trop = np.hypot(nominal, fpp * sigma_trop_nonnominal * x_air_m)
+    return BudgetTerms(el, ground, air, np.broadcast_to(iono, el.shape).copy(), trop)
+
+
+def vpl(
+    los_enu: ArrayLike,
+    sigma_m: ArrayLike,
+    *,
+    n_receivers: int = 3,
+    k_ffmd: float | None = None,
+    k_md: float | None = None,
+    x_air_m: float = 0.0,
+    p_eph: float = 0.00018,
+) -> tuple[float, float]:
+    """Fault-free and ephemeris vertical protection levels, metres.
+
+    Parameters
+    ----------
+    los_enu : array_like, shape (n, 3)
+        Unit line-of-sight vectors (ENU).
+    sigma_m : array_like, shape (n,)
+        Total range sigmas, metres.
+    n_receivers : int, default 3
+        Selects ``K_ffmd`` and ``K_md`` from :data:`K_FFMD`, :data:`K_MD`.
+    k_ffmd, k_md : float, optional
+        Override the multipliers.
+    x_air_m : float, default 0
+        User to reference distance, metres.
+    p_eph : float, default 0.00018
+        Ephemeris decorrelation parameter, m/m (seed 004).
+
+    Returns
+    -------
+    vpl_h0, vpl_eph : float
+        Metres; the user applies the larger.
+    """
+    kf = K_FFMD.get(n_receivers) if k_ffmd is None else k_ffmd
+    km = K_MD.get(n_receivers) if k_md is None else k_md
+    if kf is None or km is None:
+        raise InputError(f"no tabulated K for M = {n_receivers}; pass k_ffmd and k_md")
+    s = np.asarray(sigma_m, dtype=float).reshape(-1)
+    sv = projection_matrix(los_enu, s)[2]
+    sd = float(np.sqrt(np.sum(sv**2 * s**2)))
+    eph = float(np.max(np.abs(sv)) * x_air_m * p_eph + km * sd)
+    return kf * sd, eph
+
+
+def budget_report(
+    azimuth_deg: ArrayLike, elevation_deg: ArrayLike, *, n_receivers: int = 3, **options: object
+) -> str:
+    """Per-satellite budget table and the two VPLs, as text (for ``psdbound budget``).
+
+    Parameters
+    ----------
+    azimuth_deg, elevation_deg : array_like, shape (n,)
+        Satellite azimuths and elevations, degrees (n >= 4).
+    n_receivers : int, default 3
+        Reference receivers ``M``.
+    **options
+        Passed to :func:`error_budget` (``x_air_m`` also to :func:`vpl`).
+
+    Returns
+    -------
+    str
+    """
+    t = error_budget(elevation_deg, n_receivers=n_receivers, **options)  # type: ignore[arg-type]
+    x_air = float(options.get("x_air_m", 5000.0))  # type: ignore[arg-type]
+    h0, eph = vpl(los_from_az_el(azimuth_deg, elevation_deg), t.total,
+                  n_receivers=n_receivers, x_air_m=x_air)  # fmt: skip
+    rows = [f"{'el deg':>7} {'gnd m':>8} {'air m':>8} {'iono m':>8} {'trop m':>8} {'total m':>8}"]
+    for i in range(t.elevation_deg.size):
+        rows.append(
+            f"{t.elevation_deg[i]:>7.1f} {t.ground[i]:>8.4f} {t.air[i]:>8.4f} "
+            f"{t.iono[i]:>8.4f} {t.trop[i]:>8.4f} {t.total[i]:>8.4f}"
+        )
+    rows.append(f"VPL_H0 = {h0:.3f} m, VPL_eph = {eph:.3f} m, VPL = {max(h0, eph):.3f} m")
+    return "\n".join(rows)

@@ -1,0 +1,121 @@
+"""Files of the aviation commands: read error samples, write the overbound outputs.
+
+Input (:func:`read_samples`): a ``.npy`` array (one column of errors, or two
+columns ``error, elevation_deg``) or a text/CSV file with a header naming an
+``error`` column (any of ``error``, ``multipath``, ``value``) and optionally an
+``elevation`` column (``elevation``, ``elevation_deg``, ``el``). Output
+(:func:`write_overbound`): ``result.json`` (per-bin sigma, bias, inflation
+factor, counts) and ``overbound_qq.png`` (the Q-Q figure: each bin's sample
+quantiles against standard-normal quantiles, with its overbound line),
+written atomically.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.stats import norm
+
+from psdbound.aviation.overbound import OverboundResult
+from psdbound.common.atomic import atomic_write_bytes, atomic_write_text
+from psdbound.errors import InputError
+
+__all__ = ["read_samples", "write_overbound"]
+
+_ERROR_NAMES = ("error", "multipath", "value")
+_EL_NAMES = ("elevation", "elevation_deg", "el")
+
+
+def read_samples(path: str | Path) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+    """Read error samples (and elevations, degrees, when present).
+
+    Parameters
+    ----------
+    path : str or Path
+        ``.npy`` or CSV/whitespace text with a header line.
+
+    Returns
+    -------
+    errors : ndarray
+        Unit of the file.
+    elevation_deg : ndarray or None
+
+    Raises
+    ------
+    InputError
+        Missing or unreadable file, no error column (the file is named).
+    """
+    p = Path(path)
+    if not p.is_file():
+        raise InputError("no such file", path=p)
+    try:
+        if p.suffix == ".npy":
+            a = np.load(p, allow_pickle=False).astype(float)
+            if a.ndim == 1:
+                return a, None
+            if a.ndim == 2 and a.shape[1] in (1, 2):
+                return a[:, 0], (a[:, 1] if a.shape[1] == 2 else None)
+            raise InputError(f"array shape {a.shape}: expected (n,), (n, 1) or (n, 2)", path=p)
+        text = p.read_text()
+        delim = "," if "," in text.splitlines()[0] else None
+        data = np.genfromtxt(io.StringIO(text), delimiter=delim, names=True, dtype=float)
+    except (OSError, ValueError, IndexError) as exc:
+        raise InputError(f"cannot read samples ({exc})", path=p) from None
+    names = [n.lower() for n in (data.dtype.names or ())]
+    err = next((n for n in names if n in _ERROR_NAMES), None)
+    if err is None:
+        raise InputError(f"no error column: header has {names}, expected one of {_ERROR_NAMES}",
+                         path=p)  # fmt: skip
+    el = next((n for n in names if n in _EL_NAMES), None)
+    cols = data.dtype.names or ()
+    e = np.atleast_1d(data[cols[names.index(err)]]).astype(float)
+    elev = None if el is None else np.atleast_1d(data[cols[names.index(el)]]).astype(float)
+    return e, elev
+
+
+def _qq_png(result: OverboundResult) -> bytes:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(6.4, 5.0))
+    for b in result.bins:
+        x = result.samples[b.label]
+        z = norm.ppf((np.arange(1, x.size + 1) - 0.5) / x.size)
+        line = ax.plot(z, x, ".", ms=2, label=f"{b.label}: x{b.inflation:.2f}")[0]
+        ax.plot(z, b.bias + b.sigma * z, "-", lw=0.8, color=line.get_color())
+    ax.set_xlabel("standard-normal quantile")
+    ax.set_ylabel(f"sample quantile ({result.unit})")
+    ax.set_title(f"Q-Q plot and Gaussian overbounds ({result.method})")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, title="bin: inflation", title_fontsize=7)
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=120)
+    plt.close(fig)
+    return buf.getvalue()
+
+
+def write_overbound(result: OverboundResult, out: str | Path) -> list[Path]:
+    """Write ``result.json`` and ``overbound_qq.png`` into ``out`` (atomically).
+
+    Parameters
+    ----------
+    result : OverboundResult
+    out : str or Path
+        Existing, writable folder.
+
+    Returns
+    -------
+    list of Path
+        The files written.
+    """
+    folder = Path(out)
+    doc = {"overbound": result.to_dict()}
+    j = atomic_write_text(folder / "result.json", json.dumps(doc, indent=2) + "\n")
+    png = atomic_write_bytes(folder / "overbound_qq.png", _qq_png(result))
+    return [Path(j), Path(png)]

@@ -1,0 +1,377 @@
+"""Gaussian overbounds of sample error distributions, per elevation bin.
+
+Two constructions, both computed from the empirical CDF ``F_n`` of the
+samples of one bin (``n`` samples, sorted ``x_(1) <= ... <= x_(n)``):
+
+CDF overbound (DeCleene 2000, [DeCleene2000]_), optionally paired with a bias
+    The Gaussian ``G`` of mean 0 (or the pair ``N(-b, s)``, ``N(+b, s)``,
+    [Rife2006]_) must put at least as much probability in each tail as the
+    samples: ``G(x) >= F_n(x)`` on the left, ``G(x) <= F_n(x^-)`` on the
+    right. At the sample points that is ``Phi((x_(i) + b) / s) >= i / n``
+    for the left tail and ``Phi((x_(i) - b) / s) <= (i - 1) / n`` for the
+    right tail, which gives a lower limit on ``s`` per point; ``s`` is the
+    largest. The empirical CDF is taken at its least favourable side of each
+    jump, so the bound holds for the step function itself, not only at the
+    plotting positions.
+
+Two-step overbound (named in seed 000, which cites [BlanchWalterEnge2019]_ for it)
+    Step 1 centres the samples on their median ``m`` (the bias of the
+    overbound, close to the distribution's own centre) and replaces the two
+    tails by the heavier of the two at each distance ``d`` from ``m``:
+    ``T(d) = max(P(x - m >= d), P(x - m <= -d))`` -- the tail function of a
+    symmetric distribution about ``m`` that overbounds the sample in the
+    CDF sense on both sides. Step 2 finds the smallest zero-mean Gaussian
+    whose tail ``Q(d / s)`` lies above ``T(d)`` for every ``d``; a Gaussian is
+    symmetric and unimodal, so the result ``N(m, s)`` keeps the convolution
+    property of symmetric unimodal CDF overbounds (DeCleene). Seed 000 only
+    names the method and its two properties (stable through convolution like
+    paired overbounding, biases close to the sample distribution's); this is
+    our construction with those properties, documented in
+    ``docs/method/aviation.rst``.
+
+Both ignore the core of the distribution where ``Phi^-1(1 - tail) <
+min_abs_z`` (default 0.25: the central 20 % of probability). A finite
+sample cannot be bounded there at all: its empirical tail reaches 1/2 at a
+non-zero distance from the centre (the atoms of ``F_n``), which no Gaussian
+of finite sigma covers, and just outside it the ratio ``d / z`` is sampling
+noise divided by a near-zero ``z``. Pass ``min_abs_z=0`` to constrain every
+point (the sigma is then ``inf`` whenever such a point exists).
+
+The inflation factor of a bin is ``sigma_overbound / std(samples)`` (1 for
+an exactly Gaussian sample, larger for heavier tails).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.stats import norm
+
+from psdbound.errors import InputError
+
+__all__ = [
+    "DEFAULT_MIN_ABS_Z",
+    "METHODS",
+    "BinOverbound",
+    "OverboundResult",
+    "cdf_overbound_sigma",
+    "overbound_by_elevation",
+    "two_step_overbound",
+]
+
+METHODS = ("two_step", "cdf")
+DEFAULT_EDGES_DEG = (5.0, 15.0, 30.0, 45.0, 60.0, 90.0)
+DEFAULT_MIN_ABS_Z = 0.25
+
+
+def _clean(samples: ArrayLike, where: str, min_samples: int) -> NDArray[np.float64]:
+    x = np.asarray(samples, dtype=float).reshape(-1)
+    if np.isnan(x).any() or not np.isfinite(x).all():
+        bad = int(np.count_nonzero(~np.isfinite(x)))
+        raise InputError(f"{where}: {bad} sample(s) are NaN or infinite; remove them first")
+    if x.size < min_samples:
+        raise InputError(
+            f"{where}: {x.size} sample(s), need at least {min_samples} "
+            "(merge bins or lower min_samples)"
+        )
+    return np.sort(x)
+
+
+def _tail_sigma(d: NDArray[np.float64], tail: NDArray[np.float64], min_abs_z: float) -> float:
+    """Smallest ``s`` with ``Q(d / s) >= tail`` at every constraining point (``d > 0``)."""
+    if d.size == 0:
+        return 0.0
+    if min_abs_z <= 0 and ((d > 0) & (tail >= 0.5)).any():
+        return math.inf  # a tail of 1/2 away from the centre: no finite Gaussian bounds it
+    with np.errstate(divide="ignore"):
+        z = norm.isf(tail)  # > 0 where tail < 1/2
+    keep = (d > 0) & (tail < 0.5) & (z >= min_abs_z)
+    if not keep.any():
+        return 0.0
+    return float(np.max(d[keep] / z[keep]))
+
+
+def cdf_overbound_sigma(
+    samples: ArrayLike,
+    *,
+    bias: float = 0.0,
+    min_abs_z: float = DEFAULT_MIN_ABS_Z,
+    min_samples: int = 2,
+) -> float:
+    """Sigma of the smallest CDF (paired, if ``bias > 0``) Gaussian overbound.
+
+    Parameters
+    ----------
+    samples : array_like
+        Errors, any unit (the sigma comes out in the same unit).
+    bias : float, default 0
+        Paired-overbound bias ``b >= 0`` (same unit): the left bound is
+        ``N(-b, s)``, the right ``N(+b, s)``. 0 is DeCleene's zero-mean bound.
+    min_abs_z : float, default 0.25
+        Only points whose empirical tail has ``Phi^-1(1 - tail) >= min_abs_z``
+        constrain ``s``.
+    min_samples : int, default 2
+        Fewer samples raise :class:`~psdbound.errors.InputError`.
+
+    Returns
+    -------
+    float
+        ``s`` (``inf`` if the core cannot be bounded: median beyond ``b``).
+    """
+    if not bias >= 0:
+        raise InputError(f"bias must be >= 0, got {bias}")
+    x = _clean(samples, "samples", min_samples)
+    n = x.size
+    i = np.arange(1, n + 1)
+    left = x < -bias
+    right = x > bias
+    s_left = _tail_sigma(-(x[left] + bias), i[left] / n, min_abs_z)
+    s_right = _tail_sigma(x[right] - bias, (n - i[right] + 1) / n, min_abs_z)
+    # a point on the wrong side of the bias (e.g. x in [-b, b]) is always bounded
+    return max(s_left, s_right)
+
+
+def two_step_overbound(
+    samples: ArrayLike, *, min_abs_z: float = DEFAULT_MIN_ABS_Z, min_samples: int = 2
+) -> tuple[float, float]:
+    """Two-step Gaussian overbound ``N(m, s)``: median-centred, symmetrised, Gaussian-bounded.
+
+    Parameters
+    ----------
+    samples : array_like
+        Errors, any unit.
+    min_abs_z : float, default 0.25
+        As in :func:`cdf_overbound_sigma`.
+    min_samples : int, default 2
+        Fewer samples raise :class:`~psdbound.errors.InputError`.
+
+    Returns
+    -------
+    bias : float
+        The centre ``m`` (sample median), same unit as the samples.
+    sigma : float
+        ``s``, same unit.
+    """
+    x = _clean(samples, "samples", min_samples)
+    n = x.size
+    m = float(np.median(x))
+    i = np.arange(1, n + 1)
+    d = np.abs(x - m)
+    # P(x - m >= d) for points right of m, P(x - m <= -d) for points left of m
+    tail_own = np.where(x > m, (n - i + 1) / n, i / n)
+    # the opposite tail at the same distance: count of samples beyond m -/+ d
+    right_at = (n - np.searchsorted(x, m + d, side="left")) / n
+    left_at = np.searchsorted(x, m - d, side="right") / n
+    tail = np.maximum(tail_own, np.maximum(right_at, left_at))
+    off = d > 0
+    return m, _tail_sigma(d[off], tail[off], min_abs_z)
+
+
+@dataclass(frozen=True)
+class BinOverbound:
+    """The overbound of one elevation bin.
+
+    Attributes
+    ----------
+    low_deg, high_deg : float
+        Bin edges, degrees (``low <= el < high``; the last bin includes ``high``).
+    n : int
+        Number of samples.
+    mean, std : float
+        Sample mean and standard deviation (ddof 1), unit of the samples.
+    bias : float
+        Overbound mean (two-step: the median) or paired bias, unit of the samples.
+    sigma : float
+        Overbounding sigma, unit of the samples.
+    inflation : float
+        ``sigma / std`` (dimensionless).
+    """
+
+    low_deg: float
+    high_deg: float
+    n: int
+    mean: float
+    std: float
+    bias: float
+    sigma: float
+    inflation: float
+
+    @property
+    def label(self) -> str:
+        """``"[low, high) deg"``, as used in error messages and tables."""
+        return f"[{self.low_deg:g}, {self.high_deg:g}) deg"
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (floats, ints)."""
+        return {
+            "elevation_deg": [self.low_deg, self.high_deg],
+            "n": self.n,
+            "mean": self.mean,
+            "std": self.std,
+            "bias": self.bias,
+            "sigma": self.sigma,
+            "inflation": self.inflation,
+        }
+
+
+@dataclass(frozen=True)
+class OverboundResult:
+    """Per-bin Gaussian overbounds of a sample distribution.
+
+    Attributes
+    ----------
+    method : str
+        ``"two_step"`` or ``"cdf"``.
+    bins : tuple of BinOverbound
+        One per non-empty elevation bin, in elevation order.
+    unit : str
+        Unit of the samples (for display).
+    min_abs_z : float
+        Core excluded from the bound (see :func:`cdf_overbound_sigma`).
+    samples : dict
+        ``label -> sorted samples`` of each bin (for the Q-Q figure).
+    """
+
+    method: str
+    bins: tuple[BinOverbound, ...]
+    unit: str = "m"
+    min_abs_z: float = DEFAULT_MIN_ABS_Z
+    samples: dict[str, NDArray[np.float64]] = field(default_factory=dict, repr=False)
+
+    @property
+    def sigma(self) -> NDArray[np.float64]:
+        """Overbounding sigma per bin, unit of the samples."""
+        return np.array([b.sigma for b in self.bins])
+
+    @property
+    def inflation(self) -> NDArray[np.float64]:
+        """Inflation factor ``sigma / std`` per bin."""
+        return np.array([b.inflation for b in self.bins])
+
+    @property
+    def counts(self) -> NDArray[np.int64]:
+        """Samples per bin."""
+        return np.array([b.n for b in self.bins], dtype=np.int64)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict: method, unit, ``min_abs_z`` and one entry per bin."""
+        return {
+            "method": self.method,
+            "unit": self.unit,
+            "min_abs_z": self.min_abs_z,
+            "bins": [b.to_dict() for b in self.bins],
+        }
+
+    def summary(self) -> str:
+        """Return a fixed-width table: bin, n, mean, std, bias, sigma, inflation."""
+        head = (
+            f"Gaussian overbound ({self.method}, core |z| < {self.min_abs_z:g} ignored), "
+            f"unit {self.unit}"
+        )
+        rows = [
+            head,
+            f"{'elevation':>16} {'n':>8} {'mean':>9} {'std':>9} {'bias':>9} "
+            f"{'sigma':>9} {'inflation':>9}",
+        ]
+        for b in self.bins:
+            rows.append(
+                f"{b.label:>16} {b.n:>8d} {b.mean:>9.4g} {b.std:>9.4g} {b.bias:>9.4g} "
+                f"{b.sigma:>9.4g} {b.inflation:>9.4f}"
+            )
+        return "\n".join(rows)
+
+
+def overbound_by_elevation(
+    samples: ArrayLike,
+    elevation_deg: ArrayLike | None = None,
+    *,
+    edges_deg: Sequence[float] = DEFAULT_EDGES_DEG,
+    method: str = "two_step",
+    bias: float = 0.0,
+    min_abs_z: float = DEFAULT_MIN_ABS_Z,
+    min_samples: int = 100,
+    unit: str = "m",
+) -> OverboundResult:
+    """Gaussian overbound of ``samples`` in each elevation bin.
+
+    Parameters
+    ----------
+    samples : array_like, shape (n,)
+        Errors (code or carrier multipath, normalised errors, ...), ``unit``.
+    elevation_deg : array_like, shape (n,), optional
+        Elevation of each sample, degrees. ``None``: one bin for all samples.
+    edges_deg : sequence of float, default (5, 15, 30, 45, 60, 90)
+        Increasing bin edges, degrees. Samples outside are ignored; empty
+        bins are skipped.
+    method : {"two_step", "cdf"}, default "two_step"
+        See the module docstring.
+    bias : float, default 0
+        Paired bias of the ``"cdf"`` method, ``unit``.
+    min_abs_z : float, default 0.25
+        Core excluded from the bound.
+    min_samples : int, default 100
+        A non-empty bin with fewer samples raises
+        :class:`~psdbound.errors.InputError` naming the bin.
+    unit : str, default "m"
+        For display only.
+
+    Returns
+    -------
+    OverboundResult
+
+    Raises
+    ------
+    InputError
+        NaN samples or elevations (the bin is named), a bin with too few
+        samples, mismatched lengths, bad edges or method.
+    """
+    if method not in METHODS:
+        raise InputError(f"unknown method {method!r}; choose from {METHODS}")
+    x = np.asarray(samples, dtype=float).reshape(-1)
+    if elevation_deg is None:
+        el = np.full(x.size, 0.0)
+        edges = np.array([-math.inf, math.inf])
+    else:
+        el = np.asarray(elevation_deg, dtype=float).reshape(-1)
+        edges = np.asarray(edges_deg, dtype=float)
+        if el.size != x.size:
+            raise InputError(f"{x.size} samples but {el.size} elevations")
+        if np.isnan(el).any():
+            raise InputError(f"{int(np.isnan(el).sum())} elevation(s) are NaN")
+    if edges.size < 2 or not (np.diff(edges) > 0).all():
+        raise InputError(f"edges_deg must increase, at least 2 values: {list(edges_deg)}")
+    out: list[BinOverbound] = []
+    kept: dict[str, NDArray[np.float64]] = {}
+    last = edges.size - 2
+    for k in range(edges.size - 1):
+        lo, hi = float(edges[k]), float(edges[k + 1])
+        sel = (el >= lo) & ((el <= hi) if k == last else (el < hi))
+        if not sel.any():
+            continue
+        where = "all samples" if elevation_deg is None else f"elevation bin [{lo:g}, {hi:g}) deg"
+        xs = _clean(x[sel], where, min_samples)
+        if method == "two_step":
+            b, s = two_step_overbound(xs, min_abs_z=min_abs_z, min_samples=min_samples)
+        else:
+            b, s = bias, cdf_overbound_sigma(xs, bias=bias, min_abs_z=min_abs_z)
+        std = float(np.std(xs, ddof=1))
+        ob = BinOverbound(
+            low_deg=lo,
+            high_deg=hi,
+            n=int(xs.size),
+            mean=float(xs.mean()),
+            std=std,
+            bias=float(b),
+            sigma=float(s),
+            inflation=float(s / std) if std > 0 else math.inf,
+        )
+        out.append(ob)
+        kept[ob.label] = xs
+    if not out:
+        raise InputError(f"no sample has an elevation inside the edges {list(edges_deg)} deg")
+    return OverboundResult(method, tuple(out), unit, float(min_abs_z), kept)
