@@ -114,11 +114,29 @@ def _default_text(flag: str) -> str | None:
     return f"{text} {unit}".strip()
 
 
+def help_text(action: argparse.Action) -> str:
+    """Return an option's help with its default appended (from :class:`FitConfig`) if unstated.
+
+    Evaluated when the help is printed, so that commands other than ``fit``
+    do not import the pipeline to build their parsers.
+    """
+    text = action.help or ""
+    if action.option_strings and "default" not in text:
+        default = _default_text(action.option_strings[0])
+        if default is not None:
+            text = f"{text} (default: {default})"
+    return text
+
+
+class _DefaultsFormatter(argparse.HelpFormatter):
+    """Help formatter that states every ``fit`` option's default (see :func:`help_text`)."""
+
+    def _get_help_string(self, action: argparse.Action) -> str | None:
+        return help_text(action)
+
+
 def _arg(p: argparse.ArgumentParser, *names: str, **kwargs: Any) -> argparse.Action:
-    """Add an option whose help ends with its default (from :class:`FitConfig`) if not stated."""
-    text = _default_text(names[0]) if names[0].startswith("--") else None
-    if text is not None and "default" not in kwargs.get("help", ""):
-        kwargs["help"] = f"{kwargs.get('help', '')} (default: {text})"
+    """Add a ``fit`` option (its default is stated by the help formatter)."""
     return p.add_argument(*names, **kwargs)
 
 
@@ -126,6 +144,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register the ``fit`` subcommand."""
     p = sub.add_parser(
         "fit",
+        formatter_class=_DefaultsFormatter,
         help="fit a PSD bound to RINEX observations (no files: the demo data)",
         description="Read RINEX observations, isolate carrier-phase multipath (dual-frequency "
         "for one file, dual-antenna for two), window it into stationary pieces, estimate PSDs "

@@ -227,9 +227,28 @@ def cutoff_from_map(
         "f107_source": label,
         "solar": "conservative" if conservative else info["solar"],
         **nearest_map_station(doc, lat, lon),
+        "by_margin": _map_by_margin(doc, lat, lon, f107),
         "warnings": warnings,
     }
     return f_c, out
+
+
+def _map_by_margin(doc: dict[str, Any], lat: float, lon: float,
+                   f107: float) -> list[dict[str, float]]:  # fmt: skip
+    """Return the map's cutoff at every recorded margin below its 1 mm reference.
+
+    Each entry: ``margin_db`` (dB below the reference), ``threshold_m`` (the
+    residual RMS that margin allows, m) and ``f_c_hz`` (interpolated at the
+    receiver as the chosen cutoff is, Hz).
+    """
+    from psdbound.ionosphere.worldmap import interpolate_map
+
+    out = []
+    for m in sorted(float(k) for k in doc["layers"][0]["grid"]["by_margin_hz"]):
+        f_c, _ = interpolate_map(doc, lat, lon, f107, margin_db=m)
+        out.append({"margin_db": m, "threshold_m": DEFAULT_MP_SIGMA_M * 10 ** (-m / 20.0),
+                    "f_c_hz": float(f_c)})  # fmt: skip
+    return out
 
 
 def cutoff_computed(

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["MAX_POINTS", "MAX_PSD_POINTS", "figure_data", "psd_outline"]
+__all__ = ["MAX_POINTS", "MAX_PSD_POINTS", "cutoff_figure", "figure_data", "psd_outline"]
 
 MAX_POINTS = 1500
 #: Points of all arcs of the mapped-series figure together, and the least per arc.
@@ -111,6 +111,68 @@ def _mapped(series: Any, windows: Any) -> list[dict[str, Any]]:
     return out
 
 
+#: Series curves of the cutoff figure kept at most, and points per curve.
+MAX_CUTOFF_CURVES = 200
+MAX_CUTOFF_POINTS = 120
+
+
+def cutoff_figure(d: dict[str, Any]) -> dict[str, Any]:
+    """Check and thin the data of the cutoff figure (``figures.cutoff_envelope``).
+
+    Two forms (every array a list of float of one length per curve):
+
+    Residual criterion (map or computed cutoff):
+        ``f_hz`` (Hz) and ``residual_m`` (m): the residual ionosphere RMS in
+        the fit's series after the high-pass at each cutoff (for a station
+        year the maximum over its series: the curve f_c is read from);
+        ``threshold_m`` (m, the criterion's level); optional ``curves``
+        (list of ``{"f_hz", "residual_m"}``, one per series, drawn grey) and
+        ``label`` (str, what the main curve is).
+    Lomb-Scargle (relative) criterion:
+        ``f_hz`` (Hz), ``psd_m2_hz`` (m^2/Hz), ``envelope_m2_hz`` (m^2/Hz, on
+        ``f_hz``), optional ``maxima_f_hz`` / ``maxima_psd_m2_hz``,
+        ``reference_m2_hz`` and ``threshold_m2_hz`` (m^2/Hz, the reference
+        less ``drop_db``, default 40 dB).
+
+    Parameters
+    ----------
+    d : dict
+        The figure data as the cutoff source gives it.
+
+    Returns
+    -------
+    dict
+        The same data; at most :data:`MAX_CUTOFF_CURVES` series curves of
+        :data:`MAX_CUTOFF_POINTS` points each.
+
+    Raises
+    ------
+    ValueError
+        Neither form, or arrays of different lengths.
+    """
+    out = dict(d)
+    if "residual_m" in d:
+        pairs = [("f_hz", "residual_m")]
+    elif "psd_m2_hz" in d or "psd" in d:
+        pairs = [("f_hz", "psd_m2_hz" if "psd_m2_hz" in d else "psd")]
+        if "envelope_m2_hz" in d:
+            pairs.append(("f_hz", "envelope_m2_hz"))
+    else:
+        raise ValueError("cutoff figure data needs residual_m (residual criterion) or "
+                         "psd_m2_hz (Lomb-Scargle)")  # fmt: skip
+    for fk, vk in pairs:
+        if len(d[fk]) != len(d[vk]):
+            raise ValueError(f"cutoff figure: {fk} and {vk} differ in length")
+    curves = []
+    for c in list(d.get("curves") or [])[:MAX_CUTOFF_CURVES]:
+        sl = _decimate(len(c["f_hz"]), MAX_CUTOFF_POINTS)
+        curves.append({"f_hz": np.asarray(c["f_hz"], dtype=float)[sl],
+                       "residual_m": np.asarray(c["residual_m"], dtype=float)[sl]})  # fmt: skip
+    if curves:
+        out["curves"] = curves
+    return out
+
+
 def _jacobi_anger(expansion: Iterable[Any]) -> dict[str, Any]:
     cases: dict[str, dict[str, Any]] = {}
     for chk in expansion:
@@ -160,7 +222,8 @@ def figure_data(
     interval_s : float
         Sampling interval, s (the bound curve stops at Nyquist).
     cutoff_info : dict, optional
-        Cutoff details; its ``"figure"`` entry (Lomb-Scargle envelope) is used.
+        Cutoff details (``CutoffChoice.info``); its ``"figure"`` entry, when
+        present, becomes ``figures.cutoff_envelope`` (see :func:`cutoff_figure`).
     validation_report : ValidationReport, optional
         Cutoff validation; its expansions give the Jacobi-Anger figure.
     screening : Screening, optional
@@ -184,8 +247,8 @@ def figure_data(
     b = bound_results.bound
     f_grid = np.geomspace(b.f_min_hz, 0.5 / interval_s, 400)
     figures["bound_curve"] = {"f_hz": f_grid, "psd_m2_hz": b.psd(f_grid)}
-    if cutoff_info and "figure" in cutoff_info:
-        figures["cutoff_envelope"] = cutoff_info["figure"]
+    if cutoff_info and cutoff_info.get("figure"):
+        figures["cutoff_envelope"] = cutoff_figure(cutoff_info["figure"])
     if validation_report is not None:
         figures["jacobi_anger"] = _jacobi_anger(validation_report.expansion)
     if screening is not None:

@@ -7,7 +7,7 @@ import re
 
 import pytest
 
-from psdbound.cli.fit import FLAGS
+from psdbound.cli.fit import FLAGS, help_text
 from psdbound.cli.main import build_parser
 from psdbound.pipeline import FitConfig
 
@@ -30,7 +30,7 @@ def _actions():
                          ids=lambda x: x if isinstance(x, str) else "/".join(
                              x.option_strings) or x.dest)  # fmt: skip
 def test_help_states_default_and_unit(command, action):
-    h = " ".join((action.help or "").split())
+    h = " ".join((help_text(action) if command == "fit" else action.help or "").split())
     assert h, f"{command} {action.dest}: no help"
     assert re.search(r"default|required", h), f"{command} {action.option_strings}: {h!r}"
     if action.type in (int, float):
@@ -50,7 +50,7 @@ def test_fit_help_defaults_are_the_library_defaults():
         value = getattr(getattr(cfg, section), name)
         if value is None or isinstance(value, bool) or value == ():
             continue
-        m = re.search(r"\(default: ([^)]*)\)", fit[flag].help)
+        m = re.search(r"\(default: ([^)]*)\)", help_text(fit[flag]))
         assert m, flag
         stated = m.group(1).split()[0]
         if isinstance(value, float):
