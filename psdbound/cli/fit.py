@@ -135,11 +135,6 @@ class _DefaultsFormatter(argparse.HelpFormatter):
         return help_text(action)
 
 
-def _arg(p: argparse.ArgumentParser, *names: str, **kwargs: Any) -> argparse.Action:
-    """Add a ``fit`` option (its default is stated by the help formatter)."""
-    return p.add_argument(*names, **kwargs)
-
-
 def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register the ``fit`` subcommand."""
     p = sub.add_parser(
@@ -156,73 +151,73 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "Exit codes: 0 bounded; 3 ran but no trustworthy bound (verdict not-bounded: reasons "
         "printed, outputs written); 2 bad input (nothing written); 1 internal error.",
     )
-    _arg(p, "obs", nargs="*",
+    p.add_argument("obs", nargs="*",
                    help="observation file(s) of one station (consecutive files are merged), or "
                    "of the two antennas named by --pair (default: none, the embedded demo)")
-    _arg(p, "--nav", help="navigation (RINEX 2/3) or SP3 file (required with OBS)")
-    _arg(p, "--config", help="TOML configuration file (default: none)")
-    _arg(p, "--method", choices=("auto", "df", "da"),
+    p.add_argument("--nav", help="navigation (RINEX 2/3) or SP3 file (required with OBS)")
+    p.add_argument("--config", help="TOML configuration file (default: none)")
+    p.add_argument("--method", choices=("auto", "df", "da"),
                    help="isolation method: df dual-frequency, da dual-antenna, auto by the inputs")
-    _arg(p, "--system", help="satellite system letter")
-    _arg(p, "--signals", help="dual-frequency phase pair, e.g. L1C,L2W or L1C,L5Q "
+    p.add_argument("--system", help="satellite system letter")
+    p.add_argument("--signals", help="dual-frequency phase pair, e.g. L1C,L2W or L1C,L5Q "
                    "(default: the system's usual pair, GPS L1C,L2W)")
-    _arg(p, "--da-signal", help="dual-antenna phase code")
-    _arg(p, "--pair", nargs=2, metavar=("A", "B"),
+    p.add_argument("--da-signal", help="dual-antenna phase code")
+    p.add_argument("--pair", nargs=2, metavar=("A", "B"),
                    help="dual-antenna pair: antenna A and antenna B, each a station (marker) "
                    "name among OBS or an observation file (default: none)")
-    _arg(p, "--position-a", nargs=3, type=float, metavar=("X", "Y", "Z"),
+    p.add_argument("--position-a", nargs=3, type=float, metavar=("X", "Y", "Z"),
                    help="ECEF position of the (first) antenna, m (default: the header's)")
-    _arg(p, "--position-b", nargs=3, type=float, metavar=("X", "Y", "Z"),
+    p.add_argument("--position-b", nargs=3, type=float, metavar=("X", "Y", "Z"),
                    help="ECEF position of antenna B of a pair, m (default: the header's)")
-    _arg(p, "--baseline", choices=("auto", "estimate", "given"),
+    p.add_argument("--baseline", choices=("auto", "estimate", "given"),
                    help="dual-antenna baseline: auto uses the estimate from the double "
                    "differences when it moves antenna B by more than --baseline-tolerance-m and "
                    "3 standard errors; estimate always; given keeps the positions")
-    _arg(p, "--baseline-tolerance-m", type=float,
+    p.add_argument("--baseline-tolerance-m", type=float,
                    help="correction above which --baseline auto uses the estimate, m")
-    _arg(p, "--cutoff-hz", type=float, help="high-pass cutoff frequency, Hz (default: "
+    p.add_argument("--cutoff-hz", type=float, help="high-pass cutoff frequency, Hz (default: "
                    "none; the cutoff comes from --cutoff-source)")
-    _arg(p, "--cutoff-source", choices=("auto", "given", "map", "computed", "thesis"),
+    p.add_argument("--cutoff-source", choices=("auto", "given", "map", "computed", "thesis"),
                    help="cutoff source (auto: --cutoff-hz if given, else the shipped world map)")
-    _arg(p, "--min-arc-min", type=float, help="minimum arc length, min")
-    _arg(p, "--elevation-mask-deg", type=float, help="elevation mask, deg")
-    _arg(p, "--roti-threshold", type=float,
+    p.add_argument("--min-arc-min", type=float, help="minimum arc length, min")
+    p.add_argument("--elevation-mask-deg", type=float, help="elevation mask, deg")
+    p.add_argument("--roti-threshold", type=float,
                    help="screening: ROTI above this is ionosphere, TECU/min")
-    _arg(p, "--filter", choices=("butter", "cheby2", "fir"), help="high-pass design")
-    _arg(p, "--filter-order", type=float, help="IIR filter order, 1 to 20 (dimensionless)")
-    _arg(p, "--edge", choices=("trim", "pad"), help="filter edge handling")
-    _arg(p, "--mapping", help="elevation mapping: thesis, fit, or a,b,c (a, b "
+    p.add_argument("--filter", choices=("butter", "cheby2", "fir"), help="high-pass design")
+    p.add_argument("--filter-order", type=float, help="IIR filter order, 1 to 20 (dimensionless)")
+    p.add_argument("--edge", choices=("trim", "pad"), help="filter edge handling")
+    p.add_argument("--mapping", help="elevation mapping: thesis, fit, or a,b,c (a, b "
                    "dimensionless, c in deg) (default: fit, fitted to the data)")
-    _arg(p, "--stationarity", choices=("spectral", "thesis"),
+    p.add_argument("--stationarity", choices=("spectral", "thesis"),
                    help="stationarity test: spectral homogeneity of the window halves, valid "
                    "for correlated samples, or thesis (Levene then K-S)")
-    _arg(p, "--windows", choices=("disjoint", "slide"),
+    p.add_argument("--windows", choices=("disjoint", "slide"),
                    help="windows: disjoint tiles (needed by --rule pooled) or the thesis's "
                    "overlapping slide rule")
-    _arg(p, "--alpha", type=float, help="stationarity significance level (probability)")
-    _arg(p, "--p-slide", type=float, help="windowing slide coefficient (dimensionless)")
-    _arg(p, "--p-trim", type=float, help="windowing trim coefficient (dimensionless)")
-    _arg(p, "--min-window-s", type=float,
+    p.add_argument("--alpha", type=float, help="stationarity significance level (probability)")
+    p.add_argument("--p-slide", type=float, help="windowing slide coefficient (dimensionless)")
+    p.add_argument("--p-trim", type=float, help="windowing trim coefficient (dimensionless)")
+    p.add_argument("--min-window-s", type=float,
                    help="minimum window length, s; the spectral test needs at least 68 samples "
                    "(34 min at 30 s), a shorter value is an error")
-    _arg(p, "--estimator", choices=("multitaper", "welch", "blackman-tukey"),
+    p.add_argument("--estimator", choices=("multitaper", "welch", "blackman-tukey"),
                    help="PSD estimator")
-    _arg(p, "--rule", choices=("pooled", "envelope"),
+    p.add_argument("--rule", choices=("pooled", "envelope"),
                    help="bound pooled confidence limits of the windows' spectra or the thesis's "
                    "envelope of every window's PSD (use with --windows slide)")
-    _arg(p, "--confidence-level", type=float,
+    p.add_argument("--confidence-level", type=float,
                    help="family-wise confidence of the pooled bound (probability)")
-    _arg(p, "--coverage", type=float,
+    p.add_argument("--coverage", type=float,
                    help="pooled rule: fraction of differing windows covered (probability)")
-    _arg(p, "--objective", choices=("variance", "area"), help="tightness objective")
-    _arg(p, "--target", choices=("point", "upper"),
+    p.add_argument("--objective", choices=("variance", "area"), help="tightness objective")
+    p.add_argument("--target", choices=("point", "upper"),
                    help="envelope rule: bound the estimates or their confidence-interval tops")
-    _arg(p, "--level", type=float,
+    p.add_argument("--level", type=float,
                    help="envelope rule: confidence level for --target upper (probability)")
-    _arg(p, "--geometry", action="append",
+    p.add_argument("--geometry", action="append",
                    help="reflection geometry for the cutoff check, e.g. wall:d=25 (d, h in m; "
                    "repeatable)")
-    _arg(p, "--validation-threshold", type=float,
+    p.add_argument("--validation-threshold", type=float,
                    help="largest fraction of reflector multipath power below f_c (fraction)")
     add_output_options(p)
     p.set_defaults(func=run)

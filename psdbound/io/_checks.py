@@ -11,6 +11,7 @@ the type list's header line.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
@@ -41,6 +42,25 @@ def _wavelengths(block: RawBlock, code: str, header: ObsHeader) -> np.ndarray:
     return out
 
 
+def range_reference(codes: Sequence[str], phase_code: str) -> str | None:
+    """Return the pseudorange a phase is compared with: first of its band, else the first.
+
+    Parameters
+    ----------
+    codes : sequence of str
+        Observation codes, in the file's order.
+    phase_code : str
+        The phase code (``L..``).
+
+    Returns
+    -------
+    str or None
+        A ``C``/``P`` code of ``codes``; None when there is none.
+    """
+    ranges = [c for c in codes if c[0] in "CP"]
+    return next((c for c in ranges if c[1] == phase_code[1]), ranges[0] if ranges else None)
+
+
 def check_phase_rates(
     t_gps_s: np.ndarray, blocks: dict[str, RawBlock], header: ObsHeader, path: Path
 ) -> None:
@@ -66,13 +86,12 @@ def check_phase_rates(
     """
     dt = np.diff(t_gps_s)
     for system, b in blocks.items():
-        codes = [k for k, c in enumerate(b.codes) if c[0] in "CP"]
-        if not codes or b.values.shape[0] < 2:
+        if not any(c[0] in "CP" for c in b.codes) or b.values.shape[0] < 2:
             continue
         for k, code in enumerate(b.codes):
             if code[0] != "L":
                 continue
-            j = next((c for c in codes if b.codes[c][1] == code[1]), codes[0])
+            j = b.codes.index(range_reference(b.codes, code))
             lam = _wavelengths(b, code, header)
             phase = b.values[:, :, k] * lam[None, :]
             rng = b.values[:, :, j]

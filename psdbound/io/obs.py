@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 from psdbound.common.notices import warn
 from psdbound.errors import InputError, NoDataError
 from psdbound.io._body import RawBlock, parse_v2, parse_v3
-from psdbound.io._checks import check_phase_rates
+from psdbound.io._checks import check_phase_rates, range_reference
 from psdbound.io._header import ObsHeader
 from psdbound.io._header import parse_header as _parse_header
 from psdbound.io._source import read_bytes
@@ -263,9 +263,9 @@ def _with_reference_codes(
     """Return the codes to read: the wanted ones and the pseudoranges the column check uses.
 
     :func:`psdbound.io._checks.check_phase_rates` compares every phase with
-    the first pseudorange of its band (else the first pseudorange): reading
-    those too makes a damaged type list as detectable with ``codes`` as
-    without.
+    the pseudorange :func:`~psdbound.io._checks.range_reference` picks from
+    the file's type list: reading it too makes a damaged type list as
+    detectable with ``codes`` as without.
     """
     if codes is None:
         return None
@@ -273,10 +273,10 @@ def _with_reference_codes(
     for s, types in header.obs_types.items():
         if systems is not None and s not in systems:
             continue
-        ranges = [c for c in types if c[0] in "CP"]
         for c in types:
-            if c in codes and c[0] == "L":
-                out.update([r for r in ranges if r[1] == c[1]] or ranges[:1])
+            ref = range_reference(types, c) if c in codes and c[0] == "L" else None
+            if ref is not None:
+                out.add(ref)
     return out
 
 

@@ -55,6 +55,7 @@ from psdbound.errors import InputError
 from psdbound.io.options import ArcOptions
 from psdbound.ionosphere.policy import CUTOFF_SOURCES, CutoffOptions
 from psdbound.isolation import HighPass
+from psdbound.isolation.dual_antenna import BASELINE_MODES, BASELINE_TOLERANCE_M
 from psdbound.pipeline.verdict import VerdictOptions
 from psdbound.screening import ScreeningOptions
 from psdbound.spectra.options import BoundOptions, SpectraOptions, check_estimator_options
@@ -140,8 +141,8 @@ class InputsConfig:
     )  # fmt: skip
     position_a_m: tuple[float, float, float] | None = option(None, _Position(optional=True))
     position_b_m: tuple[float, float, float] | None = option(None, _Position(optional=True))
-    baseline: str = option("auto", Choice(("auto", "estimate", "given"), noun="baseline mode"))
-    baseline_tolerance_m: float = option(0.005, Number(lo=0.0, hi=1000.0, unit="m"))
+    baseline: str = option("auto", Choice(BASELINE_MODES, noun="baseline mode"))
+    baseline_tolerance_m: float = option(BASELINE_TOLERANCE_M, Number(lo=0.0, hi=1000.0, unit="m"))
 
     def __post_init__(self) -> None:
         check_fields(self)
