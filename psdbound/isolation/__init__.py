@@ -4,6 +4,9 @@ Public surface:
 
 * :func:`isolate_dual_frequency` (arcs -> :class:`MultipathSeries`)
 * :func:`isolate_dual_antenna` (two observation files -> :class:`MultipathSeries`)
+* :func:`isolate_code_multipath` (observations -> code multipath by carrier
+  levelling, one code or ionosphere-free pair, as a :class:`MultipathSeries`),
+  :func:`rms_by_satellite`, :func:`level_shifts` (steps that split a levelling arc)
 * :func:`estimate_baseline_correction`, :func:`baseline_note` (the dual-antenna
   baseline from the double differences)
 * :class:`HighPass` (zero-phase high-pass designs and edge handling)
@@ -19,6 +22,7 @@ from psdbound.isolation.baseline import (
     baseline_note,
     estimate_baseline_correction,
 )
+from psdbound.isolation.code import isolate_code_multipath, level_shifts, rms_by_satellite
 from psdbound.isolation.dual_antenna import DA_SCALING, isolate_dual_antenna
 from psdbound.isolation.dual_frequency import DF_SCALING, isolate_dual_frequency
 from psdbound.isolation.filters import FILTER_KINDS, HighPass
@@ -37,6 +41,9 @@ __all__ = [
     "baseline_note",
     "estimate_baseline_correction",
     "filter_safety_check",
+    "isolate_code_multipath",
+    "level_shifts",
     "isolate_dual_antenna",
     "isolate_dual_frequency",
+    "rms_by_satellite",
 ]

@@ -59,11 +59,15 @@ class MultipathSeries:
     Attributes
     ----------
     method : str
-        ``"DF"`` (dual-frequency) or ``"DA"`` (dual-antenna double difference).
+        ``"DF"`` (dual-frequency), ``"DA"`` (dual-antenna double difference),
+        ``"CODE"`` (code multipath, MP combination) or ``"CODE-IF"``
+        (ionosphere-free code minus carrier); the code series are not
+        filtered and may have holes where a pseudorange is missing.
     t_gps_s : ndarray of float64
         Epochs, GPS seconds.
     value_m : ndarray of float64
-        Multipath scaled to one signal, metres (DF divided by sqrt(2), DA by 2).
+        Multipath scaled to one signal, metres (DF divided by sqrt(2), DA by 2,
+        code series not scaled).
     elevation_deg : ndarray of float64
         Elevation in degrees (DA: the lower of the two satellites).
     arc_id : ndarray of int
@@ -73,7 +77,8 @@ class MultipathSeries:
     signals : tuple of str
         Signals used (DF: the pair; DA: the one signal).
     scaling : float
-        Factor applied to the raw combination (1/sqrt(2) for DF, 1/2 for DA).
+        Factor applied to the raw combination (1/sqrt(2) for DF, 1/2 for DA,
+        1 for code).
     interval_s : float
         Sampling interval, seconds.
     cutoff_hz : float or None
