@@ -39,6 +39,7 @@ VPL (eqs. 11-12) is ``max_k |S_vert,k| x P_k + K_md sqrt(...)``.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -85,6 +86,13 @@ K_FFMD: dict[int, float] = {2: 5.762, 3: 5.810, 4: 5.847}
 K_MD: dict[int, float] = {2: 2.935, 3: 2.898, 4: 2.878}
 R_EARTH_M = 6378136.3
 H_IONO_M = 350e3
+
+
+@functools.lru_cache(maxsize=64)
+def _xi(tau_gnd_s: float, tau_air_s: float, tau_corr_s: float, formula: str) -> tuple[float, float]:
+    """``xi`` of the ground and airborne smoothing (cached: a VPL series asks per epoch)."""
+    g, a = smoothing_time_ratio([tau_gnd_s, tau_air_s], tau_corr_s=tau_corr_s, formula=formula)
+    return float(g), float(a)
 
 
 def _el(elevation_deg: ArrayLike) -> NDArray[np.float64]:
@@ -320,9 +328,7 @@ def error_budget(
         k_f, k_iono = L5_TO_L1_SIGMA, (F_L1_HZ / F_L5_HZ) ** 2
     else:
         k_f, k_iono = 1.0, 1.0
-    xi_g, xi_a = smoothing_time_ratio(
-        [tau_gnd_s, tau_air_s], tau_corr_s=tau_corr_s, formula=xi_formula
-    )
+    xi_g, xi_a = _xi(float(tau_gnd_s), float(tau_air_s), float(tau_corr_s), xi_formula)
     g = ground_sigma_pr_m(el, gad)
     c_rho = 1.0 + (2.0 if rho_formula == "seed" else 1.0) * rho * (n_receivers - 1)
     others = np.sum(g**2) - g**2

@@ -15,6 +15,7 @@ from __future__ import annotations
 import io
 import json
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -100,7 +101,8 @@ def _qq_png(result: OverboundResult) -> bytes:
     return buf.getvalue()
 
 
-def write_overbound(result: OverboundResult, out: str | Path) -> list[Path]:
+def write_overbound(result: OverboundResult, out: str | Path, *,
+                    extra: dict[str, Any] | None = None) -> list[Path]:  # fmt: skip
     """Write ``result.json`` and ``overbound_qq.png`` into ``out`` (atomically).
 
     Parameters
@@ -108,6 +110,9 @@ def write_overbound(result: OverboundResult, out: str | Path) -> list[Path]:
     result : OverboundResult
     out : str or Path
         Existing, writable folder.
+    extra : dict, optional
+        More top-level sections of ``result.json`` (e.g. ``code_multipath``:
+        how the samples were computed).
 
     Returns
     -------
@@ -115,7 +120,7 @@ def write_overbound(result: OverboundResult, out: str | Path) -> list[Path]:
         The files written.
     """
     folder = Path(out)
-    doc = {"overbound": result.to_dict()}
+    doc = {**(extra or {}), "overbound": result.to_dict()}
     j = atomic_write_text(folder / "result.json", json.dumps(doc, indent=2) + "\n")
     png = atomic_write_bytes(folder / "overbound_qq.png", _qq_png(result))
     return [Path(j), Path(png)]

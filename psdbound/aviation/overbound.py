@@ -267,6 +267,35 @@ class OverboundResult:
             "bins": [b.to_dict() for b in self.bins],
         }
 
+    def qq_points(self, max_points: int = 400) -> dict[str, dict[str, list[float]]]:
+        """Q-Q points of each bin, thinned for plotting: every tail point is kept.
+
+        The plotting positions are ``z_i = Phi^-1((i - 1/2) / n)``. Points
+        are chosen evenly in ``z`` (not in rank), so the few extreme samples
+        that decide the overbound are always drawn while the dense core is
+        thinned.
+
+        Parameters
+        ----------
+        max_points : int, default 400
+            Points per bin at most (about; the extremes are always kept).
+
+        Returns
+        -------
+        dict
+            ``label -> {"z": [...], "x": [...]}`` (``x`` in :attr:`unit`).
+        """
+        out: dict[str, dict[str, list[float]]] = {}
+        for b in self.bins:
+            x = np.sort(self.samples[b.label])
+            z = norm.ppf((np.arange(1, x.size + 1) - 0.5) / x.size)
+            if x.size > max_points:
+                grid = np.linspace(z[0], z[-1], max_points)
+                idx = np.unique(np.r_[0, np.searchsorted(z, grid).clip(0, x.size - 1), x.size - 1])
+                z, x = z[idx], x[idx]
+            out[b.label] = {"z": z.tolist(), "x": x.tolist()}
+        return out
+
     def summary(self) -> str:
         """Return a fixed-width table: bin, n, mean, std, bias, sigma, inflation."""
         head = (

@@ -232,6 +232,9 @@ def run_campaign(
     from psdbound.compute import DiskCache, cache_key, default_cache_dir, run_tasks
     from psdbound.version import __version__
 
+    if (options or {}).get("code_multipath", {}).get("codes"):
+        raise InputError("[code_multipath] is a fit option: a campaign pools the carrier-phase "
+                         "bounds only; run `psdbound fit --code-multipath` per day, or remove it")
     plan = plan_campaign(obs, nav)
     items = []
     for sd in plan:

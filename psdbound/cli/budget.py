@@ -1,18 +1,36 @@
-"""``psdbound budget``: the LADGNSS error budget and VPL of one satellite geometry (seed 004).
+"""``psdbound budget``: the LADGNSS error budget and VPL of a satellite geometry (seed 004).
 
-Registered by :mod:`psdbound.cli.main` through :func:`add_parser`; prints
-:func:`psdbound.aviation.budget_report` (per-satellite ground, airborne,
-ionosphere and troposphere sigmas and the fault-free / ephemeris VPLs).
+Registered by :mod:`psdbound.cli.main` through :func:`add_parser`. Two modes:
+
+``--sat AZ,EL`` (repeated)
+    One geometry: prints :func:`psdbound.aviation.budget_report` (per-satellite
+    ground, airborne, ionosphere and troposphere sigmas and the fault-free /
+    ephemeris VPLs).
+``--nominal {G,E,GE}`` or ``--nav FILE``, with ``--position LAT,LON,H``
+    The geometry over time (seed 004 section 4): the satellites above
+    ``--mask-deg`` every ``--step-s`` for ``--hours`` from ``--start``
+    (:func:`psdbound.aviation.sky_over`), the VPLs per epoch
+    (:func:`psdbound.aviation.vpl_series`); prints the summary and, with
+    ``--out``, writes ``vpl.json`` and ``vpl.png``.
 """
 
 from __future__ import annotations
 
 import argparse
+import datetime as dt
+import math
 from typing import Any
 
 from psdbound.errors import InputError
 
 __all__ = ["add_parser", "run"]
+
+#: Most epochs one run evaluates (--hours * 3600 / --step-s).
+MAX_EPOCHS = 100_000
+_SERIES_OPTIONS = {"position": "--position", "start": "--start", "hours": "--hours",
+                   "step_s": "--step-s", "mask_deg": "--mask-deg", "val_m": "--val-m",
+                   "out": "--out", "systems": "--systems"}  # fmt: skip
+_SYSTEM_NAMES = {"G": "GPS (G)", "E": "Galileo (E)"}
 
 
 def add_parser(subparsers: Any) -> None:
@@ -27,16 +45,32 @@ def add_parser(subparsers: Any) -> None:
         "budget",
         help="LADGNSS error budget and vertical protection level for a geometry",
         description="Seed 004 error budget (GAD ground, AAD-A airborne, ionosphere, "
-        "troposphere) vs elevation and smoothing time, and VPL_H0 / VPL_eph.",
-        epilog="example: psdbound budget --sat 10,12 --sat 80,25 --sat 150,38 "
-        "--sat 200,47 --sat 260,60 --tau-gnd 30 --tau-air 30",
+        "troposphere) vs elevation and smoothing time, and VPL_H0 / VPL_eph: of one "
+        "geometry (--sat), or over time for the nominal constellations (--nominal) or a "
+        "navigation/SP3 file (--nav) seen from --position.",
+        epilog="examples: psdbound budget --sat 10,12 --sat 80,25 --sat 150,38 "
+        "--sat 200,47 --sat 260,60 --tau-gnd 30 --tau-air 30; "
+        "psdbound budget --nominal GE --position 55.49,8.46,59 --val-m 10 --out vpl/",
     )
-    p.add_argument(
+    mode = p.add_mutually_exclusive_group()
+    mode.add_argument(
         "--sat",
         action="append",
         default=[],
         metavar="AZ,EL",
-        help="satellite azimuth,elevation in deg, repeatable (required, at least 4)",
+        help="satellite azimuth,elevation in deg, repeatable (required, at least 4, "
+        "unless --nominal or --nav)",
+    )
+    mode.add_argument(
+        "--nominal",
+        choices=("G", "E", "GE"),
+        help="VPL over time for the nominal GPS 24-slot / Galileo Walker 24/3/1 "
+        "constellations (default: none)",
+    )
+    mode.add_argument(
+        "--nav",
+        metavar="FILE",
+        help="VPL over time for the orbits of a RINEX navigation or SP3 file (default: none)",
     )
     p.add_argument(
         "--process",
@@ -71,7 +105,47 @@ def add_parser(subparsers: Any) -> None:
     p.add_argument(
         "--x-air-km", type=float, default=5.0, help="distance to reference, km (default: 5)"
     )
+    s = p.add_argument_group("over time (--nominal, --nav)")
+    s.add_argument(
+        "--position",
+        metavar="LAT,LON,H",
+        help="user position: geodetic latitude and longitude in deg, WGS84 height in m "
+        "(required with --nominal/--nav)",
+    )
+    s.add_argument(
+        "--systems",
+        choices=("G", "E", "GE"),
+        help="systems of the --nav file to use (default: GE; --nominal names its own)",
+    )
+    s.add_argument(
+        "--start",
+        metavar="ISO",
+        help="first epoch, ISO date-time in GPS time (default: 2009-01-01T00:00:00, seed "
+        "004's, for --nominal; for --nav 00:00 of the first whole day the file covers, "
+        "else its first record time)",
+    )
+    s.add_argument("--hours", type=float, help="duration, h (default: 24)")
+    s.add_argument("--step-s", type=float, help="time between epochs, s (default: 300)")
+    s.add_argument("--mask-deg", type=float, help="elevation mask, deg (default: 5)")
+    s.add_argument(
+        "--val-m",
+        type=float,
+        help="vertical alert limit, m: prints the availability (default: none)",
+    )
+    s.add_argument("--out", help="folder for vpl.json and vpl.png (default: none)")
     p.set_defaults(func=run)
+
+
+def _budget_options(args: argparse.Namespace) -> dict[str, Any]:
+    return {
+        "process": args.process,
+        "base_frequency": args.frequency,
+        "tau_gnd_s": args.tau_gnd,
+        "tau_air_s": args.tau_air,
+        "gad": args.gad,
+        "rho": args.rho,
+        "x_air_m": 1000.0 * args.x_air_km,
+    }
 
 
 def run(args: argparse.Namespace) -> int:
@@ -90,8 +164,17 @@ def run(args: argparse.Namespace) -> int:
     Raises
     ------
     InputError
-        Malformed ``--sat``, fewer than 4 satellites, bad options or geometry.
+        Malformed ``--sat`` or ``--position``, fewer than 4 satellites, a
+        ``--nav`` file without the systems or a ``--start`` outside its span,
+        bad options or geometry.
     """
+    if getattr(args, "nominal", None) or getattr(args, "nav", None):
+        return _run_series(args)
+    given = [f for name, f in _SERIES_OPTIONS.items() if getattr(args, name, None) is not None]
+    if given:
+        verb = "applies" if len(given) == 1 else "apply"
+        raise InputError(f"{', '.join(given)} {verb} only to --nominal / --nav, not to --sat")
+    _check_receivers(args.receivers)
     from psdbound.aviation import budget_report
 
     az, el = [], []
@@ -103,19 +186,162 @@ def run(args: argparse.Namespace) -> int:
         az.append(a)
         el.append(e)
     if len(el) < 4:
-        raise InputError(f"give at least 4 --sat AZ,EL (got {len(el)})")
-    print(
-        budget_report(
-            az,
-            el,
-            n_receivers=args.receivers,
-            process=args.process,
-            base_frequency=args.frequency,
-            tau_gnd_s=args.tau_gnd,
-            tau_air_s=args.tau_air,
-            gad=args.gad,
-            rho=args.rho,
-            x_air_m=1000.0 * args.x_air_km,
+        more = "" if el else ", or --nominal / --nav with --position for the VPL over time"
+        raise InputError(f"give at least 4 --sat AZ,EL (got {len(el)}){more}")
+    n_receivers = args.receivers
+    print(budget_report(az, el, n_receivers=n_receivers, **_budget_options(args)))
+    return 0
+
+
+def _check_receivers(m: int) -> None:
+    from psdbound.aviation import K_FFMD
+
+    if m not in K_FFMD:
+        raise InputError(f"--receivers {m}: K multipliers are tabulated for M = "
+                         f"{', '.join(map(str, sorted(K_FFMD)))} only")  # fmt: skip
+
+
+def _position(text: str | None) -> tuple[float, float, float]:
+    """``--position LAT,LON,H`` -> degrees, degrees, metres."""
+    if text is None:
+        raise InputError("--position LAT,LON,H is required with --nominal / --nav")
+    try:
+        lat, lon, h = (float(v) for v in text.split(","))
+    except ValueError:
+        raise InputError(
+            f"--position {text!r}: expected LAT,LON,H (deg, deg, m), e.g. 55.49,8.46,59"
+        ) from None
+    if not (math.isfinite(lat) and -90.0 <= lat <= 90.0):
+        raise InputError(f"--position {text!r}: latitude {lat} deg is outside [-90, 90]")
+    if not (math.isfinite(lon) and -180.0 <= lon <= 360.0):
+        raise InputError(f"--position {text!r}: longitude {lon} deg is outside [-180, 360]")
+    if not (math.isfinite(h) and -1000.0 <= h <= 100_000.0):
+        raise InputError(f"--position {text!r}: height {h} m is outside [-1000, 100000]")
+    return lat, lon, h
+
+
+def _start(text: str) -> float:
+    """``--start ISO`` (GPS time label, no time zone) -> GPS seconds."""
+    from psdbound.io.timescales import calendar_to_gps_s
+
+    try:
+        t = dt.datetime.fromisoformat(text)
+    except ValueError:
+        t = None
+    if t is None or t.tzinfo is not None:
+        raise InputError(
+            f"--start {text!r}: expected an ISO date-time in GPS time without a time zone, "
+            "e.g. 2009-01-01T00:00:00"
         )
+    sec = t.second + t.microsecond * 1e-6
+    return float(calendar_to_gps_s(t.year, t.month, t.day, t.hour, t.minute, sec))
+
+
+def _label(t_gps_s: float) -> str:
+    from psdbound.io.timescales import gps_s_to_datetime64
+
+    return str(gps_s_to_datetime64(t_gps_s).astype("datetime64[s]")).replace("T", " ")
+
+
+def _positive(value: float | None, default: float, flag: str, unit: str) -> float:
+    """``value`` (or the default when None) if finite and > 0, else an error naming ``flag``."""
+    v = default if value is None else value
+    if not (math.isfinite(v) and v > 0):
+        raise InputError(f"{flag} must be > 0 {unit}, got {v:g}")
+    return v
+
+
+def _nav_orbit(path: str, systems: str, start: str | None) -> tuple[Any, tuple[float, float]]:
+    """Read ``--nav``, check the systems and the start; return the orbit, (start, span end)."""
+    from psdbound.io import PreciseOrbit, read_orbit
+
+    orbit = read_orbit(path)
+    missing = [c for c in systems if c not in orbit.systems]
+    if not missing and not isinstance(orbit, PreciseOrbit):
+        missing = [c for c in systems if orbit.reference_times_gps_s(c).size == 0]
+    if missing:
+        names = ", ".join(_SYSTEM_NAMES[c] for c in missing)
+        raise InputError(
+            f"no {names} orbits for --systems {systems}; the file has "
+            f"{', '.join(orbit.systems) or 'none'} (use --systems)",
+            path=path,
+        )
+    if isinstance(orbit, PreciseOrbit):
+        lo, hi = float(orbit.t_gps_s[0]), float(orbit.t_gps_s[-1])
+        first, what = lo, "its epochs"
+    else:
+        toes = [orbit.reference_times_gps_s(c) for c in systems]
+        valid = max(orbit.validity_s(c) for c in systems)
+        first = min(float(t[0]) for t in toes)
+        lo, hi = first - valid, max(float(t[-1]) for t in toes) + valid
+        what = f"its healthy records' reference times +- {valid / 3600:g} h validity"
+    midnight = math.ceil(lo / 86400.0) * 86400.0  # GPS seconds count from a midnight
+    first = midnight if midnight + 86400.0 <= hi else first  # the first whole day covered
+    t0 = first if start is None else _start(start)
+    if not lo <= t0 <= hi:
+        raise InputError(
+            f"--start {_label(t0)} is outside the span of the file for systems {systems}: "
+            f"{_label(lo)} to {_label(hi)} GPS time ({what})",
+            path=path,
+        )
+    return orbit, (t0, hi)
+
+
+def _run_series(args: argparse.Namespace) -> int:
+    """``--nominal`` / ``--nav``: the VPL over time."""
+    from psdbound.aviation import (
+        SEED004_START_GPS_S,
+        nominal_orbit,
+        sky_over,
+        vpl_series,
+        write_vpl_series,
     )
+    from psdbound.common.notices import warn
+    from psdbound.common.outputs import check_writable_folder
+    from psdbound.io.geometry import geodetic_to_ecef
+
+    lat, lon, h = _position(args.position)
+    _check_receivers(args.receivers)
+    hours = _positive(args.hours, 24.0, "--hours", "h")
+    step = _positive(args.step_s, 300.0, "--step-s", "s")
+    mask = 5.0 if args.mask_deg is None else args.mask_deg
+    if not 0.0 <= mask < 90.0:
+        raise InputError(f"--mask-deg must be in [0, 90) deg, got {mask:g}")
+    if args.val_m is not None:
+        _positive(args.val_m, 0.0, "--val-m", "m")
+    n_epochs = math.ceil(hours * 3600.0 / step)
+    if n_epochs > MAX_EPOCHS:
+        raise InputError(
+            f"--hours {hours:g} at --step-s {step:g} gives {n_epochs} epochs; at most "
+            f"{MAX_EPOCHS} (raise --step-s)"
+        )
+    if args.out:
+        check_writable_folder(args.out, option="--out")
+    if args.nominal:
+        if args.systems:
+            raise InputError("--systems applies to --nav; --nominal names the constellations")
+        systems = args.nominal
+        t0 = SEED004_START_GPS_S if args.start is None else _start(args.start)
+        orbit, end = nominal_orbit(systems, start_gps_s=t0, duration_s=hours * 3600.0), math.inf
+    else:
+        systems = args.systems or "GE"
+        orbit, (t0, end) = _nav_orbit(args.nav, systems, args.start)
+    t = [t0 + step * k for k in range(n_epochs)]
+    if t[-1] > end:
+        warn(
+            f"epochs after {_label(end)} GPS are beyond the --nav file's span: no orbit, "
+            f"they count as unavailable"
+        )
+    rx = geodetic_to_ecef(lat, lon, h)
+    sky = sky_over(orbit, rx, t, systems=systems, elevation_mask_deg=mask)
+    series = vpl_series(sky, n_receivers=args.receivers, **_budget_options(args))
+    print(
+        f"user at {lat:.4f} deg N, {lon:.4f} deg E, {h:g} m; {args.process} "
+        f"{args.frequency}, tau {args.tau_gnd:g}/{args.tau_air:g} s, GAD-{args.gad}, "
+        f"M = {args.receivers}, rho = {args.rho:g}, x_air = {args.x_air_km:g} km"
+    )
+    print(series.summary(val_m=args.val_m))
+    if args.out:
+        for f in write_vpl_series(series, args.out, val_m=args.val_m):
+            print(f"wrote {f}")
     return 0

@@ -61,6 +61,9 @@ FLAGS: dict[tuple[str, str], str] = {
     ("bound", "level"): "--level",
     ("validation", "geometries"): "--geometry",
     ("validation", "threshold"): "--validation-threshold",
+    ("code_multipath", "codes"): "--code-multipath",
+    ("code_multipath", "edges_deg"): "--code-edges-deg",
+    ("code_multipath", "method"): "--code-overbound",
     ("output", "out"): "--out",
     ("output", "name"): "--name",
     ("output", "pdf"): "--no-pdf",
@@ -147,7 +150,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "report.html and report.pdf. With no observation file, runs on the embedded demo.",
         epilog="Every option can also be set in --config FILE.toml (sections inputs, arcs, "
         "cutoff, filter, screening, mapping, stationarity, spectra, bound, validation, "
-        "verdict, output); command-line options win, and options that conflict are an error. "
+        "verdict, code_multipath, output); command-line options win, and options that "
+        "conflict are an error. "
         "Exit codes: 0 bounded; 3 ran but no trustworthy bound (verdict not-bounded: reasons "
         "printed, outputs written); 2 bad input (nothing written); 1 internal error.",
     )
@@ -219,6 +223,15 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    "repeatable)")
     p.add_argument("--validation-threshold", type=float,
                    help="largest fraction of reflector multipath power below f_c (fraction)")
+    p.add_argument("--code-multipath", metavar="CODES",
+                   help="also estimate code multipath by carrier levelling and overbound it per "
+                   "elevation bin: one pseudorange code (C1C: MP combination) or two (C1C,C5Q: "
+                   "ionosphere-free); result.json code_multipath and a report section "
+                   "(default: off)")
+    p.add_argument("--code-edges-deg", metavar="EDGES",
+                   help="elevation bin edges of the code-multipath overbound, deg")
+    p.add_argument("--code-overbound", choices=("two_step", "cdf"),
+                   help="Gaussian overbound construction of the code multipath")
     add_output_options(p)
     p.set_defaults(func=run)
 
@@ -270,6 +283,8 @@ def _cli_values(args: argparse.Namespace) -> list[tuple[str, dict[str, Any], dic
                        level=args.level), {}),
         ("validation", dict(geometries=tuple(args.geometry) if args.geometry else None,
                             threshold=args.validation_threshold), {}),
+        ("code_multipath", dict(codes=args.code_multipath, edges_deg=args.code_edges_deg,
+                                method=args.code_overbound), {}),
         ("output", dict(out=args.out, name=args.name, pdf=False if args.no_pdf else None,
                         overwrite=True if getattr(args, "overwrite", False) else None), {}),
     ]  # fmt: skip

@@ -1,7 +1,10 @@
 """``psdbound overbound``: Gaussian overbounds of an error distribution per elevation bin.
 
 Registered by :mod:`psdbound.cli.main` through :func:`add_parser`. Reads the
-samples with :func:`psdbound.aviation.read_samples`, runs
+samples with :func:`psdbound.aviation.read_samples` -- or, with ``--code``,
+computes them from a RINEX observation file: code multipath by carrier
+levelling (:func:`psdbound.isolation.isolate_code_multipath`, elevations
+from ``--nav``) -- runs
 :func:`psdbound.aviation.overbound_by_elevation`, prints the summary and,
 with ``--out``, writes ``result.json`` (sigma, bias and inflation factor per
 bin) and ``overbound_qq.png``. Bad input (NaN, too few samples in a bin,
@@ -32,10 +35,27 @@ def add_parser(subparsers: Any) -> None:
         description="Overbound the distribution of error samples (code or carrier "
         "multipath, normalised errors, ...) by a Gaussian in each elevation bin; print "
         "sigma and the inflation factor sigma/std per bin.",
-        epilog="example: psdbound overbound errors.csv --edges 5 15 30 60 90 --out out/",
+        epilog="examples: psdbound overbound errors.csv --edges 5 15 30 60 90 --out out/ ; "
+        "psdbound overbound ESBC.crx.gz --nav ESBC_MN.rnx.gz --code C1C --out out/",
     )
     p.add_argument(
-        "samples", help="CSV/text with 'error' [and 'elevation'] columns, or .npy (required)"
+        "samples",
+        help="CSV/text with 'error' [and 'elevation'] columns, or .npy; with --code a RINEX "
+        "observation file (required)",
+    )
+    p.add_argument(
+        "--code",
+        help="compute the samples: code multipath of this pseudorange code (C1C: MP "
+        "combination) or pair (C1C,C5Q: ionosphere-free) by carrier levelling, from the "
+        "RINEX file SAMPLES (default: none, SAMPLES holds the errors)",
+    )
+    p.add_argument("--nav", help="navigation or SP3 file for elevations (required with --code)")
+    p.add_argument("--system", default="G", help="satellite system letter with --code (default: G)")
+    p.add_argument(
+        "--min-arc-s",
+        type=float,
+        default=600.0,
+        help="shortest carrier-levelling arc with --code, s (default: 600)",
     )
     p.add_argument(
         "--method",
@@ -99,7 +119,13 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--min-samples must be >= 2, got {args.min_samples}")
     if args.out:
         check_writable_folder(args.out, option="--out")
-    errors, elevation = read_samples(args.samples)
+    extra: dict[str, Any] = {}
+    if args.code:
+        errors, elevation, extra = _code_samples(args)
+    else:
+        if args.nav:
+            raise InputError("--nav is only used with --code (SAMPLES is a samples file)")
+        errors, elevation = read_samples(args.samples)
     try:
         res = overbound_by_elevation(
             errors,
@@ -115,6 +141,26 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(exc.reason, path=args.samples) from None
     print(res.summary())
     if args.out:
-        for f in write_overbound(res, args.out):
+        for f in write_overbound(res, args.out, extra=extra):
             print(f"wrote {f}")
     return 0
+
+
+def _code_samples(args: argparse.Namespace) -> tuple[Any, Any, dict[str, Any]]:
+    """Code multipath samples (m) and elevations (deg) of ``args.samples`` (a RINEX file)."""
+    from psdbound.aviation.code_samples import code_multipath_from_files, describe_code_series
+
+    if not args.nav:
+        raise InputError("--code needs --nav (a navigation or SP3 file) for the elevations")
+    if not args.min_arc_s > 0:
+        raise InputError(f"--min-arc-s must be > 0 s, got {args.min_arc_s}")
+    if not 1 <= len([c for c in args.code.split(",") if c.strip()]) <= 2:
+        raise InputError(f"--code takes one code or two separated by a comma, got {args.code!r}")
+    series = code_multipath_from_files(
+        args.samples, args.nav, args.code, system=args.system,
+        elevation_mask_deg=max(0.0, min(args.edges)), min_length_s=args.min_arc_s,
+    )  # fmt: skip
+    print(series.summary())
+    info = describe_code_series(series, min_length_s=args.min_arc_s)
+    return series.value_m, series.elevation_deg, {"code_multipath": {"source": str(args.samples),
+                                                                     **info}}  # fmt: skip

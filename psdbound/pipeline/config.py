@@ -10,11 +10,13 @@ next to their stages (:class:`~psdbound.io.ArcOptions`,
 :class:`~psdbound.spectra.BoundOptions`,
 :class:`~psdbound.screening.ScreeningOptions`,
 :class:`~psdbound.validation.ValidationOptions`,
-:class:`~psdbound.pipeline.verdict.VerdictOptions`); the inputs and output
+:class:`~psdbound.pipeline.verdict.VerdictOptions`,
+:class:`~psdbound.aviation.options.CodeMultipathOptions`); the inputs and output
 sections are defined here.
 ``FitConfig.from_toml(path)`` reads the same names (sections ``[inputs]``,
 ``[arcs]``, ``[cutoff]``, ``[filter]``, ``[screening]``, ``[mapping]``, ``[stationarity]``,
-``[spectra]``, ``[bound]``, ``[validation]``, ``[verdict]``, ``[output]``); unknown names
+``[spectra]``, ``[bound]``, ``[validation]``, ``[verdict]``, ``[code_multipath]``,
+``[output]``); unknown names
 are errors. The effective configuration is saved with every result.
 
 Checking
@@ -38,6 +40,7 @@ from dataclasses import asdict, dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
+from psdbound.aviation.options import CodeMultipathOptions
 from psdbound.common.options import (
     Boolean,
     Choice,
@@ -181,6 +184,7 @@ _SECTIONS = {
     "bound": BoundOptions,
     "validation": ValidationOptions,
     "verdict": VerdictOptions,
+    "code_multipath": CodeMultipathOptions,
     "output": OutputConfig,
 }
 
@@ -227,6 +231,7 @@ class FitConfig:
     bound: BoundOptions = field(default_factory=BoundOptions)
     validation: ValidationOptions = field(default_factory=ValidationOptions)
     verdict: VerdictOptions = field(default_factory=VerdictOptions)
+    code_multipath: CodeMultipathOptions = field(default_factory=CodeMultipathOptions)
     output: OutputConfig = field(default_factory=OutputConfig)
 
     def __post_init__(self) -> None:

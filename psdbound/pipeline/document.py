@@ -11,6 +11,7 @@ import numpy as np
 from psdbound.common import package_versions
 from psdbound.ionosphere.policy import CutoffChoice
 from psdbound.pipeline.config import FitConfig
+from psdbound.pipeline.products import CodeOverbound
 from psdbound.pipeline.stages import InputData, Isolated, Screened, Validated, Windowed
 from psdbound.pipeline.verdict import judge
 from psdbound.reports import figure_data
@@ -34,6 +35,7 @@ def stage_warnings(
     bounded: BoundResults,
     validated: Validated,
     interval_s: float,
+    code: CodeOverbound | None = None,
 ) -> list[dict[str, Any]]:
     """Return every stage's warnings, grouped by stage, in pipeline order.
 
@@ -42,7 +44,7 @@ def stage_warnings(
     list of dict
         ``{"stage": name, "warnings": [...]}`` for every stage with warnings
         (``reading``, ``cutoff``, ``isolation``, ``screening``, ``windows``,
-        ``bound``, ``validation``).
+        ``bound``, ``validation``, ``code multipath``).
     """
     bound: list[str] = []
     if bounded.bound.sigma_wn_m == 0.0:
@@ -58,6 +60,7 @@ def stage_warnings(
         ("windows", windowed.warnings),
         ("bound", bound),
         ("validation", validated.warnings),
+        ("code multipath", code.warnings if code is not None else ()),
     ]
     return [{"stage": name, "warnings": list(w)} for name, w in groups if w]
 
@@ -270,6 +273,7 @@ def build_document(
     bounded: BoundResults,
     validated: Validated,
     run_time_s: float,
+    code: CodeOverbound | None = None,
 ) -> dict[str, Any]:
     """Return the result document of a fit (plain JSON data).
 
@@ -281,6 +285,8 @@ def build_document(
         The stage results (see :mod:`psdbound.pipeline.stages`).
     run_time_s : float
         Wall-clock time of the run, s.
+    code : CodeOverbound, optional
+        The optional code-multipath stage (section ``code_multipath``).
 
     Returns
     -------
@@ -297,7 +303,7 @@ def build_document(
         validation_report=validated.report, screening=screened.screening,
     )  # fmt: skip
     grouped = stage_warnings(inputs, cutoff, isolated, screened, windowed, bounded, validated,
-                             interval_s)  # fmt: skip
+                             interval_s, code)  # fmt: skip
     doc: dict[str, Any] = {
         "schema_version": SCHEMA_VERSION,
         "method": inputs.method.upper(),
@@ -327,6 +333,8 @@ def build_document(
         },
         "figures": figures,
     }
+    if code is not None:
+        doc["code_multipath"] = code.details
     if inputs.demo is not None:
         meta = inputs.demo
         doc["demo"] = {

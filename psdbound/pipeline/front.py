@@ -25,6 +25,7 @@ from typing import Any
 
 from psdbound.errors import InputError
 from psdbound.pipeline import stages
+from psdbound.pipeline.code_stage import code_overbound
 from psdbound.pipeline.config import FitConfig
 from psdbound.pipeline.document import build_document
 from psdbound.results import read_document, write_document
@@ -46,6 +47,8 @@ class FitResults:
         The configuration that produced it (None when loaded from a file).
     inputs, cutoff, isolated, screened, windowed, bounded, validated : stage results or None
         The products of :mod:`psdbound.pipeline.stages` (None when loaded).
+    code : CodeOverbound or None
+        The optional code-multipath stage (None when not asked for, or loaded).
     """
 
     def __init__(self, document: dict[str, Any], *, config: FitConfig | None = None,
@@ -59,6 +62,7 @@ class FitResults:
         self.windowed = stage_results.get("windowed")
         self.bounded = stage_results.get("bounded")
         self.validated = stage_results.get("validated")
+        self.code = stage_results.get("code")
 
     # ------------------------------------------------------------- views
     @property
@@ -274,12 +278,14 @@ def fit(
     cfg.check()  # conflicting options and ignored files are errors before anything is read
     say = progress or (lambda msg: None)
     t0 = time.perf_counter()
-    inputs = stages.read_inputs(cfg.inputs, progress=say)
+    inputs = stages.read_inputs(cfg.inputs, progress=say, extra_codes=cfg.code_multipath.codes)
     cfg = cfg.updated("inputs", method=inputs.method)  # the effective method (auto resolved)
     if inputs.demo is not None and cfg.mapping == MappingOptions():
         # the demo's data follow the simulator's mapping: fit with it (known truth)
         mp = inputs.demo["scenario"]["multipath"]
         cfg = cfg.updated("mapping", kind="fixed", a=mp["a"], b=mp["b"], c_deg=mp["c_deg"])
+    code = code_overbound(inputs, options=cfg.code_multipath, arcs=cfg.arcs,
+                          system=cfg.inputs.system, progress=say)  # fmt: skip
     cutoff = stages.choose_cutoff(inputs, cfg.cutoff)
     isolated = stages.isolate(inputs, cutoff, arcs=cfg.arcs, highpass=cfg.filter,
                               options=cfg.inputs, progress=say)  # fmt: skip
@@ -292,7 +298,8 @@ def fit(
     validated = stages.validate(cutoff, inputs=inputs, isolated=isolated, arcs=cfg.arcs,
                                 options=cfg.validation, progress=say)
     products = dict(inputs=inputs, cutoff=cutoff, isolated=isolated, screened=screened,
-                    windowed=windowed, bounded=bounded, validated=validated)  # fmt: skip
+                    windowed=windowed, bounded=bounded, validated=validated,
+                    code=code)  # fmt: skip
     document = build_document(config=cfg, run_time_s=time.perf_counter() - t0, **products)
     return FitResults(document, config=cfg, **products)
 

@@ -188,7 +188,8 @@ def _positions(options: InputsConfig, n: int) -> tuple[tuple[float, float, float
     return tuple(rx)
 
 
-def read_inputs(options: InputsConfig, *, progress: Progress = quiet) -> InputData:
+def read_inputs(options: InputsConfig, *, progress: Progress = quiet,
+                extra_codes: tuple[str, ...] = ()) -> InputData:  # fmt: skip
     """Read the observation and orbit files (or the embedded demo when none are given).
 
     Parameters
@@ -197,6 +198,10 @@ def read_inputs(options: InputsConfig, *, progress: Progress = quiet) -> InputDa
         Files, method, pair, system, antenna positions.
     progress : callable, optional
         Called with a short message.
+    extra_codes : tuple of str, optional
+        Pseudorange codes another stage needs (the code-multipath stage);
+        when given, every observation code is read (that stage picks its
+        carriers itself).
 
     Returns
     -------
@@ -229,7 +234,7 @@ def read_inputs(options: InputsConfig, *, progress: Progress = quiet) -> InputDa
     if nav_path is None:
         raise InputError("a navigation (or SP3) file is needed for elevations: give --nav")
     progress(f"reading {len(obs_paths)} observation file(s) and {nav_path.name}")
-    codes = _codes_needed(method_options)
+    codes = None if extra_codes else _codes_needed(method_options)
     groups = _group_stations(_read_observations(obs_paths, options.system, codes), options.pair)
     _check_stations(groups, method_options)
     method = _method(method_options, len(groups))

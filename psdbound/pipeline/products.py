@@ -14,7 +14,7 @@ from psdbound.isolation import MultipathSeries
 from psdbound.screening import Screening
 from psdbound.stationarity import ElevationMapping, WindowSet
 
-__all__ = ["InputData", "Isolated", "Screened", "Validated", "Windowed"]
+__all__ = ["CodeOverbound", "InputData", "Isolated", "Screened", "Validated", "Windowed"]
 
 
 @dataclass(frozen=True)
@@ -138,4 +138,25 @@ class Validated:
 
     report: Any
     summary: dict[str, Any]
+    warnings: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class CodeOverbound:
+    """Code multipath by carrier levelling and its Gaussian overbound (optional stage).
+
+    Attributes
+    ----------
+    series : MultipathSeries or None
+        Code multipath per arc, metres (None when no arc was long enough).
+    overbound : OverboundResult or None
+        Per-elevation-bin overbound (None when no bin held enough samples).
+    details : dict
+        The ``code_multipath`` section of the result document.
+    warnings : tuple of str
+    """
+
+    series: MultipathSeries | None
+    overbound: Any
+    details: dict[str, Any]
     warnings: tuple[str, ...] = ()

@@ -11,6 +11,7 @@ per-day stages as Dask tasks) and carries its warnings::
     window(Screened) -> Windowed
     bound(Windowed) -> BoundResults
     validate(CutoffChoice) -> Validated
+    code_overbound(InputData) -> CodeOverbound | None     (optional: psdbound.pipeline.code_stage)
 
 :func:`psdbound.fit` composes them. Every stage calls only the public
 surface of its stage package.

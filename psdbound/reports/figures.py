@@ -7,13 +7,15 @@ figure is one A4 text width wide (:data:`~psdbound.reports.figures_base.FIG_W_IN
 so that the PDF places it unscaled, two to a page where they fit; every axis
 label carries its unit in brackets.
 
-The functions live in :mod:`psdbound.reports.figures_time` (against time)
-and :mod:`psdbound.reports.figures_spectra` (against frequency);
+The functions live in :mod:`psdbound.reports.figures_time` (against time),
+:mod:`psdbound.reports.figures_spectra` (against frequency) and
+:mod:`psdbound.reports.figures_aviation` (the optional code multipath);
 :data:`FIGURES` lists them in report order.
 """
 
 from __future__ import annotations
 
+from psdbound.reports.figures_aviation import fig_code_qq
 from psdbound.reports.figures_base import t0_gps_s
 from psdbound.reports.figures_spectra import (
     cutoff_curves,
@@ -27,6 +29,7 @@ from psdbound.reports.figures_time import fig_df_filter, fig_mapped, fig_screeni
 __all__ = [
     "FIGURES",
     "cutoff_curves",
+    "fig_code_qq",
     "fig_cutoff_envelope",
     "fig_df_filter",
     "fig_jacobi_anger",
@@ -48,4 +51,6 @@ FIGURES = (
     ("tau", "Tightness search over tau", fig_tau_search),
     ("cutoff", "Cutoff criterion and f_c", fig_cutoff_envelope),
     ("jacobi_anger", "Jacobi-Anger cutoff check", fig_jacobi_anger),
+    ("code_qq", "Code multipath (carrier levelled): Q-Q per elevation bin and Gaussian "
+     "overbounds", fig_code_qq),
 )

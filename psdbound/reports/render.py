@@ -239,6 +239,13 @@ def _summary_pages(r: dict[str, Any]) -> list[Figure]:
                     f"b={r['mapping']['b']:.3g}, c={r['mapping']['c_deg']:.3g} deg"),
         ("cutoff validation", str(r["validation"].get("verdict"))),
     ]  # fmt: skip
+    cm = r.get("code_multipath")
+    if cm:
+        ob = (cm.get("overbound") or {}).get("bins", [])
+        text_ob = "; ".join(f"{b['elevation_deg'][0]:g}-{b['elevation_deg'][1]:g} deg: "
+                            f"sigma {100 * b['sigma']:.1f} cm (x{b['inflation']:.2f})"
+                            for b in ob) or str(cm.get("status"))  # fmt: skip
+        rows.append((f"code multipath {'+'.join(cm.get('codes', []))}", text_ob))
     pages = [Figure(figsize=PAGE_IN)]
     y = 0.95
 

@@ -17,6 +17,8 @@ ENTRY_POINTS = [
     "psdbound.io:find_arcs",
     "psdbound.isolation:isolate_dual_frequency",
     "psdbound.isolation:isolate_dual_antenna",
+    "psdbound.isolation:isolate_code_multipath",
+    "psdbound.isolation:level_shifts",
     "psdbound.stationarity:find_stationary_windows",
     "psdbound.spectra:estimate_psd",
     "psdbound.spectra:BoundModel",

@@ -1,0 +1,121 @@
+"""The optional code-multipath stage of a fit: carrier levelling and the Gaussian overbound.
+
+::
+
+    code_overbound(InputData) -> CodeOverbound | None      (None: not asked for)
+
+It runs beside the carrier-phase chain, on the same observations, orbit and
+arc options, and never changes the carrier-phase bound. An elevation bin
+with too few samples is reported and skipped (a fit does not stop for it;
+``psdbound overbound`` on a samples file does).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from psdbound.aviation import overbound_by_elevation
+from psdbound.aviation.code_samples import describe_code_series
+from psdbound.aviation.options import CodeMultipathOptions
+from psdbound.errors import NoDataError
+from psdbound.io.options import ArcOptions
+from psdbound.isolation import isolate_code_multipath
+from psdbound.pipeline.inputs import Progress, quiet
+from psdbound.pipeline.products import CodeOverbound, InputData
+
+__all__ = ["code_overbound"]
+
+#: Q-Q points kept per elevation bin in the result document (the extremes always).
+QQ_POINTS = 400
+
+
+def _bins_with_enough(el: np.ndarray, edges: tuple[float, ...], min_samples: int
+                      ) -> tuple[np.ndarray, list[str]]:  # fmt: skip
+    """Mask of samples in bins holding at least ``min_samples``; the skipped bins' notes."""
+    keep = np.zeros(el.size, dtype=bool)
+    notes = []
+    last = len(edges) - 2
+    for k in range(len(edges) - 1):
+        lo, hi = edges[k], edges[k + 1]
+        sel = (el >= lo) & ((el <= hi) if k == last else (el < hi))
+        n = int(sel.sum())
+        if n >= min_samples:
+            keep |= sel
+        elif n:
+            notes.append(f"code multipath: elevation bin [{lo:g}, {hi:g}) deg holds {n} samples, "
+                         f"fewer than {min_samples}: not overbounded")  # fmt: skip
+    return keep, notes
+
+
+def code_overbound(
+    inputs: InputData,
+    *,
+    options: CodeMultipathOptions,
+    arcs: ArcOptions,
+    system: str = "G",
+    progress: Progress = quiet,
+) -> CodeOverbound | None:
+    """Code multipath of the first observation file and its overbound per elevation bin.
+
+    Parameters
+    ----------
+    inputs : InputData
+        What :func:`~psdbound.pipeline.stages.read_inputs` read (the codes
+        must have been read: ``read_inputs(..., extra_codes=options.codes)``).
+    options : CodeMultipathOptions
+        Codes, elevation edges, overbound method, shortest arc, fewest samples per bin.
+    arcs : ArcOptions
+        Elevation mask and slip threshold of the fit (the arc length is ``options``').
+    system : str, default "G"
+        Satellite system letter.
+    progress : callable, optional
+
+    Returns
+    -------
+    CodeOverbound or None
+        None when no code was asked for.
+
+    Raises
+    ------
+    InputError
+        A code or its carriers not in the file (the message lists what is).
+    """
+    if not options.enabled:
+        return None
+    codes = options.codes
+    progress(f"code multipath ({'+'.join(codes)}, carrier levelling) and its overbound")
+    obs = inputs.observations[0]
+    rx = inputs.receiver_xyz_m[0]
+    try:
+        series = isolate_code_multipath(
+            obs, codes[0] if len(codes) == 1 else tuple(codes), orbit=inputs.orbit,
+            receiver_xyz_m=None if rx is None else np.asarray(rx, dtype=float), system=system,
+            elevation_mask_deg=arcs.elevation_mask_deg, min_length_s=options.min_length_s,
+            slip_threshold_m=arcs.slip_threshold_m,
+        )  # fmt: skip
+    except NoDataError as exc:
+        note = f"code multipath not computed: {exc}"
+        return CodeOverbound(None, None, {"codes": list(codes), "status": note}, (note,))
+    x, el = series.value_m, series.elevation_deg
+    mask = arcs.elevation_mask_deg
+    edges = tuple(options.edges_deg)
+    if mask > edges[0]:  # no sample below the mask: the first bin starts at it (honest labels)
+        edges = (mask, *(e for e in edges if e > mask))
+    keep, notes = _bins_with_enough(el, edges, options.min_samples)
+    details: dict[str, Any] = {**describe_code_series(series, min_length_s=options.min_length_s),
+                               "codes": list(codes), "status": "computed",
+                               "edges_deg": list(edges)}  # fmt: skip
+    result = None
+    if keep.any():
+        result = overbound_by_elevation(
+            x[keep], el[keep], edges_deg=edges, method=options.method,
+            min_samples=options.min_samples,
+        )  # fmt: skip
+        details["overbound"] = result.to_dict()
+        details["qq"] = result.qq_points(QQ_POINTS)
+    else:
+        notes.append("code multipath: no elevation bin holds enough samples to overbound")
+        details["status"] = "no bin with enough samples"
+    return CodeOverbound(series, result, details, tuple(notes))
