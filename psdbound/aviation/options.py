@@ -32,7 +32,8 @@ class CodeMultipathOptions:
     Parameters
     ----------
     codes : tuple of str, default ()
-        Zero (off), one or two pseudorange codes such as ``"C1C"``.
+        Zero (off), one or two pseudorange codes such as ``"C1C"`` (RINEX 2
+        files: ``"C1"``, ``"P1"``, ``"P2"`` or the RINEX 3 names).
     edges_deg : tuple of float, default (5, 15, 30, 45, 60, 90)
         Elevation bin edges, degrees, increasing, 0 to 90.
     method : {"two_step", "cdf"}, default "two_step"
@@ -52,8 +53,9 @@ class CodeMultipathOptions:
 
     codes: tuple[str, ...] = option(
         (),
-        Tuple(Text(r"C[1-9][A-Z]?", what="a pseudorange code such as 'C1C'"), max_len=2,
-              split=",", distinct=True, what="up to two pseudorange codes such as 'C1C,C5Q'"),
+        Tuple(Text(r"[CP][1-9][A-Z]?", what="a pseudorange code such as 'C1C' (RINEX 2: P2)"),
+              max_len=2, split=",", distinct=True,
+              what="up to two pseudorange codes such as 'C1C,C5Q'"),
     )  # fmt: skip
     edges_deg: tuple[float, ...] = option(
         DEFAULT_EDGES_DEG,

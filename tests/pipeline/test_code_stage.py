@@ -154,3 +154,20 @@ def test_overbound_cli_on_esbc(tmp_path):
     assert r.returncode == 2
     assert "elevation bin [5, 15) deg" in r.stderr
     assert list(out2.iterdir()) == []
+
+
+def test_rinex2_pair_code_multipath_of_antenna_a():
+    """RINEX 2 code names (P2) and a dual-antenna run: the code stage uses the first antenna."""
+    from conftest import UPC1_OBS, UPC2_OBS, UPC_NAV
+
+    files = [str(shared_file(n)) for n in (UPC1_OBS, UPC2_OBS)]
+    inputs = stages.read_inputs(
+        InputsConfig(obs=tuple(files), nav=str(shared_file(UPC_NAV)), pair=("UPC1", "UPC2")),
+        extra_codes=("P2",),
+    )
+    assert inputs.method == "da"
+    out = code_overbound(inputs, options=CodeMultipathOptions(codes="P2"), arcs=ArcOptions())
+    c = out.details
+    assert c["status"] == "computed" and c["signals"][:2] == ["P2", "L2"]
+    assert "UPC1" in out.series.meta["source"]
+    assert all(0.05 < b["sigma"] < 2.0 for b in c["overbound"]["bins"])
