@@ -136,6 +136,14 @@ class FitResults:
                 + (f", confidence {100 * b['confidence_level']:g} %"
                    if b.get("confidence_level") else "")  # fmt: skip
             )
+        cm = d.get("code_multipath")
+        if cm:
+            bins = (cm.get("overbound") or {}).get("bins", [])
+            per_bin = ", ".join(f"{x['elevation_deg'][0]:g}-{x['elevation_deg'][1]:g} deg "
+                                f"{100 * x['sigma']:.1f} cm (x{x['inflation']:.2f})"
+                                for x in bins)  # fmt: skip
+            lines.append(f"  code multipath {'+'.join(cm['codes'])}: "
+                         + (f"overbound sigma (inflation) {per_bin}" if bins else cm["status"]))
         demo = d.get("demo")
         if demo and demo.get("variance_ratio") is not None:
             lines.append(

@@ -40,6 +40,8 @@ def test_demo_section_schema_and_unchanged_carrier_bound(demo_pair):
     assert bins and all(b["sigma"] >= b["std"] * 0.5 and b["inflation"] > 0 for b in bins)
     assert set(c["qq"]) == {f"[{b['elevation_deg'][0]:g}, {b['elevation_deg'][1]:g}) deg"
                             for b in bins}  # fmt: skip
+    assert "code multipath C1C: overbound sigma (inflation)" in with_code.summary()
+    assert "code multipath" not in plain.summary()
     # the carrier-phase chain does not see the code stage
     assert doc["bound"] == plain.document["bound"]
     assert doc["verdict"] == plain.document["verdict"]
