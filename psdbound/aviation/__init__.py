@@ -69,6 +69,7 @@ from psdbound.aviation.overbound import (
     OverboundResult,
     cdf_overbound_sigma,
     overbound_by_elevation,
+    samples_in_full_bins,
     two_step_overbound,
 )
 
@@ -103,6 +104,7 @@ __all__ = [
     "overbound_by_elevation",
     "prob_horizontal_exceeds",
     "read_samples",
+    "samples_in_full_bins",
     "projection_matrix",
     "sky_over",
     "two_step_overbound",

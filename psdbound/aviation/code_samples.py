@@ -15,10 +15,16 @@ from typing import Any
 
 import numpy as np
 
+from psdbound.aviation.overbound import (
+    DEFAULT_MIN_ABS_Z,
+    OverboundResult,
+    overbound_by_elevation,
+    samples_in_full_bins,
+)
 from psdbound.errors import InputError
 from psdbound.isolation import MultipathSeries, isolate_code_multipath, rms_by_satellite
 
-__all__ = ["code_multipath_from_files", "describe_code_series"]
+__all__ = ["code_multipath_from_files", "describe_code_series", "overbound_code_series"]
 
 
 def code_multipath_from_files(
@@ -104,3 +110,52 @@ def describe_code_series(series: MultipathSeries, *, min_length_s: float) -> dic
         "rms_by_satellite_m": rms_by_satellite(series),
         "outlier_samples": series.meta.get("outlier_samples_gt_m"),
     }
+
+
+def overbound_code_series(
+    series: MultipathSeries,
+    edges_deg: Sequence[float],
+    *,
+    method: str = "two_step",
+    min_samples: int = 100,
+    min_abs_z: float = DEFAULT_MIN_ABS_Z,
+    bias: float = 0.0,
+) -> tuple[OverboundResult, list[str]]:
+    """Overbound a code-multipath series per elevation bin, skipping (and naming) sparse bins.
+
+    A bin with fewer than ``min_samples`` samples is a property of the
+    station's sky (few satellites ever rise above 60 deg at high latitude),
+    not bad input: it is left out and named in the returned notes.
+
+    Parameters
+    ----------
+    series : MultipathSeries
+        Code multipath with elevations (metres, degrees).
+    edges_deg : sequence of float
+        Increasing elevation bin edges, degrees.
+    method, min_abs_z, bias
+        As for :func:`~psdbound.aviation.overbound_by_elevation`.
+    min_samples : int, default 100
+        Fewest samples a bin must hold to be overbounded.
+
+    Returns
+    -------
+    result : OverboundResult
+    notes : list of str
+        The bins left out.
+
+    Raises
+    ------
+    InputError
+        No bin holds ``min_samples`` (every non-empty bin is named), or a
+        sample lies outside the edges only (nothing to bound).
+    """
+    keep, notes = samples_in_full_bins(series.elevation_deg, edges_deg, min_samples)
+    if not keep.any():
+        raise InputError("no elevation bin holds enough samples to overbound: "
+                         + ("; ".join(notes) or f"no sample inside the edges {list(edges_deg)}"))
+    result = overbound_by_elevation(
+        series.value_m[keep], series.elevation_deg[keep], edges_deg=edges_deg, method=method,
+        bias=bias, min_abs_z=min_abs_z, min_samples=min_samples,
+    )  # fmt: skip
+    return result, notes

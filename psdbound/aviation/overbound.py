@@ -61,6 +61,7 @@ __all__ = [
     "OverboundResult",
     "cdf_overbound_sigma",
     "overbound_by_elevation",
+    "samples_in_full_bins",
     "two_step_overbound",
 ]
 
@@ -313,6 +314,49 @@ class OverboundResult:
                 f"{b.sigma:>9.4g} {b.inflation:>9.4f}"
             )
         return "\n".join(rows)
+
+
+def samples_in_full_bins(
+    elevation_deg: ArrayLike, edges_deg: Sequence[float], min_samples: int
+) -> tuple[NDArray[np.bool_], list[str]]:
+    """Mask of the samples in elevation bins that hold at least ``min_samples``.
+
+    For samples computed by psdbound itself (code multipath of a station),
+    where a sparse bin is a property of the sky, not bad input: a station at
+    79 deg N sees few GPS satellites above 60 deg. The sparse bins are named
+    so that the caller can report them; :func:`overbound_by_elevation` on
+    a user's samples still refuses them.
+
+    Parameters
+    ----------
+    elevation_deg : array_like, shape (n,)
+        Elevation of each sample, degrees.
+    edges_deg : sequence of float
+        Increasing bin edges, degrees (``low <= el < high``, the last bin closed).
+    min_samples : int
+        Fewest samples a bin must hold.
+
+    Returns
+    -------
+    keep : ndarray of bool, shape (n,)
+        True for samples in bins with enough samples.
+    notes : list of str
+        One sentence per non-empty bin left out (its edges and count).
+    """
+    el = np.asarray(elevation_deg, dtype=float).reshape(-1)
+    keep = np.zeros(el.size, dtype=bool)
+    notes = []
+    last = len(edges_deg) - 2
+    for k in range(len(edges_deg) - 1):
+        lo, hi = float(edges_deg[k]), float(edges_deg[k + 1])
+        sel = (el >= lo) & ((el <= hi) if k == last else (el < hi))
+        n = int(sel.sum())
+        if n >= min_samples:
+            keep |= sel
+        elif n:
+            notes.append(f"elevation bin [{lo:g}, {hi:g}) deg holds {n} samples, fewer than "
+                         f"{min_samples}: not overbounded")  # fmt: skip
+    return keep, notes
 
 
 def overbound_by_elevation(

@@ -8,7 +8,10 @@ from ``--nav``) -- runs
 :func:`psdbound.aviation.overbound_by_elevation`, prints the summary and,
 with ``--out``, writes ``result.json`` (sigma, bias and inflation factor per
 bin) and ``overbound_qq.png``. Bad input (NaN, too few samples in a bin,
-the bin is named) is exit 2.
+the bin is named) is exit 2. With ``--code`` a sparse bin is a property of
+the station's sky (few satellites above 60 deg at high latitude): it is left
+out and named (``note:`` and ``bins_left_out``); exit 2 only when no bin
+holds ``--min-samples``.
 """
 
 from __future__ import annotations
@@ -119,26 +122,26 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"--min-samples must be >= 2, got {args.min_samples}")
     if args.out:
         check_writable_folder(args.out, option="--out")
-    extra: dict[str, Any] = {}
     if args.code:
-        errors, elevation, extra = _code_samples(args)
+        res, extra = _code_overbound(args)
     else:
         if args.nav:
             raise InputError("--nav is only used with --code (SAMPLES is a samples file)")
         errors, elevation = read_samples(args.samples)
-    try:
-        res = overbound_by_elevation(
-            errors,
-            elevation,
-            edges_deg=args.edges,
-            method=args.method,
-            bias=args.bias,
-            min_abs_z=args.min_abs_z,
-            min_samples=args.min_samples,
-            unit=args.unit,
-        )
-    except InputError as exc:
-        raise InputError(exc.reason, path=args.samples) from None
+        extra = {}
+        try:
+            res = overbound_by_elevation(
+                errors,
+                elevation,
+                edges_deg=args.edges,
+                method=args.method,
+                bias=args.bias,
+                min_abs_z=args.min_abs_z,
+                min_samples=args.min_samples,
+                unit=args.unit,
+            )
+        except InputError as exc:
+            raise InputError(exc.reason, path=args.samples) from None
     print(res.summary())
     if args.out:
         for f in write_overbound(res, args.out, extra=extra):
@@ -146,9 +149,13 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _code_samples(args: argparse.Namespace) -> tuple[Any, Any, dict[str, Any]]:
-    """Code multipath samples (m) and elevations (deg) of ``args.samples`` (a RINEX file)."""
-    from psdbound.aviation.code_samples import code_multipath_from_files, describe_code_series
+def _code_overbound(args: argparse.Namespace) -> tuple[Any, dict[str, Any]]:
+    """Overbound the code multipath of ``args.samples`` (a RINEX file); name sparse bins."""
+    from psdbound.aviation.code_samples import (
+        code_multipath_from_files,
+        describe_code_series,
+        overbound_code_series,
+    )
 
     if not args.nav:
         raise InputError("--code needs --nav (a navigation or SP3 file) for the elevations")
@@ -161,6 +168,15 @@ def _code_samples(args: argparse.Namespace) -> tuple[Any, Any, dict[str, Any]]:
         elevation_mask_deg=max(0.0, min(args.edges)), min_length_s=args.min_arc_s,
     )  # fmt: skip
     print(series.summary())
+    try:
+        res, sparse = overbound_code_series(
+            series, args.edges, method=args.method, min_samples=args.min_samples,
+            min_abs_z=args.min_abs_z, bias=args.bias,
+        )  # fmt: skip
+    except InputError as exc:
+        raise InputError(exc.reason, path=args.samples) from None
+    for note in sparse:
+        print(f"note: {note}")
     info = describe_code_series(series, min_length_s=args.min_arc_s)
-    return series.value_m, series.elevation_deg, {"code_multipath": {"source": str(args.samples),
-                                                                     **info}}  # fmt: skip
+    return res, {"code_multipath": {"source": str(args.samples), **info,
+                                    "bins_left_out": sparse}}  # fmt: skip

@@ -16,10 +16,9 @@ from typing import Any
 
 import numpy as np
 
-from psdbound.aviation import overbound_by_elevation
-from psdbound.aviation.code_samples import describe_code_series
+from psdbound.aviation.code_samples import describe_code_series, overbound_code_series
 from psdbound.aviation.options import CodeMultipathOptions
-from psdbound.errors import NoDataError
+from psdbound.errors import InputError, NoDataError
 from psdbound.io.options import ArcOptions
 from psdbound.isolation import isolate_code_multipath
 from psdbound.pipeline.inputs import Progress, quiet
@@ -29,24 +28,6 @@ __all__ = ["code_overbound"]
 
 #: Q-Q points kept per elevation bin in the result document (the extremes always).
 QQ_POINTS = 400
-
-
-def _bins_with_enough(el: np.ndarray, edges: tuple[float, ...], min_samples: int
-                      ) -> tuple[np.ndarray, list[str]]:  # fmt: skip
-    """Mask of samples in bins holding at least ``min_samples``; the skipped bins' notes."""
-    keep = np.zeros(el.size, dtype=bool)
-    notes = []
-    last = len(edges) - 2
-    for k in range(len(edges) - 1):
-        lo, hi = edges[k], edges[k + 1]
-        sel = (el >= lo) & ((el <= hi) if k == last else (el < hi))
-        n = int(sel.sum())
-        if n >= min_samples:
-            keep |= sel
-        elif n:
-            notes.append(f"code multipath: elevation bin [{lo:g}, {hi:g}) deg holds {n} samples, "
-                         f"fewer than {min_samples}: not overbounded")  # fmt: skip
-    return keep, notes
 
 
 def code_overbound(
@@ -98,24 +79,21 @@ def code_overbound(
     except NoDataError as exc:
         note = f"code multipath not computed: {exc}"
         return CodeOverbound(None, None, {"codes": list(codes), "status": note}, (note,))
-    x, el = series.value_m, series.elevation_deg
     mask = arcs.elevation_mask_deg
     edges = tuple(options.edges_deg)
     if mask > edges[0]:  # no sample below the mask: the first bin starts at it (honest labels)
         edges = (mask, *(e for e in edges if e > mask))
-    keep, notes = _bins_with_enough(el, edges, options.min_samples)
     details: dict[str, Any] = {**describe_code_series(series, min_length_s=options.min_length_s),
                                "codes": list(codes), "status": "computed",
                                "edges_deg": list(edges)}  # fmt: skip
-    result = None
-    if keep.any():
-        result = overbound_by_elevation(
-            x[keep], el[keep], edges_deg=edges, method=options.method,
-            min_samples=options.min_samples,
-        )  # fmt: skip
-        details["overbound"] = result.to_dict()
-        details["qq"] = result.qq_points(QQ_POINTS)
-    else:
-        notes.append("code multipath: no elevation bin holds enough samples to overbound")
-        details["status"] = "no bin with enough samples"
+    try:
+        result, sparse = overbound_code_series(series, edges, method=options.method,
+                                               min_samples=options.min_samples)  # fmt: skip
+    except InputError as exc:  # no bin full enough: said, not fatal to the carrier-phase fit
+        note = f"code multipath not overbounded: {exc.reason}"
+        details["status"] = note
+        return CodeOverbound(series, None, details, (note,))
+    details["overbound"] = result.to_dict()
+    details["qq"] = result.qq_points(QQ_POINTS)
+    notes = [f"code multipath: {x}" for x in sparse]
     return CodeOverbound(series, result, details, tuple(notes))

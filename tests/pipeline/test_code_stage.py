@@ -173,3 +173,35 @@ def test_rinex2_pair_code_multipath_of_antenna_a():
     assert c["status"] == "computed" and c["signals"][:2] == ["P2", "L2"]
     assert "UPC1" in out.series.meta["source"]
     assert all(0.05 < b["sigma"] < 2.0 for b in c["overbound"]["bins"])
+
+
+def test_overbound_cli_high_latitude_sparse_bin_is_named_not_fatal(tmp_path):
+    """At 78.9 N few GPS satellites rise above 60 deg: that bin is left out and said so."""
+    from conftest import NYA1_NAV, NYA1_OBS
+
+    out = tmp_path / "nya"
+    out.mkdir()
+    r = subprocess.run(
+        [sys.executable, "-m", "psdbound", "overbound", str(shared_file(NYA1_OBS)), "--nav",
+         str(shared_file(NYA1_NAV)), "--code", "C1C", "--out", str(out)],
+        capture_output=True, text=True, timeout=600, env=dict(os.environ),
+    )  # fmt: skip
+    assert r.returncode == 0, r.stderr
+    assert "note: elevation bin [60, 90) deg holds" in r.stdout
+    doc = json.loads((out / "result.json").read_text())
+    assert [b["elevation_deg"] for b in doc["overbound"]["bins"]][-1] == [45.0, 60.0]
+    assert doc["code_multipath"]["bins_left_out"][0].startswith("elevation bin [60, 90) deg")
+    # the sparse bin is a property of the sky; the other bins still fall with elevation
+    sig = [b["std"] for b in doc["overbound"]["bins"]]
+    assert sig == sorted(sig, reverse=True)
+
+
+def test_samples_in_full_bins():
+    from psdbound.aviation import samples_in_full_bins
+
+    el = np.r_[np.full(150, 10.0), np.full(20, 70.0), np.full(100, 90.0)]
+    keep, notes = samples_in_full_bins(el, (5, 15, 60, 90), 100)
+    assert keep.sum() == 270 and notes == []  # 120 in the closed last bin [60, 90]
+    keep, notes = samples_in_full_bins(el, (5, 15, 60, 80, 90), 100)
+    assert keep.sum() == 250 and notes == [
+        "elevation bin [60, 80) deg holds 20 samples, fewer than 100: not overbounded"]
