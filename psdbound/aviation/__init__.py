@@ -18,7 +18,8 @@
   ``result.json`` and Q-Q figure;
 * :mod:`~psdbound.aviation.code_samples` -- code multipath by carrier
   levelling straight from RINEX files (:func:`code_multipath_from_files`)
-  and its description for a result (:func:`describe_code_series`);
+  and its description for a result (:func:`describe_code_series`), its
+  overbound with sparse elevation bins named (:func:`overbound_code_series`);
 * :mod:`~psdbound.aviation.options` -- :class:`CodeMultipathOptions`, the
   ``[code_multipath]`` section of a fit.
 
@@ -50,7 +51,11 @@ from psdbound.aviation.budget import (
     projection_matrix,
     vpl,
 )
-from psdbound.aviation.code_samples import code_multipath_from_files, describe_code_series
+from psdbound.aviation.code_samples import (
+    code_multipath_from_files,
+    describe_code_series,
+    overbound_code_series,
+)
 from psdbound.aviation.files import read_samples, write_overbound
 from psdbound.aviation.geometry import (
     SEED004_START_GPS_S,
@@ -93,6 +98,7 @@ __all__ = [
     "cdf_overbound_sigma",
     "code_multipath_from_files",
     "describe_code_series",
+    "overbound_code_series",
     "error_budget",
     "fault_threshold",
     "ground_sigma_pr_m",
