@@ -76,7 +76,7 @@ def code_multipath_from_files(
         raise InputError(f"the shortest levelling arc must be > 0 s, got {min_length_s}")
     obs = read_obs(obs_path, systems=system)
     return isolate_code_multipath(
-        obs, items[0] if len(items) == 1 else tuple(items), orbit=read_orbit(nav_path),
+        obs, tuple(items), orbit=read_orbit(nav_path),
         system=system, elevation_mask_deg=elevation_mask_deg, min_length_s=min_length_s,
     )  # fmt: skip
 
@@ -98,9 +98,8 @@ def describe_code_series(series: MultipathSeries, *, min_length_s: float) -> dic
         ``min_arc_s``, ``rms_m``, ``rms_by_satellite_m`` (m), ``outlier_samples``.
     """
     x = series.value_m
-    codes = series.meta.get("codes") or [s for s in series.signals if s.startswith(("C", "P"))]
     return {
-        "codes": list(codes),
+        "codes": list(series.meta["codes"]),
         "combination": series.meta.get("combination"),
         "signals": list(series.signals),
         "n_arcs": series.n_arcs,
@@ -152,8 +151,10 @@ def overbound_code_series(
     """
     keep, notes = samples_in_full_bins(series.elevation_deg, edges_deg, min_samples)
     if not keep.any():
-        raise InputError("no elevation bin holds enough samples to overbound: "
-                         + ("; ".join(notes) or f"no sample inside the edges {list(edges_deg)}"))
+        raise InputError(
+            "no elevation bin holds enough samples to overbound: "
+            + ("; ".join(notes) or f"no sample inside the edges {list(edges_deg)}")
+        )
     result = overbound_by_elevation(
         series.value_m[keep], series.elevation_deg[keep], edges_deg=edges_deg, method=method,
         bias=bias, min_abs_z=min_abs_z, min_samples=min_samples,

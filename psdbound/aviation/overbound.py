@@ -44,7 +44,7 @@ an exactly Gaussian sample, larger for heavier tails).
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -316,6 +316,15 @@ class OverboundResult:
         return "\n".join(rows)
 
 
+def _bins(el: NDArray[np.float64], edges: Sequence[float]
+          ) -> Iterator[tuple[float, float, NDArray[np.bool_]]]:  # fmt: skip
+    """``(low, high, mask)`` of each bin: ``low <= el < high``, the last bin closed."""
+    last = len(edges) - 2
+    for k in range(len(edges) - 1):
+        lo, hi = float(edges[k]), float(edges[k + 1])
+        yield lo, hi, (el >= lo) & ((el <= hi) if k == last else (el < hi))
+
+
 def samples_in_full_bins(
     elevation_deg: ArrayLike, edges_deg: Sequence[float], min_samples: int
 ) -> tuple[NDArray[np.bool_], list[str]]:
@@ -346,10 +355,7 @@ def samples_in_full_bins(
     el = np.asarray(elevation_deg, dtype=float).reshape(-1)
     keep = np.zeros(el.size, dtype=bool)
     notes = []
-    last = len(edges_deg) - 2
-    for k in range(len(edges_deg) - 1):
-        lo, hi = float(edges_deg[k]), float(edges_deg[k + 1])
-        sel = (el >= lo) & ((el <= hi) if k == last else (el < hi))
+    for lo, hi, sel in _bins(el, edges_deg):
         n = int(sel.sum())
         if n >= min_samples:
             keep |= sel
@@ -420,10 +426,7 @@ def overbound_by_elevation(
         raise InputError(f"edges_deg must increase, at least 2 values: {list(edges_deg)}")
     out: list[BinOverbound] = []
     kept: dict[str, NDArray[np.float64]] = {}
-    last = edges.size - 2
-    for k in range(edges.size - 1):
-        lo, hi = float(edges[k]), float(edges[k + 1])
-        sel = (el >= lo) & ((el <= hi) if k == last else (el < hi))
+    for lo, hi, sel in _bins(el, edges):
         if not sel.any():
             continue
         where = "all samples" if elevation_deg is None else f"elevation bin [{lo:g}, {hi:g}) deg"

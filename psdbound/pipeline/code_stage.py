@@ -71,7 +71,7 @@ def code_overbound(
     rx = inputs.receiver_xyz_m[0]
     try:
         series = isolate_code_multipath(
-            obs, codes[0] if len(codes) == 1 else tuple(codes), orbit=inputs.orbit,
+            obs, codes, orbit=inputs.orbit,
             receiver_xyz_m=None if rx is None else np.asarray(rx, dtype=float), system=system,
             elevation_mask_deg=arcs.elevation_mask_deg, min_length_s=options.min_length_s,
             slip_threshold_m=arcs.slip_threshold_m,
