@@ -8,6 +8,10 @@ The front door (statsmodels-style)::
     res.report("reports/site")                                # result.json, HTML, PDF
     again = psdbound.load("reports/site/result.json")
 
+Any evenly sampled error series (stationary stretches, NaN gaps)::
+
+    res = psdbound.bound_series([x1, x2, x3], dt_s=1.0)   # .bound, .verdict, .covers
+
 Pipeline stages, one subpackage each (data flows one way)::
 
     io -> isolation -> stationarity -> spectra -> pipeline (result) -> reports
@@ -22,7 +26,8 @@ from typing import Any
 from psdbound.errors import InputError, NoDataError
 from psdbound.version import __version__
 
-__all__ = ["FitConfig", "FitResults", "InputError", "NoDataError", "__version__", "fit", "load"]
+__all__ = ["FitConfig", "FitResults", "InputError", "NoDataError", "__version__", "bound_series",
+           "fit", "load"]
 
 _LAZY = {"fit", "load", "FitResults", "FitConfig"}
 
@@ -33,4 +38,8 @@ def __getattr__(name: str) -> Any:
         from psdbound import pipeline
 
         return getattr(pipeline, name)
+    if name == "bound_series":
+        from psdbound.spectra.series import bound_series
+
+        return bound_series
     raise AttributeError(f"module 'psdbound' has no attribute {name!r}")

@@ -78,7 +78,8 @@ def held_out(results: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
     """
     from scipy import stats
 
-    from psdbound.spectra.pooled import band_spectra, excess_statistic, fit_pooled_bound
+    from psdbound.spectra.bands import band_spectra
+    from psdbound.spectra.pooled import excess_statistic, fit_pooled_bound
 
     rows = []
     good = [r for r in results if r.get("ok")]

@@ -548,7 +548,7 @@ def _rule_spectra(cfg: FitConfig, label: Label) -> None:
             f"used with {_show(label('bound', 'rule'), 'envelope')}; the pooled rule states "
             f"its confidence with {label('bound', 'confidence_level')}"
         )
-    pooled_only = [k for k in ("confidence_level", "coverage", "homogeneity_alpha",
+    pooled_only = [k for k in ("confidence_level", "coverage", "shape_alpha",
                                "bands_per_decade") if k in _changed(b)]  # fmt: skip
     if b.rule == "envelope" and pooled_only:
         raise InputError(

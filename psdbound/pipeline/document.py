@@ -182,7 +182,7 @@ def _pooled_section(res: BoundResults) -> dict[str, Any] | None:
         " Cochran's test of a common PSD); windows significantly above a group's limits form "
         "the next group; Bonferroni over groups and bands",
         "coverage": pl.coverage,
-        "homogeneity_alpha": res.bound.meta.get("homogeneity_alpha"),
+        "shape_alpha": res.bound.meta.get("shape_alpha"),
         "band_edges_hz": res.bands.edges_hz,
         "band_centres_hz": pl.f_hz,
         "n_groups": pl.n_groups,

@@ -377,7 +377,7 @@ def bound(
         power_response=gain if options.rule == "pooled" else None,
         rule=options.rule, objective=options.objective, f_min_hz=f_min_hz,
         confidence_level=options.confidence_level, coverage=options.coverage,
-        homogeneity_alpha=options.homogeneity_alpha,
+        shape_alpha=options.shape_alpha,
         bands_per_decade=options.bands_per_decade, target=options.target, level=options.level,
     )  # fmt: skip
 

@@ -17,10 +17,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from psdbound.errors import InputError, NoDataError
+from psdbound.spectra.bands import BandSpectra
 from psdbound.spectra.bound import RULES, BoundFit, fit_bound
 from psdbound.spectra.estimators import PSDEstimate, estimate_psd
 from psdbound.spectra.intervals import ModelSet, model_set
-from psdbound.spectra.pooled import BandSpectra, PooledLimits, fit_pooled_bound
+from psdbound.spectra.pooled import PooledLimits, fit_pooled_bound, statement
 from psdbound.stationarity.windowing import WindowSet
 
 __all__ = ["BoundModel", "BoundResults"]
@@ -91,16 +92,8 @@ class BoundResults:
             return (f"the envelope rule (thesis): the bound lies above {what} from "
                     f"{b.f_min_hz:.3g} Hz to Nyquist; no confidence level is stated for the "
                     "true PSD of the data")  # fmt: skip
-        pl = self.pooled
-        assert pl is not None
-        return (
-            f"with {100 * pl.confidence_level:g} % confidence (family-wise, Bonferroni over "
-            f"{pl.n_groups} group(s) x {pl.f_hz.size} frequency bands) the bound lies above the "
-            f"mean PSD of each group of windows in every band from {self.bands.edges_hz[0]:.3g} Hz "
-            f"to Nyquist, and, where the windows of a group differ (Cochran's test at "
-            f"{b.meta.get('homogeneity_alpha', 0.05):g}), above the true PSD of "
-            f"{100 * pl.coverage:g} % of its windows (random-effects, lognormal spread)"
-        )
+        assert self.pooled is not None and self.bands is not None
+        return statement(self.pooled, self.bands)
 
     def params(self) -> dict[str, float]:
         """Bound parameters with units in their names."""
@@ -198,7 +191,7 @@ class BoundModel:
         f_min_hz: float | None = None,
         confidence_level: float = 0.95,
         coverage: float = 0.99,
-        homogeneity_alpha: float = 0.05,
+        shape_alpha: float = 0.05,
         bands_per_decade: int = 10,
         power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]] | None = None,
         target: str = "point",
@@ -219,7 +212,7 @@ class BoundModel:
             Pooled rule: lowest frequency bounded, Hz (e.g. where the
             high-pass filter stops attenuating); default twice the lowest
             frequency of the longest window.
-        confidence_level, coverage, homogeneity_alpha : float
+        confidence_level, coverage, shape_alpha : float
             Pooled rule (see :func:`psdbound.spectra.pooled.pool_bands`).
         bands_per_decade : int, default 10
             Pooled rule: frequency bands per decade.
@@ -264,7 +257,7 @@ class BoundModel:
             f_min_hz = 2.0 / longest
         bound, bands, pooled = fit_pooled_bound(
             psds, dt, f_min_hz=f_min_hz, confidence_level=confidence_level, coverage=coverage,
-            homogeneity_alpha=homogeneity_alpha, bands_per_decade=bands_per_decade,
+            shape_alpha=shape_alpha, bands_per_decade=bands_per_decade,
             power_response=power_response, objective=objective, n_grid=n_grid,
         )  # fmt: skip
         smoothing = [p.params.get("bandwidth_hz", 0.0) for p in psds]

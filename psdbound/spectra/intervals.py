@@ -60,8 +60,9 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy import stats
 
+from psdbound.spectra.bands import BandSpectra
 from psdbound.spectra.models import gm_psd_sampled
-from psdbound.spectra.pooled import BandSpectra, PooledLimits, random_effects_mean
+from psdbound.spectra.pooled import PooledLimits, random_effects_mean
 
 __all__ = ["ModelSet", "model_set"]
 
@@ -200,7 +201,7 @@ def model_set(
     Parameters
     ----------
     bands : BandSpectra
-        Band-averaged window PSDs (:func:`psdbound.spectra.pooled.band_spectra`).
+        Band-averaged window PSDs (:func:`psdbound.spectra.bands.band_spectra`).
     limits : PooledLimits
         The pooled limits (for the groups and between-window spreads).
     dt_s : float

@@ -150,7 +150,7 @@ class BoundOptions:
     coverage : float
         Pooled rule: fraction of the windows' true PSDs covered when the
         windows differ (Cochran's test rejects a common PSD), in (0.5, 1).
-    homogeneity_alpha : float
+    shape_alpha : float
         Pooled rule: level of the test of a common PSD in each band.
     bands_per_decade : int
         Pooled rule: frequency bands per decade.
@@ -170,7 +170,7 @@ class BoundOptions:
     objective: str = option("variance", Choice(OBJECTIVES, noun="objective"))
     confidence_level: float = option(0.95, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True))
     coverage: float = option(0.99, Number(lo=0.5, hi=1.0, lo_open=True, hi_open=True))
-    homogeneity_alpha: float = option(0.05, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True))
+    shape_alpha: float = option(0.05, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True))
     bands_per_decade: int = option(10, Number(lo=1, hi=100, integer=True))
     target: str = option("point", Choice(("point", "upper"), noun="target"))
     level: float = option(0.95, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True))

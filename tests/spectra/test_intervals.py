@@ -7,8 +7,9 @@ import pytest
 from scipy.signal import lfilter
 
 from psdbound.spectra import estimate_psd
+from psdbound.spectra.bands import band_spectra, merge_bands
 from psdbound.spectra.intervals import model_set
-from psdbound.spectra.pooled import band_spectra, merge_bands, pool_bands
+from psdbound.spectra.pooled import pool_bands
 
 DT = 1.0
 

@@ -8,7 +8,8 @@ from scipy.signal import lfilter
 
 from psdbound.errors import InputError
 from psdbound.spectra import estimate_psd, gm_psd_sampled
-from psdbound.spectra.pooled import band_spectra, fit_pooled_bound, merge_bands, pool_bands
+from psdbound.spectra.bands import band_spectra, merge_bands
+from psdbound.spectra.pooled import fit_pooled_bound, pool_bands
 
 DT, N, TAU = 30.0, 240, 60.0
 
@@ -84,7 +85,7 @@ def test_band_dof_and_merging() -> None:
 
 
 @pytest.mark.parametrize("kw", [{"confidence_level": 1.0}, {"coverage": 0.4},
-                                {"homogeneity_alpha": 0.0}])  # fmt: skip
+                                {"shape_alpha": 0.0}])  # fmt: skip
 def test_bad_options_are_named(kw: dict) -> None:
     bands = band_spectra(_windows(0, 4), f_min_hz=2 / (N * DT))
     with pytest.raises(InputError, match=next(iter(kw)).split("_")[0]):

@@ -1,0 +1,202 @@
+"""Band averages of window PSD estimates: the data the pooled bound is stated for.
+
+Each window's PSD estimate is averaged over log-spaced frequency bands from
+``f_min_hz`` to the Nyquist frequency (:func:`band_spectra`), with the
+equivalent degrees of freedom of each band average, and adjacent bands are
+merged until a typical window has enough degrees of freedom in each
+(:func:`merge_bands`). See docs/method/bound.rst.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy import special
+
+from psdbound.errors import InputError
+from psdbound.spectra.estimators import PSDEstimate
+
+__all__ = ["BandSpectra", "band_spectra", "merge_bands", "resolved_from_hz"]
+
+
+@dataclass(frozen=True)
+class BandSpectra:
+    """Band-averaged PSDs of a set of windows.
+
+    Attributes
+    ----------
+    edges_hz : ndarray, shape (B + 1,)
+        Band edges, Hz (log-spaced).
+    centres_hz : ndarray, shape (B,)
+        Geometric band centres, Hz.
+    psd_m2_hz : ndarray, shape (M, B)
+        Band average of each window's PSD, m^2/Hz; NaN where the window has
+        no frequency in the band.
+    dof : ndarray, shape (M, B)
+        Equivalent degrees of freedom of each band average (0 where NaN).
+    """
+
+    edges_hz: NDArray[np.float64]
+    centres_hz: NDArray[np.float64]
+    psd_m2_hz: NDArray[np.float64]
+    dof: NDArray[np.float64]
+
+    def log_unbiased(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Return ``Z = log S_hat - E[log(chi2_nu / nu)]`` and its variance ``psi'(nu/2)``.
+
+        Cells without an estimate (or with a non-positive Blackman-Tukey
+        average) are NaN with infinite variance.
+        """
+        ok = (self.dof > 0) & (self.psd_m2_hz > 0)
+        nu = np.where(ok, self.dof, 2.0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            z = np.log(np.where(ok, self.psd_m2_hz, 1.0)) - (
+                special.digamma(nu / 2.0) - np.log(nu / 2.0)
+            )
+        var = special.polygamma(1, nu / 2.0)
+        return np.where(ok, z, np.nan), np.where(ok, var, np.inf)
+
+
+def band_spectra(
+    psds: Sequence[PSDEstimate],
+    *,
+    f_min_hz: float,
+    bands_per_decade: int = 10,
+    power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]] | None = None,
+) -> BandSpectra:
+    """Average every PSD estimate over common log-spaced frequency bands.
+
+    Parameters
+    ----------
+    psds : sequence of PSDEstimate
+        One estimate per window (same sampling interval).
+    f_min_hz : float
+        Lower edge of the lowest band, Hz (> 0): e.g. where the high-pass
+        filter's attenuation ends.
+    bands_per_decade : int, default 10
+        Number of bands per decade of frequency.
+    power_response : callable, optional
+        ``|H(f)|^2`` of a filter the data went through (e.g. the high-pass):
+        each PSD value is divided by it before averaging, so the bands
+        estimate the PSD before filtering. Values below 0.5 are refused
+        (``f_min_hz`` should start where the filter passes most power).
+
+    Returns
+    -------
+    BandSpectra
+
+    Raises
+    ------
+    InputError
+        No estimate, mixed sampling intervals, or ``f_min_hz`` not below the
+        Nyquist frequency.
+    """
+    if not psds:
+        raise InputError("no PSD estimate to pool")
+    dts = {round(p.dt_s, 12) for p in psds}
+    if len(dts) != 1:
+        raise InputError(f"PSD estimates of different sampling intervals {sorted(dts)} s")
+    nyq = psds[0].nyquist_hz
+    if not 0.0 < f_min_hz < nyq:
+        raise InputError(
+            f"lowest band edge {f_min_hz:g} Hz must lie between 0 and the Nyquist frequency "
+            f"{nyq:g} Hz"
+        )
+    if bands_per_decade < 1:
+        raise InputError(f"bands_per_decade must be >= 1, got {bands_per_decade}")
+    n_bands = max(1, int(np.ceil(bands_per_decade * np.log10(nyq / f_min_hz))))
+    edges = np.geomspace(f_min_hz, nyq, n_bands + 1)
+    edges[-1] = nyq * (1.0 + 1e-12)
+    width = np.diff(edges)
+    values = np.full((len(psds), n_bands), np.nan)
+    dof = np.zeros((len(psds), n_bands))
+    for k, p in enumerate(psds):
+        nu0 = float(np.median(np.atleast_1d(p.dof)))
+        n = p.n_samples if p.n_samples > 0 else int(round(2 * p.f_hz.size))
+        use = p.f_hz >= max(resolved_from_hz(p), f_min_hz)
+        idx = np.searchsorted(edges, p.f_hz[use], side="right") - 1
+        inside = (idx >= 0) & (idx < n_bands)
+        idx, s = idx[inside], p.psd_m2_hz[use][inside]
+        if power_response is not None:
+            gain = np.asarray(power_response(p.f_hz[use][inside]), dtype=float)
+            if gain.size and gain.min() < 0.5:
+                raise InputError(
+                    f"the filter passes only {gain.min():.2f} of the power at "
+                    f"{p.f_hz[use][inside][np.argmin(gain)]:.3g} Hz; start the bands higher"
+                )
+            s = s / gain
+        counts = np.bincount(idx, minlength=n_bands)
+        sums = np.bincount(idx, weights=s, minlength=n_bands)
+        have = counts > 0
+        values[k, have] = sums[have] / counts[have]
+        # in-band dof: 2 N dt df independent ordinates at most, never below one estimate's
+        # nu_0 nor above what the band's own grid points can carry (bands narrower than the
+        # estimator's smoothing share ordinates with their neighbours: an approximation the
+        # coverage benchmark measures, benchmarks/bound_coverage.py)
+        dof[k, have] = np.clip(2.0 * n * p.dt_s * width[have], nu0, nu0 * counts[have])
+    centres = np.sqrt(edges[:-1] * edges[1:])
+    return BandSpectra(edges, centres, values, dof)
+
+
+def merge_bands(bands: BandSpectra, *, min_window_dof: float = 4.0) -> BandSpectra:
+    """Merge adjacent bands until a typical window has ``min_window_dof`` in each.
+
+    Bands are merged from low to high frequency until the median, over the
+    windows with data there, of the per-window degrees of freedom reaches
+    ``min_window_dof`` (a short remainder joins the last band). Leading bands
+    that no window reaches (below every window's resolution) are dropped, so
+    the lowest band starts where the data do. Band
+    averages combine with their degrees of freedom as weights.
+
+    Parameters
+    ----------
+    bands : BandSpectra
+    min_window_dof : float, default 4
+        Target median per-window degrees of freedom of a band.
+
+    Returns
+    -------
+    BandSpectra
+    """
+    groups: list[list[int]] = []
+    cur: list[int] = []
+    for j in range(bands.centres_hz.size):
+        if not cur and not (bands.dof[:, j] > 0).any():
+            continue  # no window reaches this band: drop it rather than widen the next one
+        cur.append(j)
+        d = bands.dof[:, cur].sum(axis=1)
+        if np.median(d[d > 0]) >= min_window_dof if (d > 0).any() else False:
+            groups.append(cur)
+            cur = []
+    if cur:
+        if groups:
+            groups[-1] += cur
+        else:
+            groups.append(cur)
+    edges = np.array([bands.edges_hz[g[0]] for g in groups] + [bands.edges_hz[-1]])
+    dof = np.stack([bands.dof[:, g].sum(axis=1) for g in groups], axis=1)
+    num = np.stack(
+        [np.nansum(bands.dof[:, g] * np.nan_to_num(bands.psd_m2_hz[:, g]), axis=1) for g in groups],
+        axis=1,
+    )
+    with np.errstate(invalid="ignore", divide="ignore"):
+        psd = np.where(dof > 0, num / dof, np.nan)
+    return BandSpectra(edges, np.sqrt(edges[:-1] * edges[1:]), psd, dof)
+
+
+def resolved_from_hz(psd: PSDEstimate) -> float:
+    """Lowest frequency an estimate resolves, Hz.
+
+    Multitaper: ``W + 1 / T`` (``W = NW / T`` the smoothing half-width, ``T``
+    the window length): the estimate there averages the PSD over ``[1/T,
+    2W + 1/T]``, clear of the zero frequency the window's mean removal
+    empties. Other estimators: ``nu_0 / (2 T)``.
+    """
+    n = psd.n_samples if psd.n_samples > 0 else int(round(2 * psd.f_hz.size))
+    t = n * psd.dt_s
+    if psd.method == "multitaper" and "bandwidth_hz" in psd.params:
+        return float(psd.params["bandwidth_hz"]) + 1.0 / t
+    return float(np.median(np.atleast_1d(psd.dof))) / (2.0 * t)

@@ -1,0 +1,336 @@
+"""Confidence limits of window spectra: exact pooled limits and per-window deviations.
+
+The pooled bound (:mod:`psdbound.spectra.pooled`) states: *with confidence
+``1 - alpha`` the bound lies above the true PSD of at least a fraction ``p``
+of the windows, in every band from ``f_min`` to Nyquist*. This module holds
+the two limits that statement is built from (docs/method/bound.rst):
+
+**The model.** Window ``w`` has true band-mean PSD ``S_wb`` in band ``b``;
+its band average ``S_hat_wb`` with ``nu_wb`` equivalent degrees of freedom
+satisfies ``nu_wb S_hat_wb / S_wb ~ chi2(nu_wb)`` (Percival and Walden 1993,
+section 7.1). Within a group of windows of one spectral shape,
+
+    log S_wb = mu_b + d_w,
+
+a shape ``mu_b`` common to the group and a level ``d_w`` of each window
+(its deviation; a tilt ``d_w + c_w x_b`` in the standardised log frequency
+``x_b`` is available for the shape test). The deviations are estimated by
+weighted backfitting of the unbiased log band values (Bartlett and Kendall
+1946 variances ``psi'(nu/2)``), each window's from its own bands.
+
+**The group limit** (:func:`mean_upper_limit`). Given the deviations,
+``sum_w nu_wb S_hat_wb exp(-d_wb) / exp(mu_b)`` is ``chi2(sum_w nu_wb)``:
+the exact one-sided upper limit of ``exp(mu_b)`` at level ``a`` is
+``sum nu S_hat exp(-d) / chi2.ppf(a, sum nu)``. Windows that are not
+independent (a shared reference satellite, a repeat on the next sidereal
+day) enter with an effective number of degrees of freedom: within a cluster
+of ``m`` windows of intra-cluster correlation ``rho`` the sum is divided by
+the design effect ``1 + (m - 1) rho`` (Kish 1965).
+
+**The spread of the windows** (:func:`spread_upper_limit`,
+:func:`tolerance_factor`). The windows' levels ``d_w`` are taken as draws
+of ``N(0, sigma_d^2)``; each estimate ``d_hat_w`` has its own standard
+error. The Q-profile upper confidence limit of ``sigma_d^2`` (Viechtbauer
+2007) and the normal quantile ``z*`` for which at most ``k`` of ``M``
+windows exceed ``z* sigma_d`` except with a stated probability (a binomial
+tail) give the window term ``z* sigma_d,upper``: with homogeneous windows it
+shrinks as windows accumulate, and a spread of levels widens it by what the
+data show of it.
+
+**Shape.** A window whose spectrum departs from its group's shape by more
+than a level and tilt (the residual ``sum_b (r_wb - d_hat_wb)^2 / v_wb``, a
+chi-square with ``n_b - p`` degrees of freedom, small p-value at the
+Bonferroni level) is moved to a group of its own shape by the caller.
+
+References
+----------
+Bartlett, M. S., Kendall, D. G. (1946). The statistical analysis of
+variance-heterogeneity and the logarithmic transformation. JRSS Suppl. 8, 128-138.
+
+Kish, L. (1965). Survey Sampling. Wiley (the design effect, section 5.4).
+
+Viechtbauer, W. (2007). Confidence intervals for the amount of heterogeneity
+in meta-analysis. Statistics in Medicine 26(1), 37-52.
+
+Percival, D. B., Walden, A. T. (1993). Spectral Analysis for Physical
+Applications. Cambridge University Press.
+
+Scheffe, H. (1959). The Analysis of Variance. Wiley (simultaneous limits).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy import optimize, stats
+
+from psdbound.errors import InputError
+
+__all__ = [
+    "SHAPE_MODELS",
+    "WindowDeviations",
+    "design_effect_dof",
+    "mean_upper_limit",
+    "simultaneous_factor",
+    "spread_upper_limit",
+    "tolerance_factor",
+    "window_deviations",
+]
+
+#: Deviation models of a window from its group's shape.
+SHAPE_MODELS = ("level", "tilt")
+#: Fewest bands a window needs for a tilt of its own (else its deviation is a level only).
+_MIN_BANDS_TILT = 3
+_BACKFIT_ITER = 50
+
+
+def mean_upper_limit(
+    psd_m2_hz: NDArray[np.float64], dof: NDArray[np.float64], a: float, *,
+    effective_dof: float | None = None,
+) -> float:
+    """Exact one-sided upper confidence limit of a common PSD from chi-square estimates.
+
+    Parameters
+    ----------
+    psd_m2_hz : ndarray
+        Independent estimates ``S_hat_i`` of one PSD value, m^2/Hz, each
+        with ``nu_i S_hat_i / S ~ chi2(nu_i)``.
+    dof : ndarray
+        Their degrees of freedom ``nu_i`` (> 0).
+    a : float
+        One-sided error probability, in (0, 1).
+    effective_dof : float, optional
+        Degrees of freedom of the pooled estimate when the estimates are not
+        independent (:func:`design_effect_dof`); default ``sum nu_i``.
+
+    Returns
+    -------
+    float
+        ``nu S_pool / chi2.ppf(a, nu)`` with ``S_pool = sum nu_i S_hat_i /
+        sum nu_i`` and ``nu`` the (effective) degrees of freedom, m^2/Hz:
+        ``P(S <= limit) = 1 - a`` exactly when the chi-square model holds.
+    """
+    s = np.asarray(psd_m2_hz, dtype=float)
+    nu = np.asarray(dof, dtype=float)
+    if s.size == 0 or np.any(nu <= 0) or not 0.0 < a < 1.0:
+        raise InputError("mean_upper_limit needs estimates, positive dof and a in (0, 1)")
+    pooled = float(np.sum(nu * s) / np.sum(nu))
+    nu_eff = float(np.sum(nu)) if effective_dof is None else float(effective_dof)
+    return nu_eff * pooled / float(stats.chi2.ppf(a, nu_eff))
+
+
+def design_effect_dof(
+    dof: NDArray[np.float64], clusters: NDArray[np.int64] | None, rho: float
+) -> float:
+    """Effective degrees of freedom of a pooled estimate from clustered windows.
+
+    Parameters
+    ----------
+    dof : ndarray
+        Degrees of freedom of each window's estimate.
+    clusters : ndarray of int or None
+        Cluster label of each window (windows that share an error source:
+        one reference satellite at one time, one satellite on consecutive
+        sidereal days); None: all independent.
+    rho : float
+        Intra-cluster correlation of the estimates, in [0, 1].
+
+    Returns
+    -------
+    float
+        ``sum_c (sum_{w in c} nu_w) / (1 + (m_c - 1) rho)`` (Kish's design
+        effect per cluster of ``m_c`` windows), at most ``sum nu``.
+    """
+    nu = np.asarray(dof, dtype=float)
+    if clusters is None or rho <= 0.0:
+        return float(nu.sum())
+    total = 0.0
+    for c in np.unique(clusters):
+        sel = clusters == c
+        total += float(nu[sel].sum()) / (1.0 + (int(sel.sum()) - 1) * min(rho, 1.0))
+    return total
+
+
+def simultaneous_factor(a: float, n_windows: int) -> float:
+    """One-sided factor ``k``: every window's ``d <= d_hat + k se`` with probability ``>= 1 - a``.
+
+    ``z_{1 - a / M}`` (Bonferroni over the ``M`` windows: valid whatever
+    their dependence).
+    """
+    return float(stats.norm.isf(a / max(n_windows, 1)))
+
+
+@dataclass(frozen=True)
+class WindowDeviations:
+    """Each window's deviation from its group's common log spectrum.
+
+    Attributes
+    ----------
+    mu : ndarray, shape (B,)
+        Common log band level of the group (reference window, deviation 0).
+    dev : ndarray, shape (M, B)
+        Estimated log deviation ``d_hat_wb`` of each window (extrapolated by
+        its level and tilt to the bands it has no data in).
+    se : ndarray, shape (M, B)
+        Standard error of ``d_hat_wb``.
+    n_params : ndarray of int, shape (M,)
+        Parameters of each window's deviation (1: level, 2: level and tilt).
+    shape_p : ndarray, shape (M,)
+        p-value of each window's residual after its deviation (a spectrum of
+        another shape gives a small value; 1 when nothing is left to test).
+    """
+
+    mu: NDArray[np.float64]
+    dev: NDArray[np.float64]
+    se: NDArray[np.float64]
+    n_params: NDArray[np.int64]
+    shape_p: NDArray[np.float64]
+
+
+def _design(x: NDArray[np.float64], model: str) -> NDArray[np.float64]:
+    cols = [np.ones_like(x)] + ([x] if model == "tilt" else [])
+    return np.stack(cols, axis=1)
+
+
+def _fit_window(
+    r: NDArray[np.float64], w: NDArray[np.float64], design: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Weighted least squares of one window's residuals: coefficients and covariance."""
+    xtw = design.T * w
+    cov = np.linalg.pinv(xtw @ design)
+    return cov @ (xtw @ r), cov
+
+
+def window_deviations(
+    z: NDArray[np.float64],
+    v: NDArray[np.float64],
+    ok: NDArray[np.bool_],
+    x: NDArray[np.float64],
+    *,
+    model: str = "tilt",
+) -> WindowDeviations:
+    """Estimate each window's level (and tilt) deviation from the group's shape.
+
+    Parameters
+    ----------
+    z, v : ndarray, shape (M, B)
+        Unbiased log band values and their sampling variances
+        (:meth:`psdbound.spectra.bands.BandSpectra.log_unbiased`).
+    ok : ndarray of bool, shape (M, B)
+        Cells with an estimate.
+    x : ndarray, shape (B,)
+        Standardised log frequency of each band (the tilt's regressor).
+    model : {"tilt", "level"}, default "tilt"
+        Deviation model (:data:`SHAPE_MODELS`).
+
+    Returns
+    -------
+    WindowDeviations
+    """
+    if model not in SHAPE_MODELS:
+        raise InputError(f"unknown deviation model {model!r}; choose from {SHAPE_MODELS}")
+    m, n_b = z.shape
+    w = np.where(ok, 1.0 / np.where(ok, v, 1.0), 0.0)
+    zz = np.where(ok, z, 0.0)
+    n_ok = ok.sum(axis=1)
+    models = ["tilt" if model == "tilt" and k >= _MIN_BANDS_TILT else "level" for k in n_ok]
+    designs = {name: _design(x, name) for name in set(models)}
+    wsum = np.maximum(w.sum(axis=0), 1e-300)
+    mu = (w * zz).sum(axis=0) / wsum
+    dev = np.zeros((m, n_b))
+    cov: list[NDArray[np.float64]] = [np.zeros((1, 1))] * m
+    for _ in range(_BACKFIT_ITER):
+        coef = []
+        for i in range(m):
+            c, cov[i] = _fit_window((zz[i] - mu)[ok[i]], w[i, ok[i]], designs[models[i]][ok[i]])
+            coef.append(c)
+        new = np.stack([designs[models[i]] @ coef[i] for i in range(m)])
+        new -= new.mean(axis=0)  # identifiability: deviations average to 0 over the windows
+        mu_new = (w * (zz - new)).sum(axis=0) / wsum
+        done = np.allclose(new, dev, atol=1e-9) and np.allclose(mu_new, mu, atol=1e-9)
+        dev, mu = new, mu_new
+        if done:
+            break
+    se = np.stack([np.sqrt(np.maximum(np.einsum("bi,ij,bj->b", designs[models[i]], cov[i],
+                                                designs[models[i]]), 0.0))
+                   for i in range(m)])  # fmt: skip
+    if m == 1:
+        se = np.zeros_like(se)  # one window: its deviation from itself is 0 exactly
+    n_par = np.array([designs[name].shape[1] for name in models], dtype=np.int64)
+    resid = np.where(ok, (zz - mu[None, :] - dev) ** 2 * w, 0.0).sum(axis=1)
+    dof = n_ok - n_par
+    shape_p = np.where(dof > 0, stats.chi2.sf(resid, np.maximum(dof, 1)), 1.0)
+    return WindowDeviations(mu, dev, se, n_par, shape_p)
+
+
+def spread_upper_limit(d: NDArray[np.float64], se: NDArray[np.float64], a: float) -> float:
+    """Q-profile upper confidence limit of the between-window variance of the levels.
+
+    Parameters
+    ----------
+    d : ndarray
+        Estimated levels of ``M`` windows.
+    se : ndarray
+        Their standard errors (> 0).
+    a : float
+        One-sided error probability.
+
+    Returns
+    -------
+    float
+        ``sigma^2`` solving ``Q(sigma^2) = chi2_{M-1}^{-1}(a)``, with
+        ``Q(s2) = sum (d - dbar(s2))^2 / (se^2 + s2)`` the generalised Cochran
+        statistic (Viechtbauer 2007); 0 when even ``Q(0)`` lies below that
+        quantile, and 0 for one window. The limit exceeds the true variance
+        with probability ``1 - a`` for normal levels and errors.
+    """
+    d, se = np.asarray(d, dtype=float), np.asarray(se, dtype=float)
+    m = d.size
+    if m < 2:
+        return 0.0
+    v = np.maximum(se**2, 1e-300)
+    crit = float(stats.chi2.ppf(a, m - 1))
+
+    def q(s2: float) -> float:
+        w = 1.0 / (v + s2)
+        mean = np.sum(w * d) / np.sum(w)
+        return float(np.sum(w * (d - mean) ** 2)) - crit
+
+    if q(0.0) <= 0.0:
+        return 0.0
+    hi = max(float(np.var(d)) * 10.0, float(v.max()))
+    while q(hi) > 0.0:
+        hi *= 10.0
+    return float(optimize.brentq(q, 0.0, hi, xtol=1e-12 * hi))
+
+
+def tolerance_factor(n_windows: int, n_allowed: int, a: float) -> float:
+    """Return ``z*``: more than ``n_allowed`` windows exceed it with probability ``<= a``.
+
+    Parameters
+    ----------
+    n_windows : int
+        Windows ``M``.
+    n_allowed : int
+        Windows allowed above the limit, ``k``.
+    a : float
+        Error probability.
+
+    Returns
+    -------
+    float
+        ``z* = Phi^{-1}(1 - q)`` with ``q`` the largest exceedance probability
+        whose binomial tail ``P(Bin(M, q) > k)`` is at most ``a``.
+    """
+    if n_windows < 1:
+        return 0.0
+
+    def tail(log_q: float) -> float:
+        return float(stats.binom.sf(n_allowed, n_windows, np.exp(log_q))) - a
+
+    lo, hi = np.log(1e-15), np.log(0.5)
+    if tail(hi) <= 0.0:
+        return 0.0
+    return float(stats.norm.isf(np.exp(optimize.brentq(tail, lo, hi, xtol=1e-10))))
