@@ -178,9 +178,10 @@ def _pooled_section(res: BoundResults) -> dict[str, Any] | None:
     if pl is None or res.bands is None:
         return None
     return {
-        "method": "band-averaged window PSDs pooled per band (random effects, DerSimonian-Laird;"
-        " Cochran's test of a common PSD); windows significantly above a group's limits form "
-        "the next group; Bonferroni over groups and bands",
+        "method": "band-averaged window PSDs; windows grouped by spectral shape (residual test "
+        "after each window's level); per group and band the exact chi-square upper limit of the "
+        "group level, raised by the spread of the windows' levels (the smaller of a Q-profile "
+        "normal tolerance limit and the windows' own upper levels); Bonferroni over the parts",
         "coverage": pl.coverage,
         "shape_alpha": res.bound.meta.get("shape_alpha"),
         "band_edges_hz": res.bands.edges_hz,
@@ -188,9 +189,16 @@ def _pooled_section(res: BoundResults) -> dict[str, Any] | None:
         "n_groups": pl.n_groups,
         "group_sizes": pl.sizes(),
         "upper_m2_hz": pl.upper_m2_hz,
+        "mean_upper_m2_hz": pl.mean_upper_m2_hz,
+        "effective_dof": pl.effective_dof,
         "between_window_log_sd": np.sqrt(pl.tau2),
+        "spread_upper_log_sd": pl.spread_upper_log_sd,
+        "tolerance_factor": pl.tolerance_factor,
+        "window_term_log": pl.window_term_log,
         "p_homogeneous": pl.p_homogeneous,
         "heterogeneous_fraction": pl.heterogeneous_fraction(),
+        "looseness_db": pl.looseness_db(),
+        "looseness_notes": list(pl.notes),
     }
 
 

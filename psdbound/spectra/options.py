@@ -146,12 +146,13 @@ class BoundOptions:
     objective : {"variance", "area"}
         Tightness objective minimised.
     confidence_level : float
-        Family-wise confidence of the pooled limits, in (0, 1).
+        Confidence of the pooled rule's statement, in (0, 1).
     coverage : float
-        Pooled rule: fraction of the windows' true PSDs covered when the
-        windows differ (Cochran's test rejects a common PSD), in (0.5, 1).
+        Pooled rule: fraction of the windows whose true PSD the bound
+        covers (all but ``floor((1 - coverage) M)`` of ``M``), in (0.5, 1].
     shape_alpha : float
-        Pooled rule: level of the test of a common PSD in each band.
+        Pooled rule: family-wise level of the tests that give a window of
+        another spectral shape a group of its own.
     bands_per_decade : int
         Pooled rule: frequency bands per decade.
     target : {"point", "upper"}
@@ -169,7 +170,7 @@ class BoundOptions:
     rule: str = option("pooled", Choice(RULES, noun="bound rule"))
     objective: str = option("variance", Choice(OBJECTIVES, noun="objective"))
     confidence_level: float = option(0.95, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True))
-    coverage: float = option(0.99, Number(lo=0.5, hi=1.0, lo_open=True, hi_open=True))
+    coverage: float = option(0.99, Number(lo=0.5, hi=1.0, lo_open=True))
     shape_alpha: float = option(0.05, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True))
     bands_per_decade: int = option(10, Number(lo=1, hi=100, integer=True))
     target: str = option("point", Choice(("point", "upper"), noun="target"))

@@ -231,7 +231,7 @@ def _log_frequency(centres_hz: NDArray[np.float64]) -> NDArray[np.float64]:
 
 
 def _shape_groups(
-    z: NDArray, v: NDArray, ok: NDArray, x: NDArray, model: str, shape_alpha: float,
+    z: NDArray, v: NDArray, ok: NDArray, x: NDArray, dof: NDArray, shape_alpha: float,
     max_groups: int,
 ) -> NDArray[np.int64]:
     """Group the windows by spectral shape: a window that departs from its group moves on."""
@@ -242,7 +242,8 @@ def _shape_groups(
     while todo.size:
         members = todo
         while g < max_groups - 1 and members.size > 1:
-            dev = window_deviations(z[members], v[members], ok[members], x, model=model)
+            dev = window_deviations(z[members], v[members], ok[members], x, model="level",
+                                    dof=dof[members])  # fmt: skip
             off = dev.shape_p < shape_alpha / n_w
             if not off.any() or off.all():
                 break
@@ -285,7 +286,7 @@ def _group_limits(
     z, v = z[rows], v[rows]
     ok = np.isfinite(z)
     s, nu = bands.psd_m2_hz[rows], bands.dof[rows]
-    dev = window_deviations(z, v, ok, x, model="level")
+    dev = window_deviations(z, v, ok, x, model="level", dof=nu)
     n_b = z.shape[1]
     mean_up, eff, tau2 = np.full(n_b, np.nan), np.full(n_b, np.nan), np.full(n_b, np.nan)
     for b in range(n_b):
@@ -386,11 +387,11 @@ def pool_bands(
         raise InputError(f"clusters must give one label per window ({n_w}), got "
                          f"{np.shape(clusters)}")  # fmt: skip
     x = _log_frequency(bands.centres_hz)
-    labels = _shape_groups(z, var, ok, x, "level", shape_alpha, max_groups)
+    labels = _shape_groups(z, var, ok, x, bands.dof, shape_alpha, max_groups)
     n_g = int(labels.max()) + 1
     alpha = 1.0 - confidence_level
-    a_win = (1.0 - MEAN_SHARE) * alpha / n_g  # per group; a quarter to each of four limits
-    levels = (MEAN_SHARE * alpha / (n_g * n_b), a_win / 4.0, a_win / 4.0)
+    a_win = (1.0 - MEAN_SHARE) * alpha / n_g  # per group: the windows' own upper levels
+    levels = (MEAN_SHARE * alpha / (n_g * n_b), a_win / 2.0, a_win / 2.0)
     out = {k: np.full((n_g, n_b), np.nan) for k in ("mean", "tau2", "p", "eff", "max", "up")}
     level, level_se, shape_p = np.full(n_w, np.nan), np.full(n_w, np.nan), np.ones(n_w)
     spread, z_star, window_term = np.zeros(n_g), np.zeros(n_g), np.zeros(n_g)
@@ -400,7 +401,7 @@ def pool_bands(
         out["mean"][g], out["tau2"][g], out["p"][g], out["eff"][g] = (
             gl.mean_upper, gl.tau2, gl.p_hom, gl.eff_dof)
         spread[g], z_star[g] = np.sqrt(gl.spread_upper), gl.z_star
-        window_term[g] = min(z_star[g] * spread[g], gl.max_term)
+        window_term[g] = gl.max_term
         out["up"][g] = gl.mean_upper * np.exp(window_term[g])
         with np.errstate(all="ignore"):
             out["max"][g] = np.nanmax(np.where(ok[rows], bands.psd_m2_hz[rows], np.nan), axis=0)

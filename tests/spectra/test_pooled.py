@@ -45,17 +45,20 @@ def test_homogeneous_windows_covered_and_tight() -> None:
     covered = sum(c for c, _ in results)
     ratios = [r for _, r in results]
     assert covered >= 18  # stated 95 %: 19/20 expected; 18 allows Monte-Carlo error
-    assert np.median(ratios) <= 1.6
+    # covering every window's truth (not the mean PSD) costs: 2.0-2.3 measured (seeds 0-19),
+    # against 1.6 for the earlier mean-only limits, which missed windows that differed
+    assert np.median(ratios) <= 2.5
 
 
-def test_minority_of_high_windows_forms_its_own_group() -> None:
+def test_minority_of_high_windows_is_covered_by_its_own_levels() -> None:
     covered = 0
     for seed in range(12):
         b, _, limits = fit_pooled_bound(_windows(seed, 100, 0.05), DT, f_min_hz=2 / (N * DT))
         covered += _covers(b, 0.004)[0]
-        if seed == 0:
-            assert limits.n_groups >= 2
-    assert covered >= 10  # the 5 % of windows with twice the sigma are bounded too
+        if seed == 0:  # same shape, higher level: one group, the level term reaches them
+            assert limits.n_groups == 1
+            assert limits.window_term_log[0] > np.log(3.0)
+    assert covered >= 10  # the 5 % of windows with twice the sigma are bounded too (11.4 expected)
 
 
 def test_bound_tightens_as_windows_accumulate() -> None:

@@ -1,0 +1,415 @@
+"""Benchmark: does ``psdbound.bound_series`` keep its statement on known truths?
+
+The statement checked (``res.covers``, ``psdbound.spectra.pooled``): with
+confidence ``confidence_level`` (default 95 %) the bound lies above the true
+PSD of at least ``coverage`` (default 99 %) of the windows -- all but
+``floor((1 - coverage) M)`` of ``M`` -- at every frequency from ``f_min`` to
+Nyquist.
+
+How. Every run draws a truth of one class (below), simulates ``M`` windows
+(each independent: an exact AR(1), i.e. a first-order Gauss-Markov process
+sampled at ``dt`` with ``phi = exp(-dt/tau)``, stationary start, through
+``scipy.signal.lfilter``, plus white noise), and calls
+``psdbound.bound_series(windows, dt)`` with its defaults. For every window
+the true one-sided sampled PSD
+``gm_psd_sampled(f, sigma_gm, tau, dt) + 2 dt sigma_wn^2`` (the convention of
+``GaussMarkovWhiteNoise.sampled_psd`` at the data interval) is compared with
+``res.bound.sampled_psd(f)`` on 400 log-spaced frequencies over
+``[res.f_min_hz, 1/(2 dt)]``; a window is covered when the bound is at least
+the truth times ``1 - 1e-9`` at every one of them. A run is covered when at
+most ``floor((1 - res.limits.coverage) M)`` windows are not. Each run has its
+own ``numpy`` Generator, seed ``--seed + run index`` (the same seeds in every
+class), so any run can be repeated alone (``--classes hom --n ... --seed ...``).
+
+Classes, each at dt = 30 s (window length N log-uniform 120..480 samples,
+1-4 h) and at dt = 1 s (N log-uniform 900..3600, 15-60 min); every window of
+a run has the same N unless said otherwise; sigma_GM log-uniform 1..10 mm,
+tau log-uniform in [3 dt, N dt / 4], sigma_WN uniform 0.3..3 mm:
+
+``hom``
+    Homogeneous: M uniform 15..40 windows of one truth.
+``ln0.15``, ``ln0.3``, ``ln0.6``
+    As ``hom``, each window's sigma_GM times ``exp(N(0, s^2))``, ``s`` the
+    number in the name (sd of ln sigma_GM).
+``slow``
+    Minority of slow reflectors: M uniform 20..30; 1-3 windows have twice
+    sigma_GM and tau times uniform 5..10 (capped at N dt).
+``mixed``
+    Mixed shapes: around the run's centre values, each window's tau
+    log-uniform over a factor-4 range (centre / 2 .. centre * 2), sigma_GM
+    log-uniform over a factor 2 (centre / sqrt 2 .. centre * sqrt 2) and
+    sigma_WN uniform over a factor 2 (same span); M uniform 15..40.
+``few``
+    Homogeneous, M uniform 3..8.
+``unequal``
+    Homogeneous truth, M uniform 15..40, each window's N drawn from the
+    range independently (tau's upper end from the shortest window).
+
+That is 8 classes x 2 intervals = 16 class-variants, labelled ``hom@30s``,
+``hom@1s`` and so on.
+
+Reported per class-variant: runs; bounded runs; coverage, the share of
+covered runs among the bounded runs plus the runs that raised (an exception
+counts as an uncovered run), with its Monte-Carlo standard error
+``sqrt(p (1 - p) / n)``; not-bounded runs (counted apart); errors; the median
+variance ratio: the bound's ``sigma_gm^2 + sigma_wn^2`` over the true
+variance ``sigma_gm^2 + sigma_wn^2`` of the median window (the median of the
+windows' true variances; for homogeneous classes the common one); the median
+``f_min T`` with ``T`` the longest window's length ``N dt`` (the default
+``f_min`` comes from the longest window); the median number of shape groups;
+the median and smallest over runs of the worst window's smallest bound/truth
+PSD ratio.
+
+Targets: coverage >= 0.95 in every class-variant (it passes when
+coverage + 2 MCSE >= 0.95, and no run raised); median variance ratio <= 1.5
+on the homogeneous class ``hom`` (both intervals; ``few`` and ``unequal``
+are reported but not held to it); median ``f_min T`` <= 5 everywhere.
+
+Outputs: a table, one line per run that raised, uncovered runs (class, run,
+seed), the CSV ``--out``/``bound_coverage_runs.csv`` (one row per run) and
+the last line::
+
+    RESULT n_per_class=... worst_coverage=... worst_class=... hom30_var_ratio=...
+    hom1hz_var_ratio=... fmin_T_max=... errors=... not_bounded=... all_classes_pass=...
+
+Speed: one run takes about 0.05-0.8 s on one core (the largest, 40 windows
+of 3600 samples, about 0.8 s), so the default 200 runs x 16 class-variants
+take some 15-20 min; no caps were needed. Runs go one after another in this
+process.
+
+``--join-nan`` passes each run's windows as one series with a NaN between
+windows (the other input form ``bound_series`` documents: NaN gaps split
+stretches) instead of a list of arrays; the windows bounded are the same.
+
+Smoke check: ``python3.11 benchmarks/bound_coverage.py --quick``.
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")  # one BLAS thread: other work shares the machine
+
+import argparse  # noqa: E402
+import csv  # noqa: E402
+import math  # noqa: E402
+import sys  # noqa: E402
+import time  # noqa: E402
+import warnings  # noqa: E402
+from collections.abc import Callable  # noqa: E402
+from pathlib import Path  # noqa: E402
+from typing import Any  # noqa: E402
+
+import numpy as np  # noqa: E402
+from scipy.signal import lfilter  # noqa: E402
+
+DEFAULT_OUT = Path(__file__).resolve().parent / "out"
+RTOL = 1e-9
+N_GRID = 400
+TARGET_COVERAGE = 0.95
+TARGET_VAR_RATIO = 1.5
+TARGET_FMIN_T = 5.0
+CLASSES = ("hom", "ln0.15", "ln0.3", "ln0.6", "slow", "mixed", "few", "unequal")
+#: Interval (s) and window-length range (samples) of the two variants of a class.
+SAMPLINGS = {30.0: (120, 480), 1.0: (900, 3600)}
+FIELDS = (
+    "variant", "cls", "dt_s", "run", "seed", "m", "n_min", "n_max",
+    "sigma_gm_mm", "tau_s", "sigma_wn_mm", "ref_var_mm2",
+    "bound_sigma_gm_mm", "bound_tau_s", "bound_sigma_wn_mm",
+    "verdict", "covered", "n_uncovered", "allowed", "min_psd_ratio", "f_at_min_hz",
+    "worst_window", "var_ratio", "f_min_hz", "fmin_T", "n_groups",
+    "confidence_level", "coverage", "run_s", "error",
+)  # fmt: skip
+
+Truth = list[tuple[int, float, float, float]]  # per window: N, sigma_gm, tau, sigma_wn (m, s)
+
+
+# ----------------------------------------------------------------- truths
+def _log_uniform(rng: np.random.Generator, lo: float, hi: float) -> float:
+    return float(np.exp(rng.uniform(np.log(lo), np.log(hi))))
+
+
+def _centre(rng: np.random.Generator, dt: float, n_for_tau: int) -> tuple[float, float, float]:
+    """The run's sigma_GM, tau, sigma_WN (m, s)."""
+    sigma = _log_uniform(rng, 1e-3, 1e-2)
+    tau = _log_uniform(rng, 3.0 * dt, n_for_tau * dt / 4.0)
+    wn = float(rng.uniform(0.3e-3, 3e-3))
+    return sigma, tau, wn
+
+
+def draw_truth(cls: str, dt: float, rng: np.random.Generator) -> tuple[Truth, dict[str, float]]:
+    """Draw one run's windows: ``(N, sigma_gm, tau, sigma_wn)`` each, and the centre values.
+
+    Parameters
+    ----------
+    cls : str
+        Class name (:data:`CLASSES`).
+    dt : float
+        Sampling interval, seconds (a key of :data:`SAMPLINGS`).
+    rng : numpy.random.Generator
+
+    Returns
+    -------
+    windows : list of tuple
+    centre : dict
+        ``sigma_gm_m``, ``tau_s``, ``sigma_wn_m`` of the run.
+    """
+    n_lo, n_hi = SAMPLINGS[dt]
+
+    def n_draw() -> int:
+        return int(round(_log_uniform(rng, n_lo, n_hi)))
+
+    if cls == "few":
+        m = int(rng.integers(3, 9))
+    elif cls == "slow":
+        m = int(rng.integers(20, 31))
+    else:
+        m = int(rng.integers(15, 41))
+    ns = [n_draw() for _ in range(m)] if cls == "unequal" else [n_draw()] * m
+    sigma, tau, wn = _centre(rng, dt, min(ns))
+    wins: Truth = [(n, sigma, tau, wn) for n in ns]
+    if cls.startswith("ln"):
+        s = float(cls[2:])
+        wins = [(n, sg * float(np.exp(rng.normal(0.0, s))), t, w) for n, sg, t, w in wins]
+    elif cls == "slow":
+        k = int(rng.integers(1, 4))
+        for i in rng.choice(m, size=k, replace=False):
+            n, sg, t, w = wins[i]
+            wins[i] = (n, 2.0 * sg, min(t * float(rng.uniform(5.0, 10.0)), n * dt), w)
+    elif cls == "mixed":
+        r2 = math.sqrt(2.0)
+        wins = [(n, _log_uniform(rng, sigma / r2, sigma * r2), _log_uniform(rng, tau / 2, tau * 2),
+                 float(rng.uniform(wn / r2, wn * r2))) for n, _, _, _ in wins]  # fmt: skip
+    elif cls not in ("hom", "few", "unequal"):
+        raise ValueError(f"unknown class {cls!r}; choose from {CLASSES}")
+    return wins, {"sigma_gm_m": sigma, "tau_s": tau, "sigma_wn_m": wn}
+
+
+def simulate_window(n: int, sigma: float, tau: float, wn: float, dt: float,
+                    rng: np.random.Generator) -> np.ndarray:  # fmt: skip
+    """Exact AR(1) (GM sampled at ``dt``, stationary start) plus white noise, ``n`` samples."""
+    phi = math.exp(-dt / tau)
+    e = rng.normal(0.0, sigma * math.sqrt(1.0 - phi**2), n)
+    e[0] = rng.normal(0.0, sigma)  # x0 ~ N(0, sigma^2); x_k = phi x_{k-1} + e_k
+    return lfilter([1.0], [1.0, -phi], e) + rng.normal(0.0, wn, n)
+
+
+# ----------------------------------------------------------------- one run
+def run_one(cls: str, dt: float, run: int, seed: int, join_nan: bool = False) -> dict[str, Any]:
+    """Simulate, bound and check one run; never raises (an error is recorded).
+
+    Parameters
+    ----------
+    cls : str
+        Class name.
+    dt : float
+        Sampling interval, seconds.
+    run : int
+        Run index (for the record).
+    seed : int
+        Seed of the run's Generator.
+    join_nan : bool, default False
+        Pass the windows as one series, NaN between windows.
+
+    Returns
+    -------
+    dict
+        One CSV row (:data:`FIELDS`).
+    """
+    import psdbound
+    from psdbound.spectra import gm_psd_sampled
+
+    t0 = time.perf_counter()
+    rec: dict[str, Any] = {"variant": variant_label(cls, dt), "cls": cls, "dt_s": dt,
+                           "run": run, "seed": seed}  # fmt: skip
+    try:
+        rng = np.random.default_rng(seed)
+        wins, centre = draw_truth(cls, dt, rng)
+        xs = [simulate_window(n, sg, t, w, dt, rng) for n, sg, t, w in wins]
+        ns = [n for n, _, _, _ in wins]
+        ref_var = float(np.median([sg**2 + w**2 for _, sg, _, w in wins]))
+        rec.update(m=len(wins), n_min=min(ns), n_max=max(ns),
+                   sigma_gm_mm=1e3 * centre["sigma_gm_m"], tau_s=centre["tau_s"],
+                   sigma_wn_mm=1e3 * centre["sigma_wn_m"], ref_var_mm2=1e6 * ref_var)  # fmt: skip
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            series = np.concatenate([np.r_[x, np.nan] for x in xs])[:-1] if join_nan else xs
+            res = psdbound.bound_series(series, dt)
+        b = res.bound
+        f = np.geomspace(res.f_min_hz, 0.5 / dt, N_GRID)
+        bound_psd = b.sampled_psd(f)
+        ratios = np.array([np.min(bound_psd / (gm_psd_sampled(f, sg, t, dt) + 2.0 * dt * w**2))
+                           for _, sg, t, w in wins])  # fmt: skip
+        worst = int(np.argmin(ratios))
+        truth_w = wins[worst]
+        ratio_f = bound_psd / (gm_psd_sampled(f, truth_w[1], truth_w[2], dt)
+                               + 2.0 * dt * truth_w[3] ** 2)  # fmt: skip
+        n_unc = int(np.sum(ratios < 1.0 - RTOL))
+        allowed = int(np.floor((1.0 - res.limits.coverage) * len(wins) + 1e-9))
+        rec.update(
+            bound_sigma_gm_mm=1e3 * b.sigma_gm_m, bound_tau_s=b.tau_s,
+            bound_sigma_wn_mm=1e3 * b.sigma_wn_m, verdict=res.verdict,
+            covered=n_unc <= allowed, n_uncovered=n_unc, allowed=allowed,
+            min_psd_ratio=float(ratios[worst]), f_at_min_hz=float(f[np.argmin(ratio_f)]),
+            worst_window=worst, var_ratio=(b.sigma_gm_m**2 + b.sigma_wn_m**2) / ref_var,
+            f_min_hz=res.f_min_hz, fmin_T=res.f_min_hz * max(ns) * dt,
+            n_groups=res.limits.n_groups, confidence_level=res.limits.confidence_level,
+            coverage=res.limits.coverage)  # fmt: skip
+    except Exception as exc:  # a failing run is a result, not a crash
+        rec["error"] = f"{type(exc).__name__}: {' '.join(str(exc).split())}"[:300]
+    rec["run_s"] = time.perf_counter() - t0
+    return rec
+
+
+def variant_label(cls: str, dt: float) -> str:
+    """``cls@30s`` / ``cls@1s``."""
+    return f"{cls}@{dt:g}s"
+
+
+# ----------------------------------------------------------------- summary
+def _med(recs: list[dict[str, Any]], key: str) -> float:
+    a = [r[key] for r in recs if r.get(key) is not None and np.isfinite(r[key])]
+    return float(np.median(a)) if a else float("nan")
+
+
+def summarise(recs: list[dict[str, Any]]) -> dict[str, Any]:
+    """Per class-variant figures (see the module docstring)."""
+    err = [r for r in recs if "error" in r]
+    bd = [r for r in recs if r.get("verdict") == "bounded"]
+    nb = [r for r in recs if "error" not in r and r.get("verdict") != "bounded"]
+    n_eval = len(bd) + len(err)
+    p = sum(bool(r["covered"]) for r in bd) / n_eval if n_eval else float("nan")
+    se = math.sqrt(p * (1.0 - p) / n_eval) if n_eval else float("nan")
+    done = [r for r in recs if "error" not in r]
+    mins = [r["min_psd_ratio"] for r in bd]
+    return {
+        "n": len(recs), "bounded": len(bd), "not_bounded": len(nb), "errors": len(err),
+        "coverage": p, "mcse": se,
+        "pass": bool(n_eval) and not err and p + 2.0 * se >= TARGET_COVERAGE,
+        "var_ratio": _med(done, "var_ratio"), "fmin_T": _med(done, "fmin_T"),
+        "groups": _med(done, "n_groups"), "min_ratio_med": _med(bd, "min_psd_ratio"),
+        "min_ratio_min": float(min(mins)) if mins else float("nan"),
+        "run_s": _med(recs, "run_s"),
+    }  # fmt: skip
+
+
+def _f(v: float, spec: str = ".3f") -> str:
+    return "-" if v is None or (isinstance(v, float) and math.isnan(v)) else format(v, spec)
+
+
+def print_table(stats: dict[str, dict[str, Any]]) -> None:
+    """One line per class-variant."""
+    print(f"{'class':<14}{'runs':>5}{'bnd':>5}{'cover':>7}{'mcse':>7}{'pass':>5}{'notb':>5}"
+          f"{'err':>4}{'varR':>7}{'fminT':>7}{'grp':>5}{'minR_med':>9}{'minR_min':>9}"
+          f"{'s/run':>7}")  # fmt: skip
+    for label, s in stats.items():
+        print(f"{label:<14}{s['n']:>5}{s['bounded']:>5}{_f(s['coverage']):>7}{_f(s['mcse']):>7}"
+              f"{'yes' if s['pass'] else 'NO':>5}{s['not_bounded']:>5}{s['errors']:>4}"
+              f"{_f(s['var_ratio']):>7}{_f(s['fmin_T'], '.2f'):>7}{_f(s['groups'], '.1f'):>5}"
+              f"{_f(s['min_ratio_med']):>9}{_f(s['min_ratio_min']):>9}"
+              f"{_f(s['run_s'], '.2f'):>7}")  # fmt: skip
+    print(
+        "cover: covered share of bounded (+errored) runs; mcse sqrt(p(1-p)/n); pass: "
+        f"cover + 2 mcse >= {TARGET_COVERAGE} and no errors; varR: median bound variance / "
+        "median window's true variance; fminT: median f_min x longest window; grp: median "
+        "shape groups; minR: worst window's min bound/truth PSD ratio over runs (median, min)"
+    )
+
+
+def write_csv(recs: list[dict[str, Any]], path: Path) -> None:
+    """One row per run."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with path.open("w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(FIELDS)
+        for r in recs:
+            w.writerow([r.get(k, "") for k in FIELDS])
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the benchmark; return the exit status (0, also when targets are missed)."""
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--n", type=int, default=200, help="runs per class-variant (default 200)")
+    ap.add_argument("--quick", action="store_true", help="20 runs per class-variant")
+    ap.add_argument("--seed", type=int, default=20_000, help="base seed (run i: seed + i)")
+    ap.add_argument("--classes", default=",".join(CLASSES), help="comma list of classes")
+    ap.add_argument(
+        "--out",
+        type=Path,
+        default=DEFAULT_OUT / "bound_coverage_runs.csv",
+        help="per-run CSV (default benchmarks/out/bound_coverage_runs.csv)",
+    )
+    ap.add_argument("--join-nan", action="store_true",
+                    help="pass each run's windows as one NaN-separated series")  # fmt: skip
+    args = ap.parse_args(argv)
+    n = 20 if args.quick else args.n
+    classes = [c.strip() for c in args.classes.split(",") if c.strip()]
+    bad = [c for c in classes if c not in CLASSES]
+    if bad:
+        ap.error(f"unknown class(es) {bad}; choose from {', '.join(CLASSES)}")
+    log: Callable[[str], None] = lambda s: print(s, flush=True)  # noqa: E731
+
+    t_all = time.perf_counter()
+    recs: list[dict[str, Any]] = []
+    stats: dict[str, dict[str, Any]] = {}
+    for cls in classes:
+        for dt in SAMPLINGS:
+            label = variant_label(cls, dt)
+            t0 = time.perf_counter()
+            rs = [run_one(cls, dt, i, args.seed + i, args.join_nan) for i in range(n)]
+            recs += rs
+            stats[label] = summarise(rs)
+            log(f"{label}: {n} runs in {time.perf_counter() - t0:.0f} s")
+            for r in rs:
+                if "error" in r:
+                    print(f"ERROR {label} run {r['run']} seed {r['seed']}: {r['error']}")
+    write_csv(recs, args.out)
+    elapsed = time.perf_counter() - t_all
+
+    print(
+        f"== bound_series coverage: {n} runs per class-variant, seeds {args.seed}.."
+        f"{args.seed + n - 1}{', windows NaN-joined' if args.join_nan else ''}, defaults ("
+        f"confidence {_f(_med(recs, 'confidence_level'), 'g')}, "
+        f"coverage {_f(_med(recs, 'coverage'), 'g')}), {N_GRID} log frequencies"
+    )
+    print_table(stats)
+    unc = [r for r in recs if r.get("verdict") == "bounded" and not r["covered"]]
+    for r in unc:
+        print(
+            f"uncovered: {r['variant']} run {r['run']} seed {r['seed']} M={r['m']} "
+            f"N={r['n_min']}..{r['n_max']}: {r['n_uncovered']} window(s) above the bound "
+            f"(allowed {r['allowed']}), min ratio {r['min_psd_ratio']:.3f} at "
+            f"{r['f_at_min_hz']:.3g} Hz, {r['n_groups']} group(s)"
+        )
+    for r in recs:
+        if "error" not in r and r.get("verdict") != "bounded":
+            print(f"not-bounded: {r['variant']} run {r['run']} seed {r['seed']}")
+    times = [r["run_s"] for r in recs]
+    print(
+        f"time: {elapsed:.0f} s for {len(recs)} runs; per run median {np.median(times):.2f} s, "
+        f"mean {np.mean(times):.2f} s, max {np.max(times):.2f} s; CSV {args.out}"
+    )
+
+    cov = {k: s["coverage"] for k, s in stats.items() if not math.isnan(s["coverage"])}
+    worst = min(cov, key=cov.get) if cov else "-"
+    fmin_t = max((s["fmin_T"] for s in stats.values() if not math.isnan(s["fmin_T"])),
+                 default=float("nan"))  # fmt: skip
+    hom = {dt: stats.get(variant_label("hom", dt), {}).get("var_ratio", float("nan"))
+           for dt in SAMPLINGS}  # fmt: skip
+    all_pass = bool(stats) and all(s["pass"] for s in stats.values())
+    var_pass = all(not math.isnan(v) and v <= TARGET_VAR_RATIO for v in hom.values())
+    print(
+        f"RESULT n_per_class={n} worst_coverage={_f(cov.get(worst, float('nan')))} "
+        f"worst_class={worst} hom30_var_ratio={_f(hom[30.0])} hom1hz_var_ratio={_f(hom[1.0])} "
+        f"fmin_T_max={_f(fmin_t)} errors={sum(s['errors'] for s in stats.values())} "
+        f"not_bounded={sum(s['not_bounded'] for s in stats.values())} "
+        f"var_ratio_pass={str(var_pass).lower()} "
+        f"fmin_T_pass={str(fmin_t <= TARGET_FMIN_T + 1e-9).lower()} "
+        f"all_classes_pass={str(all_pass).lower()}"
+    )
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
