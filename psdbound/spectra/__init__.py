@@ -6,6 +6,8 @@ Public surface:
   thesis's 80 %/20 % lag taper, Welch, multitaper; one-sided, m^2/Hz, with
   degrees of freedom and chi-square confidence intervals)
 * :func:`fit_bound` -> :class:`BoundFit` (tightest GMRP + white-noise bound)
+* :func:`bound_series` -> :class:`SeriesBound` (any evenly sampled error series:
+  the pooled bound with its statement and verdict; ``psdbound.bound_series``)
 * :class:`BoundModel` / :class:`BoundResults` (windows -> PSDs -> bound)
 * the model: :class:`GaussMarkovWhiteNoise` (also the base of
   :class:`psdbound.kalman.GaussMarkovBound`); options :class:`SpectraOptions`,
@@ -28,6 +30,7 @@ from psdbound.spectra.models import (
     white_psd,
 )
 from psdbound.spectra.options import BoundOptions, SpectraOptions
+from psdbound.spectra.series import SeriesBound, bound_series
 
 __all__ = [
     "METHODS",
@@ -40,6 +43,8 @@ __all__ = [
     "BoundModel",
     "BoundResults",
     "PSDEstimate",
+    "SeriesBound",
+    "bound_series",
     "estimate_psd",
     "fit_bound",
     "gm_acf",

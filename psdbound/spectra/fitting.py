@@ -263,5 +263,7 @@ class BoundModel:
         smoothing = [p.params.get("bandwidth_hz", 0.0) for p in psds]
         ms, why = model_set(bands, pooled, dt, confidence_level=confidence_level,
                             smoothing_hz=float(np.median(smoothing)))  # fmt: skip
+        if ms is not None:  # the reported set contains the bound it accompanies
+            ms = ms.with_model("bound", bound.sigma_gm_m, bound.tau_s, bound.sigma_wn_m)
         return BoundResults(bound, rule="pooled", bands=bands, pooled=pooled, model_set=ms,
                             model_set_note=why, **common)  # fmt: skip

@@ -53,7 +53,7 @@ References
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -109,6 +109,26 @@ class ModelSet:
     chi2_min: float
     n_bands: int
     dispersion: float
+    includes: tuple[str, ...] = ()
+
+    def with_model(self, name: str, sigma_gm_m: float, tau_s: float,
+                   sigma_wn_m: float) -> ModelSet:  # fmt: skip
+        """Return the set widened to contain one more model (e.g. the bound itself).
+
+        The likelihood-ratio region describes the group's *mean* spectrum;
+        the bound lies above the windows that differ from it, so its
+        parameters can lie outside. A Kalman-filter design for "every model
+        of the set" must include the bound: the reported intervals are the
+        hull of the region and the models added here (named in
+        ``includes``).
+        """
+        def hull(iv: tuple[float, float], v: float) -> tuple[float, float]:
+            return (min(iv[0], v), max(iv[1], v))
+
+        return replace(self, tau_interval_s=hull(self.tau_interval_s, tau_s),
+                       sigma_gm_interval_m=hull(self.sigma_gm_interval_m, sigma_gm_m),
+                       sigma_wn_interval_m=hull(self.sigma_wn_interval_m, sigma_wn_m),
+                       includes=self.includes + (name,))  # fmt: skip
 
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready form (the ``bound.model_set`` section of result.json)."""
@@ -122,9 +142,11 @@ class ModelSet:
             "chi2_min": self.chi2_min,
             "n_bands": self.n_bands,
             "dispersion": self.dispersion,
+            "includes": list(self.includes),
             "method": "joint likelihood-ratio region of (sigma_GM, tau, sigma_WN) for the main "
             "group's pooled band means (random-effects variances, over-dispersion scaled), "
-            "projected on each parameter; a grid search",
+            "projected on each parameter (a grid search), widened to contain the models named "
+            "in 'includes' (the bound itself)",
         }
 
 

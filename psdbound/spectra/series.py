@@ -98,6 +98,15 @@ class SeriesBound:
         return "\n".join(lines + ["=" * 72])
 
 
+def _is_one_series(series: object) -> bool:
+    """Whether the input is one series (an array or a flat list of numbers)."""
+    if isinstance(series, np.ndarray):
+        return series.ndim == 1
+    if isinstance(series, Sequence) and len(series) > 0:
+        return bool(np.isscalar(series[0]))
+    return False
+
+
 def split_stretches(
     series: ArrayLike | Sequence[ArrayLike], *, min_samples: int = MIN_STRETCH
 ) -> tuple[list[NDArray[np.float64]], tuple[str, ...]]:
@@ -121,8 +130,7 @@ def split_stretches(
     InputError
         An item that is not 1-D, or an infinite value.
     """
-    items = [series] if np.ndim(series) == 1 and np.size(series) and np.isscalar(
-        np.asarray(series).flat[0]) else list(series)  # fmt: skip
+    items = [series] if _is_one_series(series) else list(series)  # type: ignore[arg-type]
     out, short, short_n = [], 0, 0
     for k, item in enumerate(items):
         try:

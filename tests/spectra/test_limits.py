@@ -1,0 +1,117 @@
+"""The limits behind the pooled statement, against closed forms and seeded simulations."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy import stats
+from scipy.signal import lfilter
+
+import psdbound
+from psdbound.errors import InputError
+from psdbound.spectra import gm_psd_sampled
+from psdbound.spectra.limits import (
+    chi_bar_squared_sf,
+    design_effect_dof,
+    mean_upper_limit,
+    spread_upper_limit,
+    tolerance_factor,
+)
+
+
+@pytest.mark.parametrize("nu", [2.0, 4.0, 14.0, 100.0])
+def test_single_estimate_limit_misses_at_the_stated_rate(nu: float) -> None:
+    rng = np.random.default_rng(int(nu))
+    a, true = 0.01, 3.0e-6
+    est = true * rng.chisquare(nu, 200_000) / nu
+    limits = np.array([mean_upper_limit(np.array([s]), np.array([nu]), a) for s in est[:20_000]])
+    miss = np.mean(limits < true)
+    assert abs(miss - a) < 4 * np.sqrt(a * (1 - a) / limits.size)
+
+
+def test_pooled_limit_of_unequal_dof_is_exact() -> None:
+    rng = np.random.default_rng(3)
+    nus, a, misses = np.array([4.0, 10.0, 30.0]), 0.05, 0
+    n = 20_000
+    for _ in range(n):
+        s = rng.chisquare(nus) / nus
+        misses += mean_upper_limit(s, nus, a) < 1.0
+    assert abs(misses / n - a) < 4 * np.sqrt(a * (1 - a) / n)
+
+
+def test_design_effect() -> None:
+    nu = np.array([10.0, 10.0, 10.0, 10.0])
+    assert design_effect_dof(nu, None, 0.5) == 40.0
+    assert design_effect_dof(nu, np.array([0, 0, 1, 1]), 1.0) == pytest.approx(20.0)
+    assert design_effect_dof(nu, np.array([0, 0, 0, 0]), 0.5) == pytest.approx(16.0)
+
+
+def test_chi_bar_squared_against_simulation() -> None:
+    rng = np.random.default_rng(0)
+    t = (np.maximum(rng.normal(size=(200_000, 8)), 0.0) ** 2).sum(axis=1)
+    for q in (0.1, 0.01, 0.001):
+        assert chi_bar_squared_sf(float(np.quantile(t, 1 - q)), 8) == pytest.approx(q, rel=0.15)
+
+
+def test_tolerance_factor_is_the_binomial_quantile() -> None:
+    z = tolerance_factor(24, 0, 0.05)
+    assert stats.binom.sf(0, 24, stats.norm.sf(z)) == pytest.approx(0.05, rel=1e-6)
+    assert tolerance_factor(100, 1, 0.05) < tolerance_factor(100, 0, 0.05)
+
+
+def test_spread_upper_limit_covers_the_true_spread() -> None:
+    rng = np.random.default_rng(7)
+    a, sigma, n, hits = 0.05, 0.2, 2000, 0
+    for _ in range(n):
+        se = rng.uniform(0.05, 0.3, 15)
+        d = rng.normal(0.0, sigma, 15) + rng.normal(0.0, se)
+        hits += spread_upper_limit(d, se, a) >= sigma**2
+    assert hits / n >= 1 - a - 3 * np.sqrt(a * (1 - a) / n)
+
+
+def _gm(rng, n, dt, sigma, tau, wn):
+    phi = np.exp(-dt / tau)
+    e = rng.normal(0.0, sigma * np.sqrt(1 - phi**2), n)
+    e[0] = rng.normal(0.0, sigma)
+    return lfilter([1.0], [1.0, -phi], e) + rng.normal(0.0, wn, n)
+
+
+def _covered(res, truths, dt) -> int:
+    f = np.geomspace(res.f_min_hz, 0.5 / dt, 300)
+    b = res.bound
+    bound = gm_psd_sampled(f, b.sigma_gm_m, b.tau_s, dt) + 2 * dt * b.sigma_wn_m**2
+    return sum(bool(np.all(bound >= gm_psd_sampled(f, s, t, dt) + 2 * dt * w**2))
+               for s, t, w in truths)  # fmt: skip
+
+
+@pytest.mark.xfail(strict=False, reason=(
+    "known defect (issue 27, open): the one-sided shape test misses the slow pair in 3 of "
+    "10 seeds (measured 7/10 covered against the stated 95 %): their excess sits in the two "
+    "or three lowest bands, diluted over ~23 bands; a partial-sum test was anti-conservative "
+    "because adjacent narrow bands share multitaper ordinates"))
+def test_bound_series_covers_a_minority_of_slow_strong_reflectors() -> None:
+    """22 windows of 3 mm / 30 s and 2 of 6 mm / 200 s: the earlier rule missed the two."""
+    dt, n, ok = 1.0, 1800, 0
+    for seed in range(10):
+        rng = np.random.default_rng(seed)
+        truths = [(0.003, 30.0, 0.001)] * 22 + [(0.006, 200.0, 0.001)] * 2
+        res = psdbound.bound_series([_gm(rng, n, dt, *t) for t in truths], dt)
+        assert res.verdict == "bounded"
+        assert res.f_min_hz <= 5.0 / (n * dt)
+        ok += _covered(res, truths, dt) == len(truths)
+    assert ok >= 9
+
+
+def test_bound_series_splits_gaps_and_reports_short_stretches() -> None:
+    rng = np.random.default_rng(2)
+    x = rng.normal(0.0, 0.002, 3000)
+    x[1000] = np.nan
+    x[1010:1020] = np.nan
+    res = psdbound.bound_series([x, rng.normal(0.0, 0.002, 30)], 1.0)
+    assert res.n_windows == 2
+    assert any("shorter than" in n for n in res.notes)
+    assert "bounded" in res.summary()
+    with pytest.raises(InputError, match="no stretch"):
+        psdbound.bound_series([np.ones(10)], 1.0)
+    with pytest.raises(InputError, match="sampling interval"):
+        psdbound.bound_series([x], 0.0)
