@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from psdbound.campaign.tasks import psds_from_result
+from psdbound.campaign.tasks import pooled_days_bound, psds_from_result
 
 __all__ = ["held_out"]
 
@@ -79,7 +79,7 @@ def held_out(results: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
     from scipy import stats
 
     from psdbound.spectra.bands import band_spectra
-    from psdbound.spectra.pooled import excess_statistic, fit_pooled_bound
+    from psdbound.spectra.pooled import excess_statistic
 
     rows = []
     good = [r for r in results if r.get("ok")]
@@ -89,10 +89,8 @@ def held_out(results: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
             others = [r for r in days if r is not d and np.isclose(r["dt_s"], d["dt_s"])]
             if not others:
                 continue
-            dt = float(d["dt_s"])
             f_min = max(float(r["f_min_hz"]) for r in [*others, d])
-            psds = [p for r in others for p in psds_from_result(r)]
-            bound, _, _ = fit_pooled_bound(psds, dt, f_min_hz=f_min)
+            bound, _, _ = pooled_days_bound(others, f_min_hz=f_min)
             own = band_spectra(psds_from_result(d), f_min_hz=f_min)
             z, v = own.log_unbiased()
             ok = np.isfinite(z)

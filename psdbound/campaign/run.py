@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from psdbound.campaign.heldout import held_out
-from psdbound.campaign.tasks import psds_from_result, station_day_task
+from psdbound.campaign.tasks import pooled_days_bound, station_day_task
 from psdbound.errors import InputError
 
 __all__ = ["CampaignResult", "StationDay", "plan_campaign", "run_campaign"]
@@ -178,16 +178,13 @@ def _public(result: dict[str, Any]) -> dict[str, Any]:
 
 
 def _station_bounds(results: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    from psdbound.spectra.pooled import fit_pooled_bound
-
     out = []
     good = [r for r in results if r.get("ok")]
     for st in sorted({r["station"] for r in good}):
         days = [r for r in good if r["station"] == st]
         dt = float(days[0]["dt_s"])
         days = [r for r in days if np.isclose(r["dt_s"], dt)]
-        psds = [p for r in days for p in psds_from_result(r)]
-        b, _, lim = fit_pooled_bound(psds, dt, f_min_hz=max(float(r["f_min_hz"]) for r in days))
+        b, _, lim = pooled_days_bound(days, f_min_hz=max(float(r["f_min_hz"]) for r in days))
         out.append({"station": st, "n_days": len(days), "sigma_gm_m": b.sigma_gm_m,
                     "tau_s": b.tau_s, "sigma_wn_m": b.sigma_wn_m, "dt_s": dt,
                     "band_hz": [b.f_min_hz, b.f_max_hz], "confidence_level": b.level,

@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["station_day_task", "psds_from_result"]
+__all__ = ["pooled_days_bound", "psds_from_result", "station_day_task"]
 
 
 def station_day_task(item: dict[str, Any]) -> dict[str, Any]:
@@ -66,7 +66,13 @@ def station_day_task(item: dict[str, Any]) -> dict[str, Any]:
     psds = res.psds
     values = [p.psd_m2_hz for p in psds]
     if cutoff is not None:  # undo the high-pass where it passes at least half the power
-        gains = [cfg.filter.response(p.f_hz, p.dt_s, cutoff.f_c_hz) ** 2 for p in psds]
+        from psdbound.spectra.bands import smoothed_response
+
+        def gain(f: np.ndarray) -> np.ndarray:
+            return cfg.filter.response(f, b.dt_s, cutoff.f_c_hz) ** 2
+
+        gains = [smoothed_response(gain, p.f_hz, float(p.params.get("bandwidth_hz", 0.0)))
+                 for p in psds]  # fmt: skip
         values = [np.where(g >= 0.5, v / np.maximum(g, 0.5), v) for v, g in zip(values, gains,
                                                                                   strict=True)]
     out.update({
@@ -82,6 +88,9 @@ def station_day_task(item: dict[str, Any]) -> dict[str, Any]:
         "psd_dof": np.concatenate([np.broadcast_to(p.dof, p.f_hz.shape) for p in psds]),
         "psd_n": np.array([p.n_samples for p in psds]),
         "psd_len": np.array([p.f_hz.size for p in psds]),
+        "psd_bandwidth_hz": np.array([p.params.get("bandwidth_hz", 0.0) for p in psds]),
+        "win_sats": [x.sats for x in w.windows],
+        "win_t_start_gps_s": np.array([x.t_start_gps_s for x in w.windows]),
         "estimator": res.estimator,
     })  # fmt: skip
     return out
@@ -104,8 +113,46 @@ def psds_from_result(result: dict[str, Any]) -> list[Any]:
 
     edges = np.r_[0, np.cumsum(np.asarray(result["psd_len"], dtype=int))]
     f, s, d = (np.asarray(result[k], dtype=float) for k in ("psd_f_hz", "psd_m2_hz", "psd_dof"))
+    width = result.get("psd_bandwidth_hz", np.zeros(len(result["psd_n"])))
     return [
         PSDEstimate(f[a:b], s[a:b], d[a:b], str(result.get("estimator", "multitaper")),
+                    params={"bandwidth_hz": float(w)} if w else {},
                     dt_s=float(result["dt_s"]), n_samples=int(n))  # fmt: skip
-        for a, b, n in zip(edges[:-1], edges[1:], result["psd_n"], strict=True)
+        for a, b, n, w in zip(edges[:-1], edges[1:], result["psd_n"], width, strict=True)
     ]
+
+
+def pooled_days_bound(days: list[dict[str, Any]], *, f_min_hz: float) -> tuple[Any, Any, Any]:
+    """Pool the windows of several days of one station; a sidereal repeat is not independent.
+
+    Windows of one satellite a whole number of sidereal days apart repeat
+    the same multipath (:func:`psdbound.spectra.dependence.repeat_clusters`):
+    they form one cluster with intra-cluster correlation 1, i.e. count as
+    one window in the pooled degrees of freedom (conservative: the repeat is
+    close, not exact).
+
+    Parameters
+    ----------
+    days : list of dict
+        Successful station-day results of one sampling interval.
+    f_min_hz : float
+        Lowest band edge, Hz.
+
+    Returns
+    -------
+    bound, bands, limits
+        As :func:`psdbound.spectra.pooled.fit_pooled_bound`.
+    """
+    from psdbound.spectra.dependence import repeat_clusters
+    from psdbound.spectra.pooled import fit_pooled_bound
+
+    psds = [p for r in days for p in psds_from_result(r)]
+    dt = float(days[0]["dt_s"])
+    clusters = None
+    if all("win_sats" in r for r in days):
+        sats = [s for r in days for s in r["win_sats"]]
+        t0 = np.concatenate([np.asarray(r["win_t_start_gps_s"], dtype=float) for r in days])
+        dur = np.array([p.n_samples * dt for p in psds])
+        clusters = repeat_clusters(sats, t0, dur)
+    return fit_pooled_bound(psds, dt, f_min_hz=f_min_hz, clusters=clusters,
+                            cluster_correlation=1.0 if clusters is not None else 0.0)

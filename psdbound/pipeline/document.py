@@ -199,6 +199,7 @@ def _pooled_section(res: BoundResults) -> dict[str, Any] | None:
         "heterogeneous_fraction": pl.heterogeneous_fraction(),
         "looseness_db": pl.looseness_db(),
         "looseness_notes": list(pl.notes),
+        "dependence": {k: v for k, v in res.dependence.items() if k != "labels"},
     }
 
 

@@ -19,7 +19,8 @@ from scipy import special
 from psdbound.errors import InputError
 from psdbound.spectra.estimators import PSDEstimate
 
-__all__ = ["BandSpectra", "band_spectra", "merge_bands", "resolved_from_hz"]
+__all__ = ["BandSpectra", "band_spectra", "merge_bands", "resolved_from_hz",
+           "smoothed_response"]
 
 
 @dataclass(frozen=True)
@@ -37,12 +38,18 @@ class BandSpectra:
         no frequency in the band.
     dof : ndarray, shape (M, B)
         Equivalent degrees of freedom of each band average (0 where NaN).
+    duration_s : ndarray, shape (M,), optional
+        Length ``N dt`` of each window, seconds.
+    nu0 : ndarray, shape (M,), optional
+        Each estimate's degrees of freedom at one frequency.
     """
 
     edges_hz: NDArray[np.float64]
     centres_hz: NDArray[np.float64]
     psd_m2_hz: NDArray[np.float64]
     dof: NDArray[np.float64]
+    duration_s: NDArray[np.float64] | None = None
+    nu0: NDArray[np.float64] | None = None
 
     def log_unbiased(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Return ``Z = log S_hat - E[log(chi2_nu / nu)]`` and its variance ``psi'(nu/2)``.
@@ -81,7 +88,11 @@ def band_spectra(
     power_response : callable, optional
         ``|H(f)|^2`` of a filter the data went through (e.g. the high-pass):
         each PSD value is divided by it before averaging, so the bands
-        estimate the PSD before filtering. Values below 0.5 are refused
+        estimate the PSD before filtering. A multitaper estimate at ``f``
+        averages the filtered PSD over ``f +- W``, so it is divided by the
+        response averaged the same way (:func:`smoothed_response`), not by
+        its value at ``f``: near the cutoff, where ``|H|^2`` rises steeply,
+        the point value over-corrects the estimate. Values below 0.5 are refused
         (``f_min_hz`` should start where the filter passes most power).
 
     Returns
@@ -113,6 +124,7 @@ def band_spectra(
     width = np.diff(edges)
     values = np.full((len(psds), n_bands), np.nan)
     dof = np.zeros((len(psds), n_bands))
+    durations, nu0s = np.zeros(len(psds)), np.zeros(len(psds))
     for k, p in enumerate(psds):
         nu0 = float(np.median(np.atleast_1d(p.dof)))
         n = p.n_samples if p.n_samples > 0 else int(round(2 * p.f_hz.size))
@@ -121,7 +133,8 @@ def band_spectra(
         inside = (idx >= 0) & (idx < n_bands)
         idx, s = idx[inside], p.psd_m2_hz[use][inside]
         if power_response is not None:
-            gain = np.asarray(power_response(p.f_hz[use][inside]), dtype=float)
+            gain = smoothed_response(power_response, p.f_hz[use][inside],
+                                     float(p.params.get("bandwidth_hz", 0.0)))  # fmt: skip
             if gain.size and gain.min() < 0.5:
                 raise InputError(
                     f"the filter passes only {gain.min():.2f} of the power at "
@@ -137,11 +150,14 @@ def band_spectra(
         # estimator's smoothing share ordinates with their neighbours: an approximation the
         # coverage benchmark measures, benchmarks/bound_coverage.py)
         dof[k, have] = np.clip(2.0 * n * p.dt_s * width[have], nu0, nu0 * counts[have])
+        durations[k], nu0s[k] = n * p.dt_s, nu0
     centres = np.sqrt(edges[:-1] * edges[1:])
-    return BandSpectra(edges, centres, values, dof)
+    return BandSpectra(edges, centres, values, dof, durations, nu0s)
 
 
-def merge_bands(bands: BandSpectra, *, min_window_dof: float = 4.0) -> BandSpectra:
+def merge_bands(
+    bands: BandSpectra, *, min_window_dof: float = 4.0, min_width_hz: float = 0.0
+) -> BandSpectra:
     """Merge adjacent bands until a typical window has ``min_window_dof`` in each.
 
     Bands are merged from low to high frequency until the median, over the
@@ -156,6 +172,12 @@ def merge_bands(bands: BandSpectra, *, min_window_dof: float = 4.0) -> BandSpect
     bands : BandSpectra
     min_window_dof : float, default 4
         Target median per-window degrees of freedom of a band.
+    min_width_hz : float, default 0
+        Smallest band width, Hz. With the estimator's smoothing width (for
+        multitaper ``2W``) the merged band averages of one window are nearly
+        independent of each other, and each merged band's degrees of freedom
+        are recomputed from its width (``2 T df``, at least ``nu_0``, at most
+        the sum of its parts), not summed over parts that share ordinates.
 
     Returns
     -------
@@ -168,7 +190,8 @@ def merge_bands(bands: BandSpectra, *, min_window_dof: float = 4.0) -> BandSpect
             continue  # no window reaches this band: drop it rather than widen the next one
         cur.append(j)
         d = bands.dof[:, cur].sum(axis=1)
-        if np.median(d[d > 0]) >= min_window_dof if (d > 0).any() else False:
+        wide = bands.edges_hz[cur[-1] + 1] - bands.edges_hz[cur[0]] >= min_width_hz
+        if wide and (np.median(d[d > 0]) >= min_window_dof if (d > 0).any() else False):
             groups.append(cur)
             cur = []
     if cur:
@@ -184,7 +207,12 @@ def merge_bands(bands: BandSpectra, *, min_window_dof: float = 4.0) -> BandSpect
     )
     with np.errstate(invalid="ignore", divide="ignore"):
         psd = np.where(dof > 0, num / dof, np.nan)
-    return BandSpectra(edges, np.sqrt(edges[:-1] * edges[1:]), psd, dof)
+    if min_width_hz > 0 and bands.duration_s is not None and bands.nu0 is not None:
+        width = np.diff(edges)[None, :]
+        by_width = np.maximum(2.0 * bands.duration_s[:, None] * width, bands.nu0[:, None])
+        dof = np.where(dof > 0, np.minimum(dof, by_width), 0.0)
+    return BandSpectra(edges, np.sqrt(edges[:-1] * edges[1:]), psd, dof, bands.duration_s,
+                       bands.nu0)  # fmt: skip
 
 
 def resolved_from_hz(psd: PSDEstimate) -> float:
@@ -200,3 +228,39 @@ def resolved_from_hz(psd: PSDEstimate) -> float:
     if psd.method == "multitaper" and "bandwidth_hz" in psd.params:
         return float(psd.params["bandwidth_hz"]) + 1.0 / t
     return float(np.median(np.atleast_1d(psd.dof))) / (2.0 * t)
+
+
+#: Points of the average over ``f +- W`` in :func:`smoothed_response`.
+_SMOOTH_POINTS = 17
+
+
+def smoothed_response(
+    power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]],
+    f_hz: NDArray[np.float64],
+    half_width_hz: float,
+) -> NDArray[np.float64]:
+    """Power response averaged over ``f +- W``: what a smoothing estimator sees.
+
+    Parameters
+    ----------
+    power_response : callable
+        ``|H(f)|^2``.
+    f_hz : ndarray
+        Frequencies, Hz.
+    half_width_hz : float
+        The estimator's smoothing half-width ``W``, Hz (multitaper
+        ``NW / T``; 0: the point value).
+
+    Returns
+    -------
+    ndarray
+        Mean of ``|H|^2`` over ``[f - W, f + W]`` (folded at 0), the
+        boxcar approximation of the multitaper spectral window (flat within
+        ``W``, small outside; Percival and Walden 1993, chapter 7).
+    """
+    f = np.asarray(f_hz, dtype=float)
+    if half_width_hz <= 0.0:
+        return np.asarray(power_response(f), dtype=float)
+    offsets = np.linspace(-half_width_hz, half_width_hz, _SMOOTH_POINTS)
+    grid = np.abs(f[:, None] + offsets[None, :])
+    return np.asarray(power_response(grid.ravel()), dtype=float).reshape(grid.shape).mean(axis=1)

@@ -17,8 +17,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from psdbound.errors import InputError, NoDataError
-from psdbound.spectra.bands import BandSpectra
+from psdbound.spectra.bands import BandSpectra, resolved_from_hz
 from psdbound.spectra.bound import RULES, BoundFit, fit_bound
+from psdbound.spectra.dependence import overlap_correlation, reference_clusters
 from psdbound.spectra.estimators import PSDEstimate, estimate_psd
 from psdbound.spectra.intervals import ModelSet, model_set
 from psdbound.spectra.pooled import PooledLimits, fit_pooled_bound, statement
@@ -47,6 +48,9 @@ class BoundResults:
         How the bounded data were formed.
     bands, pooled : BandSpectra, PooledLimits or None
         The pooled rule's band spectra and limits (None for the envelope).
+    dependence : dict
+        Clusters of dependent windows used by the pooled rule
+        (:meth:`BoundModel.dependence`).
     model_set : ModelSet or None
         The GM + white-noise models consistent with the pooled spectrum
         (:func:`psdbound.spectra.intervals.model_set`; None for the envelope
@@ -63,6 +67,7 @@ class BoundResults:
     pooled: PooledLimits | None = None
     model_set: ModelSet | None = None
     model_set_note: str = ""
+    dependence: dict[str, Any] = field(default_factory=dict)
 
     @property
     def margins(self) -> NDArray[np.float64]:
@@ -210,8 +215,9 @@ class BoundModel:
             Tightness objective.
         f_min_hz : float, optional
             Pooled rule: lowest frequency bounded, Hz (e.g. where the
-            high-pass filter stops attenuating); default twice the lowest
-            frequency of the longest window.
+            high-pass filter stops attenuating); default the lowest
+            frequency any window's estimate resolves
+            (:func:`~psdbound.spectra.bands.resolved_from_hz`).
         confidence_level, coverage, shape_alpha : float
             Pooled rule (see :func:`psdbound.spectra.pooled.pool_bands`).
         bands_per_decade : int, default 10
@@ -253,12 +259,13 @@ class BoundModel:
                 "envelope rule"
             )
         if f_min_hz is None:
-            longest = max(p.n_samples for p in psds) * dt
-            f_min_hz = 2.0 / longest
+            f_min_hz = min(resolved_from_hz(p) for p in psds)
+        dependence = self.dependence()
         bound, bands, pooled = fit_pooled_bound(
             psds, dt, f_min_hz=f_min_hz, confidence_level=confidence_level, coverage=coverage,
             shape_alpha=shape_alpha, bands_per_decade=bands_per_decade,
             power_response=power_response, objective=objective, n_grid=n_grid,
+            clusters=dependence["labels"], cluster_correlation=dependence["correlation"],
         )  # fmt: skip
         smoothing = [p.params.get("bandwidth_hz", 0.0) for p in psds]
         ms, why = model_set(bands, pooled, dt, confidence_level=confidence_level,
@@ -266,4 +273,36 @@ class BoundModel:
         if ms is not None:  # the reported set contains the bound it accompanies
             ms = ms.with_model("bound", bound.sigma_gm_m, bound.tau_s, bound.sigma_wn_m)
         return BoundResults(bound, rule="pooled", bands=bands, pooled=pooled, model_set=ms,
-                            model_set_note=why, **common)  # fmt: skip
+                            model_set_note=why, dependence=dependence, **common)  # fmt: skip
+
+    def dependence(self) -> dict[str, Any]:
+        """Clusters of windows that share an error source, and their correlation.
+
+        Double-difference windows that share a reference satellite in time
+        (:func:`psdbound.spectra.dependence.reference_clusters`), with the
+        median correlation of their overlapping samples
+        (:func:`~psdbound.spectra.dependence.overlap_correlation`, an upper
+        bound on the correlation of their spectra). Single-difference or
+        dual-frequency windows: independent.
+
+        Returns
+        -------
+        dict
+            ``labels`` (ndarray or None), ``correlation``, ``n_clusters``,
+            ``n_pairs`` (overlapping pairs measured), ``method``.
+        """
+        ws = self.windows.windows
+        t0 = np.array([w.t_start_gps_s for w in ws])
+        labels = reference_clusters([w.sats for w in ws], t0, np.array([w.t_stop_gps_s
+                                                                         for w in ws]))
+        if labels is None:
+            return {"labels": None, "correlation": 0.0, "n_clusters": len(ws), "n_pairs": 0,
+                    "method": "windows of different satellites: independent"}  # fmt: skip
+        series = [self.windows.data(k) for k in range(len(ws))]
+        rho, n_pairs = overlap_correlation(series, t0, self.windows.interval_s, labels)
+        return {"labels": labels, "correlation": rho, "n_clusters": int(labels.max()) + 1,
+                "n_pairs": n_pairs,
+                "method": "double differences sharing a reference satellite in time are one "
+                          "cluster; the median correlation of their overlapping samples is the "
+                          "intra-cluster correlation (Kish design effect on the pooled degrees "
+                          "of freedom)"}  # fmt: skip

@@ -75,6 +75,7 @@ __all__ = [
     "design_effect_dof",
     "mean_upper_limit",
     "chi_bar_squared_sf",
+    "end_excess_p",
     "simultaneous_factor",
     "spread_upper_limit",
     "tolerance_factor",
@@ -183,10 +184,15 @@ class WindowDeviations:
         p-value of each window's excess above its group's shape after its
         own level: ``T = sum_b max(0, e_wb)^2`` of the standardised
         residuals, a chi-bar-squared variable under the model
-        (:func:`chi_bar_squared_sf`). One-sided on purpose: a window below
-        its group's shape in some band (the mean removal empties the lowest
-        frequencies of some windows) is covered by the group's limits; one
-        above is not. 1 when nothing is left to test.
+        (:func:`chi_bar_squared_sf`), and the largest standardised partial
+        sum of the residuals from either end of the band range
+        (:func:`end_excess_p`: a slow reflector lifts a few of the lowest
+        bands only); the smaller p-value, doubled. Both assume independent
+        bands: give bands at least the estimator's smoothing wide.
+        One-sided on purpose: a window below its group's shape in some band
+        (the mean removal empties the lowest frequencies of some windows) is
+        covered by the group's limits; one above is not. 1 when nothing is
+        left to test.
     """
 
     mu: NDArray[np.float64]
@@ -283,8 +289,11 @@ def window_deviations(
             std = (np.cbrt(np.exp(log_ratio)) - (1.0 - 2.0 / (9.0 * nu))) / spread
     # one-sided: only a window above its group's shape can be left uncovered by the group
     above = np.where(ok, np.maximum(std, 0.0) ** 2, 0.0).sum(axis=1)
-    shape_p = np.array([chi_bar_squared_sf(t, int(k)) if k > n else 1.0
-                        for t, k, n in zip(above, n_ok, n_par, strict=True)])  # fmt: skip
+    p_spread = np.array([chi_bar_squared_sf(t, int(k)) if k > n else 1.0
+                         for t, k, n in zip(above, n_ok, n_par, strict=True)])  # fmt: skip
+    p_end = np.array([end_excess_p(std[i, ok[i]]) if n_ok[i] > n_par[i] else 1.0
+                      for i in range(m)])  # fmt: skip
+    shape_p = np.minimum(1.0, 2.0 * np.minimum(p_spread, p_end))  # Bonferroni over the two
     return WindowDeviations(mu, dev, se, n_par, shape_p)
 
 
@@ -370,3 +379,22 @@ def chi_bar_squared_sf(t: float, n: int) -> float:
     k = np.arange(1, n + 1)
     weights = stats.binom.pmf(k, n, 0.5)
     return float(np.sum(weights * stats.chi2.sf(t, k)))
+
+
+def end_excess_p(e: NDArray[np.float64]) -> float:
+    """p-value of the largest partial sum of residuals from either end of the bands.
+
+    ``T = max_j S_j / sqrt(j)`` over the sums of the first ``j`` and of the
+    last ``j`` standardised residuals (bands in frequency order); the
+    p-value is the Bonferroni bound ``2 n Phi(-T)``, capped at 1. Powerful
+    against a window whose spectrum departs from its group's at one end only
+    (a slow reflector at the lowest frequencies, a shorter time constant at
+    the highest), which a sum of squares over all bands dilutes.
+    """
+    e = np.asarray(e, dtype=float)
+    n = e.size
+    if n == 0:
+        return 1.0
+    j = np.sqrt(np.arange(1, n + 1))
+    t = max(float(np.max(np.cumsum(e) / j)), float(np.max(np.cumsum(e[::-1]) / j)))
+    return float(min(1.0, 2.0 * n * stats.norm.sf(t)))

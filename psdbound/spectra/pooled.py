@@ -277,16 +277,24 @@ class _GroupLimits:
 
 
 def _group_limits(
-    bands: BandSpectra, rows: NDArray[np.intp], x: NDArray, levels: tuple[float, float, float],
-    coverage: float, clusters: NDArray[np.int64] | None, rho: float,
+    bands: BandSpectra, test_bands: BandSpectra, rows: NDArray[np.intp],
+    levels: tuple[float, float, float], coverage: float, clusters: NDArray[np.int64] | None,
+    rho: float,
 ) -> _GroupLimits:
-    """Exact group levels per band, the windows' spread limit and its quantile factor."""
+    """Exact group levels per band, the windows' spread limit and its quantile factor.
+
+    The windows' levels come from ``test_bands`` (bands at least the estimator's smoothing
+    wide, whose averages are nearly independent); the limits are stated on ``bands``.
+    """
     a_mean, a_spread, a_count = levels
+    zt, vt = test_bands.log_unbiased()
+    okt = np.isfinite(zt[rows])
+    dev = window_deviations(zt[rows], vt[rows], okt, _log_frequency(test_bands.centres_hz),
+                            model="level", dof=test_bands.dof[rows])  # fmt: skip
     z, v = bands.log_unbiased()
     z, v = z[rows], v[rows]
     ok = np.isfinite(z)
     s, nu = bands.psd_m2_hz[rows], bands.dof[rows]
-    dev = window_deviations(z, v, ok, x, model="level", dof=nu)
     n_b = z.shape[1]
     mean_up, eff, tau2 = np.full(n_b, np.nan), np.full(n_b, np.nan), np.full(n_b, np.nan)
     for b in range(n_b):
@@ -295,7 +303,7 @@ def _group_limits(
             continue
         cl = clusters[rows][use] if clusters is not None else None
         eff[b] = design_effect_dof(nu[use, b], cl, rho)
-        mean_up[b] = mean_upper_limit(s[use, b] * np.exp(-dev.dev[use, b]), nu[use, b], a_mean,
+        mean_up[b] = mean_upper_limit(s[use, b] * np.exp(-dev.dev[use, 0]), nu[use, b], a_mean,
                                       effective_dof=eff[b])  # fmt: skip
     level, level_se = dev.dev[:, 0], dev.se[:, 0]
     spread = spread_upper_limit(level, level_se, a_spread)
@@ -332,6 +340,7 @@ def pool_bands(
     clusters: NDArray[np.int64] | None = None,
     cluster_correlation: float = 0.0,
     max_groups: int = 8,
+    smoothing_hz: float = 0.0,
 ) -> PooledLimits:
     """Pool the windows' band spectra into limits that cover a fraction of the windows.
 
@@ -357,6 +366,12 @@ def pool_bands(
         Intra-cluster correlation of the windows' estimates, in [0, 1].
     max_groups : int, default 8
         Most groups; the last one takes every remaining window.
+    smoothing_hz : float, default 0
+        Half-width of the estimator's smoothing, Hz (multitaper ``W``). The
+        windows' levels and the shape tests use bands merged to at least
+        ``2 W`` width, whose averages are nearly independent (narrower bands
+        share multitaper ordinates: treated as independent they understate
+        a level's standard error and make the shape tests reject too often).
 
     Returns
     -------
@@ -386,8 +401,11 @@ def pool_bands(
     if clusters is not None and np.shape(clusters) != (n_w,):
         raise InputError(f"clusters must give one label per window ({n_w}), got "
                          f"{np.shape(clusters)}")  # fmt: skip
-    x = _log_frequency(bands.centres_hz)
-    labels = _shape_groups(z, var, ok, x, bands.dof, shape_alpha, max_groups)
+    test_bands = (merge_bands(bands, min_window_dof=0.0, min_width_hz=2.0 * smoothing_hz)
+                  if smoothing_hz > 0 else bands)  # fmt: skip
+    zt, vt = test_bands.log_unbiased()
+    labels = _shape_groups(zt, vt, np.isfinite(zt), _log_frequency(test_bands.centres_hz),
+                           test_bands.dof, shape_alpha, max_groups)  # fmt: skip
     n_g = int(labels.max()) + 1
     alpha = 1.0 - confidence_level
     a_win = (1.0 - MEAN_SHARE) * alpha / n_g  # per group: the windows' own upper levels
@@ -397,7 +415,8 @@ def pool_bands(
     spread, z_star, window_term = np.zeros(n_g), np.zeros(n_g), np.zeros(n_g)
     for g in range(n_g):
         rows = np.flatnonzero(labels == g)
-        gl = _group_limits(bands, rows, x, levels, coverage, clusters, cluster_correlation)
+        gl = _group_limits(bands, test_bands, rows, levels, coverage, clusters,
+                           cluster_correlation)  # fmt: skip
         out["mean"][g], out["tau2"][g], out["p"][g], out["eff"][g] = (
             gl.mean_upper, gl.tau2, gl.p_hom, gl.eff_dof)
         spread[g], z_star[g] = np.sqrt(gl.spread_upper), gl.z_star
@@ -416,6 +435,11 @@ def pool_bands(
         tolerance_factor=z_star, window_term_log=window_term, effective_dof=out["eff"],
         notes=_loose_notes(out["up"], out["max"], bands.centres_hz, sizes, out["eff"]),
     )
+
+
+def smoothing_hz(psds: Sequence[PSDEstimate]) -> float:
+    """Median smoothing half-width of the estimates, Hz (multitaper ``W``; 0 for the others)."""
+    return float(np.median([p.params.get("bandwidth_hz", 0.0) for p in psds]))
 
 
 @dataclass(frozen=True, eq=False)
@@ -491,7 +515,7 @@ def fit_pooled_bound(
                                      power_response=power_response),
                         min_window_dof=min_window_dof)  # fmt: skip
     limits = pool_bands(bands, confidence_level=confidence_level, coverage=coverage,
-                        shape_alpha=shape_alpha,
+                        shape_alpha=shape_alpha, smoothing_hz=smoothing_hz(psds),
                         clusters=clusters, cluster_correlation=cluster_correlation)  # fmt: skip
     # A limit holds for the band's mean PSD; the PSD can exceed the mean near the lower edge
     # (a steep in-band slope) and near the upper edge (flat in-band, bound still falling).
