@@ -422,8 +422,8 @@ def pool_bands(
         spread[g], z_star[g] = np.sqrt(gl.spread_upper), gl.z_star
         window_term[g] = gl.max_term
         out["up"][g] = gl.mean_upper * np.exp(window_term[g])
-        with np.errstate(all="ignore"):
-            out["max"][g] = np.nanmax(np.where(ok[rows], bands.psd_m2_hz[rows], np.nan), axis=0)
+        out["max"][g] = np.where(ok[rows], bands.psd_m2_hz[rows], -np.inf).max(axis=0)
+        out["max"][g][~np.isfinite(out["max"][g])] = np.nan
         level[rows], level_se[rows] = gl.dev.dev[:, 0], gl.dev.se[:, 0]
         shape_p[rows] = gl.dev.shape_p
     sizes = np.bincount(labels[labels >= 0], minlength=n_g)

@@ -69,7 +69,8 @@ def test_fit_without_arguments_uses_the_demo(demo_run):
     assert "Caveats" in html and "Data covered by the bound:</b> " in html
     # issue 15: the demo recovers its truth: injected PSD under the bound, ratio printed
     demo = d["demo"]
-    assert demo["min_psd_ratio"] >= 1.0 and 1.0 <= demo["variance_ratio"] <= 1.6
+    # issue 27: the bound covers every window's truth, not the mean spectrum: 1.79 measured
+    assert demo["min_psd_ratio"] >= 1.0 and 1.0 <= demo["variance_ratio"] <= 2.0
     assert "bound variance / injected variance" in r.stdout
     assert "Bound variance / injected variance" in html
     assert (out / "report.pdf").stat().st_size > 50_000
