@@ -20,8 +20,9 @@ from psdbound.errors import InputError
 from psdbound.spectra.bands import BandSpectra, resolved_from_hz
 from psdbound.spectra.bound import BoundFit
 from psdbound.spectra.estimators import MIN_SAMPLES, PSDEstimate, estimate_psd
+from psdbound.spectra.intervals import ModelSet, model_set
 from psdbound.spectra.models import GaussMarkovWhiteNoise
-from psdbound.spectra.pooled import PooledLimits, fit_pooled_bound, statement
+from psdbound.spectra.pooled import PooledLimits, fit_pooled_bound, smoothing_hz, statement
 
 __all__ = ["SeriesBound", "bound_series", "split_stretches"]
 
@@ -57,6 +58,11 @@ class SeriesBound:
         The limits the bound lies above.
     notes : tuple of str
         Input that was not used, and why.
+    model_set : ModelSet or None
+        GM + white-noise models consistent with the main group's pooled
+        spectrum, widened to contain the bound
+        (:func:`psdbound.spectra.intervals.model_set`); None with too few
+        bands.
     """
 
     bound: GaussMarkovWhiteNoise
@@ -69,6 +75,7 @@ class SeriesBound:
     bands: BandSpectra
     limits: PooledLimits
     notes: tuple[str, ...] = field(default_factory=tuple)
+    model_set: ModelSet | None = None
 
     @property
     def n_windows(self) -> int:
@@ -255,9 +262,13 @@ def bound_series(
         shape_alpha=shape_alpha, bands_per_decade=bands_per_decade, clusters=cl,
         cluster_correlation=cluster_correlation, objective=objective)  # fmt: skip
     reasons = _verdict(fit, limits)
+    ms, _ = model_set(bands, limits, dt_s, confidence_level=confidence_level,
+                      smoothing_hz=smoothing_hz(psds))  # fmt: skip
+    if ms is not None:
+        ms = ms.with_model("bound", fit.sigma_gm_m, fit.tau_s, fit.sigma_wn_m)
 
     return SeriesBound(
         bound=fit.model, verdict=NOT_BOUNDED if reasons else BOUNDED, verdict_reasons=reasons,
         f_min_hz=float(fit.f_min_hz), covers=statement(limits, bands), fit=fit, psds=psds,
-        bands=bands, limits=limits, notes=notes)  # fmt: skip
+        bands=bands, limits=limits, notes=notes, model_set=ms)  # fmt: skip
 
