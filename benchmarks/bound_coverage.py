@@ -196,6 +196,17 @@ def simulate_window(n: int, sigma: float, tau: float, wn: float, dt: float,
 
 
 # ----------------------------------------------------------------- one run
+#: Options passed to bound_series (``--option key=value``); empty: its defaults.
+BOUND_OPTIONS: dict[str, Any] = {}
+
+
+def _number_or_text(value: str) -> Any:
+    try:
+        return float(value)
+    except ValueError:
+        return value
+
+
 def run_one(cls: str, dt: float, run: int, seed: int, join_nan: bool = False) -> dict[str, Any]:
     """Simulate, bound and check one run; never raises (an error is recorded).
 
@@ -235,7 +246,7 @@ def run_one(cls: str, dt: float, run: int, seed: int, join_nan: bool = False) ->
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             series = np.concatenate([np.r_[x, np.nan] for x in xs])[:-1] if join_nan else xs
-            res = psdbound.bound_series(series, dt)
+            res = psdbound.bound_series(series, dt, **BOUND_OPTIONS)
         b = res.bound
         f = np.geomspace(res.f_min_hz, 0.5 / dt, N_GRID)
         bound_psd = b.sampled_psd(f)
@@ -330,6 +341,8 @@ def write_csv(recs: list[dict[str, Any]], path: Path) -> None:
 def main(argv: list[str] | None = None) -> int:
     """Run the benchmark; return the exit status (0, also when targets are missed)."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--option", action="append", default=[],
+                    help="key=value passed to bound_series (repeatable; default its defaults)")
     ap.add_argument("--n", type=int, default=200, help="runs per class-variant (default 200)")
     ap.add_argument("--quick", action="store_true", help="20 runs per class-variant")
     ap.add_argument("--seed", type=int, default=20_000, help="base seed (run i: seed + i)")
@@ -343,6 +356,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--join-nan", action="store_true",
                     help="pass each run's windows as one NaN-separated series")  # fmt: skip
     args = ap.parse_args(argv)
+    for item in args.option:
+        key, _, value = item.partition("=")
+        BOUND_OPTIONS[key.strip()] = _number_or_text(value.strip())
     n = 20 if args.quick else args.n
     classes = [c.strip() for c in args.classes.split(",") if c.strip()]
     bad = [c for c in classes if c not in CLASSES]

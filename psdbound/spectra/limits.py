@@ -156,13 +156,17 @@ def design_effect_dof(
     return total
 
 
-def simultaneous_factor(a: float, n_windows: int) -> float:
+def simultaneous_factor(a: float, n_windows: int, *, n_params: int = 1) -> float:
     """One-sided factor ``k``: every window's ``d <= d_hat + k se`` with probability ``>= 1 - a``.
 
-    ``z_{1 - a / M}`` (Bonferroni over the ``M`` windows: valid whatever
-    their dependence).
+    ``z_{1 - a / M}`` for a level (Bonferroni over the ``M`` windows: valid
+    whatever their dependence); for a level and a tilt, Scheffe's
+    ``sqrt(chi2_2^{-1}(1 - a / M))``, which holds at every frequency at once.
     """
-    return float(stats.norm.isf(a / max(n_windows, 1)))
+    q = a / max(n_windows, 1)
+    if n_params <= 1:
+        return float(stats.norm.isf(q))
+    return float(np.sqrt(stats.chi2.isf(q, n_params)))
 
 
 @dataclass(frozen=True)
@@ -180,6 +184,9 @@ class WindowDeviations:
         Standard error of ``d_hat_wb``.
     n_params : ndarray of int, shape (M,)
         Parameters of each window's deviation (1: level, 2: level and tilt).
+    coef, cov : ndarray, shapes (M, 2) and (M, 2, 2)
+        Each window's level and tilt (0 for a level-only deviation) and
+        their covariance (:meth:`at` evaluates them anywhere).
     shape_p : ndarray, shape (M,)
         p-value of each window's excess above its group's shape after its
         own level: ``T = sum_b max(0, e_wb)^2`` of the standardised
@@ -200,6 +207,19 @@ class WindowDeviations:
     se: NDArray[np.float64]
     n_params: NDArray[np.int64]
     shape_p: NDArray[np.float64]
+    coef: NDArray[np.float64] | None = None
+    cov: NDArray[np.float64] | None = None
+
+    def at(self, x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Deviations and their standard errors at standardised log frequencies ``x``.
+
+        Returns arrays of shape (M, len(x)): each window's level (and tilt)
+        evaluated at ``x``, and its standard error.
+        """
+        design = _design(np.asarray(x, dtype=float), "tilt")
+        assert self.coef is not None and self.cov is not None
+        se = np.sqrt(np.maximum(np.einsum("bi,mij,bj->mb", design, self.cov, design), 0.0))
+        return self.coef @ design.T, se
 
 
 def _design(x: NDArray[np.float64], model: str) -> NDArray[np.float64]:
@@ -260,25 +280,25 @@ def window_deviations(
     designs = {name: _design(x, name) for name in set(models)}
     wsum = np.maximum(w.sum(axis=0), 1e-300)
     mu = (w * zz).sum(axis=0) / wsum
+    full = _design(x, "tilt")
+    coef = np.zeros((m, 2))
+    cov = np.zeros((m, 2, 2))
     dev = np.zeros((m, n_b))
-    cov: list[NDArray[np.float64]] = [np.zeros((1, 1))] * m
     for _ in range(_BACKFIT_ITER):
-        coef = []
         for i in range(m):
-            c, cov[i] = _fit_window((zz[i] - mu)[ok[i]], w[i, ok[i]], designs[models[i]][ok[i]])
-            coef.append(c)
-        new = np.stack([designs[models[i]] @ coef[i] for i in range(m)])
-        new -= new.mean(axis=0)  # identifiability: deviations average to 0 over the windows
+            p = designs[models[i]].shape[1]
+            c, cv = _fit_window((zz[i] - mu)[ok[i]], w[i, ok[i]], designs[models[i]][ok[i]])
+            coef[i, :p], cov[i, :p, :p] = c, cv
+        coef -= coef.mean(axis=0)  # identifiability: deviations average to 0 over the windows
+        new = coef @ full.T
         mu_new = (w * (zz - new)).sum(axis=0) / wsum
         done = np.allclose(new, dev, atol=1e-9) and np.allclose(mu_new, mu, atol=1e-9)
         dev, mu = new, mu_new
         if done:
             break
-    se = np.stack([np.sqrt(np.maximum(np.einsum("bi,ij,bj->b", designs[models[i]], cov[i],
-                                                designs[models[i]]), 0.0))
-                   for i in range(m)])  # fmt: skip
     if m == 1:
-        se = np.zeros_like(se)  # one window: its deviation from itself is 0 exactly
+        cov = np.zeros_like(cov)  # one window: its deviation from itself is 0 exactly
+    se = np.sqrt(np.maximum(np.einsum("bi,mij,bj->mb", full, cov, full), 0.0))
     n_par = np.array([designs[name].shape[1] for name in models], dtype=np.int64)
     std = (zz - mu[None, :] - dev) * np.sqrt(w)
     if dof is not None:
@@ -294,7 +314,7 @@ def window_deviations(
     p_end = np.array([end_excess_p(std[i, ok[i]]) if n_ok[i] > n_par[i] else 1.0
                       for i in range(m)])  # fmt: skip
     shape_p = np.minimum(1.0, 2.0 * np.minimum(p_spread, p_end))  # Bonferroni over the two
-    return WindowDeviations(mu, dev, se, n_par, shape_p)
+    return WindowDeviations(mu, dev, se, n_par, shape_p, coef, cov)
 
 
 def spread_upper_limit(d: NDArray[np.float64], se: NDArray[np.float64], a: float) -> float:

@@ -55,6 +55,7 @@ from psdbound.spectra.bands import BandSpectra, band_spectra, merge_bands
 from psdbound.spectra.bound import BoundFit, fit_bound
 from psdbound.spectra.estimators import PSDEstimate
 from psdbound.spectra.limits import (
+    SHAPE_MODELS,
     WindowDeviations,
     design_effect_dof,
     mean_upper_limit,
@@ -69,6 +70,11 @@ __all__ = ["PooledLimits", "excess_statistic", "fit_pooled_bound", "pool_bands",
 
 #: Share of ``1 - confidence_level`` spent on the group levels (the rest on the windows).
 MEAN_SHARE = 0.5
+#: Deviation of a window from its group's shape: a level, and a tilt in log frequency for
+#: the windows whose tilt is significant at TILT_ALPHA ("auto"); "level", "tilt" for all.
+DEVIATION_MODEL = "auto"
+#: Per-window level of the tilt pre-test of the "auto" deviation model.
+TILT_ALPHA = 0.05
 #: Window looseness above which a band limit is explained: limit over the largest window, dB.
 LOOSE_DB = 10.0
 
@@ -130,11 +136,9 @@ class PooledLimits:
         Upper confidence limit of the sd of the windows' true log levels.
     tolerance_factor : ndarray, shape (G,)
         Normal quantile ``z*`` multiplying it (:func:`~psdbound.spectra.limits.tolerance_factor`).
-    window_term_log : ndarray, shape (G,)
-        Log factor from the group level to the limit: the smaller of the
-        tolerance term ``z* sigma_upper`` and the distribution-free term
-        (the ``k+1``-th largest window's own upper level), each at half the
-        windows' share of the error probability (so the smaller is valid).
+    window_term_log : ndarray, shape (G, B)
+        Log factor from the group level to the limit in each band: the
+        largest upper deviation (level and tilt) over the covered windows.
     effective_dof : ndarray, shape (G, B)
         Degrees of freedom of each group level (reduced by the design
         effect of dependent windows).
@@ -223,11 +227,14 @@ def _check_levels(confidence_level: float, coverage: float, shape_alpha: float) 
         raise InputError(f"shape alpha must lie in (0, 1), got {shape_alpha!r}")
 
 
-def _log_frequency(centres_hz: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Standardised log frequency of the bands (mean 0, unit spread; 0 for one band)."""
-    x = np.log(centres_hz)
-    sd = float(np.std(x))
-    return (x - x.mean()) / sd if sd > 0 else np.zeros_like(x)
+def _log_frequency(
+    centres_hz: NDArray[np.float64], reference_hz: NDArray[np.float64] | None = None
+) -> NDArray[np.float64]:
+    """Standardised log frequency (mean 0, unit spread over ``reference_hz``, default the bands)."""
+    ref = np.log(centres_hz if reference_hz is None else reference_hz)
+    sd = float(np.std(ref))
+    x = np.log(centres_hz) - ref.mean()
+    return x / sd if sd > 0 else np.zeros_like(x)
 
 
 def _shape_groups(
@@ -273,13 +280,13 @@ class _GroupLimits:
     dev: WindowDeviations
     spread_upper: float
     z_star: float
-    max_term: float
+    max_term: NDArray[np.float64]
 
 
 def _group_limits(
     bands: BandSpectra, test_bands: BandSpectra, rows: NDArray[np.intp],
     levels: tuple[float, float, float], coverage: float, clusters: NDArray[np.int64] | None,
-    rho: float,
+    rho: float, model: str,
 ) -> _GroupLimits:
     """Exact group levels per band, the windows' spread limit and its quantile factor.
 
@@ -289,8 +296,21 @@ def _group_limits(
     a_mean, a_spread, a_count = levels
     zt, vt = test_bands.log_unbiased()
     okt = np.isfinite(zt[rows])
-    dev = window_deviations(zt[rows], vt[rows], okt, _log_frequency(test_bands.centres_hz),
-                            model="level", dof=test_bands.dof[rows])  # fmt: skip
+    x_test = _log_frequency(test_bands.centres_hz)
+    x_fine = _log_frequency(bands.centres_hz, test_bands.centres_hz)
+    dev = window_deviations(zt[rows], vt[rows], okt, x_test, model="level",
+                            dof=test_bands.dof[rows])  # fmt: skip
+    d_fine, se_fine = dev.at(x_fine)
+    m = rows.size
+    k = np.full(m, simultaneous_factor(2.0 * a_spread, m))
+    if model != "level":
+        tilt = window_deviations(zt[rows], vt[rows], okt, x_test, model="tilt",
+                                 dof=test_bands.dof[rows])  # fmt: skip
+        use = np.ones(m, dtype=bool) if model == "tilt" else _tilted(tilt)
+        if use.any():
+            d_t, se_t = tilt.at(x_fine)
+            d_fine[use], se_fine[use] = d_t[use], se_t[use]
+            k[use] = simultaneous_factor(2.0 * a_spread, m, n_params=2)
     z, v = bands.log_unbiased()
     z, v = z[rows], v[rows]
     ok = np.isfinite(z)
@@ -303,18 +323,27 @@ def _group_limits(
             continue
         cl = clusters[rows][use] if clusters is not None else None
         eff[b] = design_effect_dof(nu[use, b], cl, rho)
-        mean_up[b] = mean_upper_limit(s[use, b] * np.exp(-dev.dev[use, 0]), nu[use, b], a_mean,
+        mean_up[b] = mean_upper_limit(s[use, b] * np.exp(-d_fine[use, b]), nu[use, b], a_mean,
                                       effective_dof=eff[b])  # fmt: skip
-    level, level_se = dev.dev[:, 0], dev.se[:, 0]
+    level, level_se = dev.coef[:, 0], np.sqrt(dev.cov[:, 0, 0])
     spread = spread_upper_limit(level, level_se, a_spread)
     tau2[np.isfinite(mean_up)] = max(0.0, float(np.var(level)) - float(np.mean(level_se**2)))
-    m = rows.size
     allowed = int(np.floor((1.0 - coverage) * m + 1e-9))
     z_star = tolerance_factor(m, allowed, a_count)
-    # distribution-free: every window's own upper level; all but `allowed` of them covered
-    own = np.sort(level + simultaneous_factor(2.0 * a_spread, m) * level_se)[::-1]
-    return _GroupLimits(mean_up, tau2, _cochran_p(z, v, ok), eff, dev, spread, z_star,
-                        float(own[min(allowed, m - 1)]) if m > 1 else 0.0)
+    # distribution-free: every window's own upper deviation at every band (simultaneous over
+    # the bands for a tilt: Scheffe), all but `allowed` of the windows covered
+    own = d_fine + k[:, None] * se_fine
+    keep = np.argsort(np.max(own, axis=1))[: m - allowed] if m > 1 else np.arange(m)
+    term = np.max(own[keep], axis=0) if m > 1 else np.zeros(n_b)
+    return _GroupLimits(mean_up, tau2, _cochran_p(z, v, ok), eff, dev, spread, z_star, term)
+
+
+def _tilted(dev: WindowDeviations) -> NDArray[np.bool_]:
+    """Windows whose tilt differs from 0 at :data:`TILT_ALPHA` (two-sided, each window)."""
+    assert dev.coef is not None and dev.cov is not None
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = dev.coef[:, 1] / np.sqrt(dev.cov[:, 1, 1])
+    return (dev.n_params == 2) & (np.abs(np.nan_to_num(t)) > stats.norm.isf(TILT_ALPHA / 2.0))
 
 
 def _loose_notes(pl_upper: NDArray, win_max: NDArray, f_hz: NDArray, sizes: NDArray,
@@ -341,6 +370,7 @@ def pool_bands(
     cluster_correlation: float = 0.0,
     max_groups: int = 8,
     smoothing_hz: float = 0.0,
+    deviation_model: str = DEVIATION_MODEL,
 ) -> PooledLimits:
     """Pool the windows' band spectra into limits that cover a fraction of the windows.
 
@@ -366,6 +396,15 @@ def pool_bands(
         Intra-cluster correlation of the windows' estimates, in [0, 1].
     max_groups : int, default 8
         Most groups; the last one takes every remaining window.
+    deviation_model : {"auto", "tilt", "level"}, default "auto"
+        Each window's deviation from its group's shape: a level only, a
+        level and a tilt in log frequency for every window, or ("auto") a
+        tilt for the windows whose tilt is significant at
+        :data:`TILT_ALPHA` and a level for the others. Windows whose
+        Gauss-Markov part differs while the white noise is shared differ
+        most at the lowest frequencies, which a level averages away; a tilt
+        for every window costs a wide margin at the band ends. Measured in
+        ``benchmarks/bound_coverage.py``.
     smoothing_hz : float, default 0
         Half-width of the estimator's smoothing, Hz (multitaper ``W``). The
         windows' levels and the shape tests use bands merged to at least
@@ -391,6 +430,9 @@ def pool_bands(
     heterogeneity in meta-analysis. Statistics in Medicine 26(1), 37-52.
     """
     _check_levels(confidence_level, coverage, shape_alpha)
+    if deviation_model not in (*SHAPE_MODELS, "auto"):
+        raise InputError(f"unknown deviation model {deviation_model!r}; choose from "
+                         f"{', '.join(SHAPE_MODELS)}")  # fmt: skip
     if not 0.0 <= cluster_correlation <= 1.0:
         raise InputError(f"cluster correlation must lie in [0, 1], got {cluster_correlation!r}")
     z, var = bands.log_unbiased()
@@ -412,11 +454,11 @@ def pool_bands(
     levels = (MEAN_SHARE * alpha / (n_g * n_b), a_win / 2.0, a_win / 2.0)
     out = {k: np.full((n_g, n_b), np.nan) for k in ("mean", "tau2", "p", "eff", "max", "up")}
     level, level_se, shape_p = np.full(n_w, np.nan), np.full(n_w, np.nan), np.ones(n_w)
-    spread, z_star, window_term = np.zeros(n_g), np.zeros(n_g), np.zeros(n_g)
+    spread, z_star, window_term = np.zeros(n_g), np.zeros(n_g), np.zeros((n_g, n_b))
     for g in range(n_g):
         rows = np.flatnonzero(labels == g)
         gl = _group_limits(bands, test_bands, rows, levels, coverage, clusters,
-                           cluster_correlation)  # fmt: skip
+                           cluster_correlation, deviation_model)  # fmt: skip
         out["mean"][g], out["tau2"][g], out["p"][g], out["eff"][g] = (
             gl.mean_upper, gl.tau2, gl.p_hom, gl.eff_dof)
         spread[g], z_star[g] = np.sqrt(gl.spread_upper), gl.z_star
@@ -424,7 +466,7 @@ def pool_bands(
         out["up"][g] = gl.mean_upper * np.exp(window_term[g])
         out["max"][g] = np.where(ok[rows], bands.psd_m2_hz[rows], -np.inf).max(axis=0)
         out["max"][g][~np.isfinite(out["max"][g])] = np.nan
-        level[rows], level_se[rows] = gl.dev.dev[:, 0], gl.dev.se[:, 0]
+        level[rows], level_se[rows] = gl.dev.coef[:, 0], np.sqrt(gl.dev.cov[:, 0, 0])
         shape_p[rows] = gl.dev.shape_p
     sizes = np.bincount(labels[labels >= 0], minlength=n_g)
     return PooledLimits(
@@ -463,6 +505,7 @@ def fit_pooled_bound(
     power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]] | None = None,
     clusters: NDArray[np.int64] | None = None,
     cluster_correlation: float = 0.0,
+    deviation_model: str = DEVIATION_MODEL,
     objective: str = "variance",
     n_grid: int = 64,
 ) -> tuple[BoundFit, BandSpectra, PooledLimits]:
@@ -496,6 +539,8 @@ def fit_pooled_bound(
         Cluster label of each window (dependent windows, :func:`pool_bands`).
     cluster_correlation : float, default 0
         Their intra-cluster correlation, in [0, 1].
+    deviation_model : {"auto", "tilt", "level"}, default "auto"
+        Each window's deviation from its group's shape (:func:`pool_bands`).
     objective : {"variance", "area"}, default "variance"
         Tightness objective (:func:`fit_bound`).
     n_grid : int, default 64
@@ -516,6 +561,7 @@ def fit_pooled_bound(
                         min_window_dof=min_window_dof)  # fmt: skip
     limits = pool_bands(bands, confidence_level=confidence_level, coverage=coverage,
                         shape_alpha=shape_alpha, smoothing_hz=smoothing_hz(psds),
+                        deviation_model=deviation_model,
                         clusters=clusters, cluster_correlation=cluster_correlation)  # fmt: skip
     # A limit holds for the band's mean PSD; the PSD can exceed the mean near the lower edge
     # (a steep in-band slope) and near the upper edge (flat in-band, bound still falling).

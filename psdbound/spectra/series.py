@@ -183,6 +183,7 @@ def bound_series(
     shape_alpha: float = 0.05,
     clusters: ArrayLike | None = None,
     cluster_correlation: float = 0.0,
+    deviation_model: str = "auto",
     objective: str = "variance",
 ) -> SeriesBound:
     """Bound evenly sampled error series by a Gauss-Markov + white-noise PSD.
@@ -218,6 +219,9 @@ def bound_series(
         (their pooled degrees of freedom are reduced).
     cluster_correlation : float, default 0
         Intra-cluster correlation, in [0, 1].
+    deviation_model : {"auto", "tilt", "level"}, default "auto"
+        Each window's deviation from its group's shape
+        (:func:`psdbound.spectra.pooled.pool_bands`).
     objective : {"variance", "area"}, default "variance"
         Tightness objective.
 
@@ -260,7 +264,8 @@ def bound_series(
     fit, bands, limits = fit_pooled_bound(
         psds, dt_s, f_min_hz=f_min_hz, confidence_level=confidence_level, coverage=coverage,
         shape_alpha=shape_alpha, bands_per_decade=bands_per_decade, clusters=cl,
-        cluster_correlation=cluster_correlation, objective=objective)  # fmt: skip
+        cluster_correlation=cluster_correlation, deviation_model=deviation_model,
+        objective=objective)  # fmt: skip
     reasons = _verdict(fit, limits)
     ms, _ = model_set(bands, limits, dt_s, confidence_level=confidence_level,
                       smoothing_hz=smoothing_hz(psds))  # fmt: skip
