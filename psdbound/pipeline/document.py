@@ -178,10 +178,11 @@ def _pooled_section(res: BoundResults) -> dict[str, Any] | None:
     if pl is None or res.bands is None:
         return None
     return {
-        "method": "band-averaged window PSDs; windows grouped by spectral shape (residual test "
-        "after each window's level); per group and band the exact chi-square upper limit of the "
-        "group level, raised by the spread of the windows' levels (the smaller of a Q-profile "
-        "normal tolerance limit and the windows' own upper levels); Bonferroni over the parts",
+        "method": "band-averaged window PSDs; windows grouped by spectral shape (one-sided "
+        "residual tests on bands at least the estimator's smoothing wide); per group and band "
+        "the exact chi-square upper limit of the group level, raised by every covered window's "
+        "own upper deviation (a level, and a tilt in log frequency where significant); "
+        "Bonferroni over the parts",
         "coverage": pl.coverage,
         "shape_alpha": res.bound.meta.get("shape_alpha"),
         "band_edges_hz": res.bands.edges_hz,
