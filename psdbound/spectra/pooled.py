@@ -54,6 +54,7 @@ from psdbound.errors import InputError
 from psdbound.spectra.bands import BandSpectra, band_spectra, merge_bands
 from psdbound.spectra.bound import BoundFit, fit_bound
 from psdbound.spectra.estimators import PSDEstimate
+from psdbound.spectra.groups import log_frequency, shape_groups, tilted
 from psdbound.spectra.limits import (
     SHAPE_MODELS,
     WindowDeviations,
@@ -73,11 +74,6 @@ MEAN_SHARE = 0.5
 #: Deviation of a window from its group's shape: a level, and a tilt in log frequency for
 #: the windows whose tilt is significant at TILT_ALPHA ("auto"); "level", "tilt" for all.
 DEVIATION_MODEL = "auto"
-#: Level of the tilt test ("auto" deviation model, and the shape groups): family-wise over
-#: the windows of a group (at 5 % per window, real station windows got tilts whose margins at
-#: the band ends loosened ESBC from 2.3 to 6.0 mm).
-TILT_ALPHA = 0.05
-TILT_FAMILYWISE = True
 #: Window looseness above which a band limit is explained: limit over the largest window, dB.
 LOOSE_DB = 10.0
 
@@ -230,43 +226,6 @@ def _check_levels(confidence_level: float, coverage: float, shape_alpha: float) 
         raise InputError(f"shape alpha must lie in (0, 1), got {shape_alpha!r}")
 
 
-def _log_frequency(
-    centres_hz: NDArray[np.float64], reference_hz: NDArray[np.float64] | None = None
-) -> NDArray[np.float64]:
-    """Standardised log frequency (mean 0, unit spread over ``reference_hz``, default the bands)."""
-    ref = np.log(centres_hz if reference_hz is None else reference_hz)
-    sd = float(np.std(ref))
-    x = np.log(centres_hz) - ref.mean()
-    return x / sd if sd > 0 else np.zeros_like(x)
-
-
-def _shape_groups(
-    z: NDArray, v: NDArray, ok: NDArray, x: NDArray, dof: NDArray, shape_alpha: float,
-    max_groups: int, split_tilted: bool = True,
-) -> NDArray[np.int64]:
-    """Group the windows by spectral shape: a window that departs from its group moves on."""
-    n_w = z.shape[0]
-    labels = np.full(n_w, -1, dtype=np.int64)
-    todo = np.flatnonzero(ok.any(axis=1))
-    g = 0
-    while todo.size:
-        members = todo
-        while g < max_groups - 1 and members.size > 1:
-            dev = window_deviations(z[members], v[members], ok[members], x, model="level",
-                                    dof=dof[members])  # fmt: skip
-            off = dev.shape_p < shape_alpha / n_w
-            if split_tilted:  # a significant tilt (family-wise) is another shape too
-                off |= _tilted(window_deviations(z[members], v[members], ok[members], x,
-                                                 model="tilt", dof=dof[members]))  # fmt: skip
-            if not off.any() or off.all():
-                break
-            members = members[~off]
-        labels[members] = g
-        todo = np.setdiff1d(todo, members)
-        g += 1
-    return labels
-
-
 def _cochran_p(z: NDArray, v: NDArray, ok: NDArray) -> NDArray[np.float64]:
     out = np.full(z.shape[1], np.nan)
     for b in range(z.shape[1]):
@@ -302,8 +261,8 @@ def _group_limits(
     a_mean, a_spread, a_count = levels
     zt, vt = test_bands.log_unbiased()
     okt = np.isfinite(zt[rows])
-    x_test = _log_frequency(test_bands.centres_hz)
-    x_fine = _log_frequency(bands.centres_hz, test_bands.centres_hz)
+    x_test = log_frequency(test_bands.centres_hz)
+    x_fine = log_frequency(bands.centres_hz, test_bands.centres_hz)
     dev = window_deviations(zt[rows], vt[rows], okt, x_test, model="level",
                             dof=test_bands.dof[rows])  # fmt: skip
     d_fine, se_fine = dev.at(x_fine)
@@ -312,7 +271,7 @@ def _group_limits(
     if model != "level":
         tilt = window_deviations(zt[rows], vt[rows], okt, x_test, model="tilt",
                                  dof=test_bands.dof[rows])  # fmt: skip
-        use = np.ones(m, dtype=bool) if model == "tilt" else _tilted(tilt)
+        use = np.ones(m, dtype=bool) if model == "tilt" else tilted(tilt)
         if use.any():
             d_t, se_t = tilt.at(x_fine)
             d_fine[use], se_fine[use] = d_t[use], se_t[use]
@@ -342,15 +301,6 @@ def _group_limits(
     keep = np.argsort(np.max(own, axis=1))[: m - allowed] if m > 1 else np.arange(m)
     term = np.max(own[keep], axis=0) if m > 1 else np.zeros(n_b)
     return _GroupLimits(mean_up, tau2, _cochran_p(z, v, ok), eff, dev, spread, z_star, term)
-
-
-def _tilted(dev: WindowDeviations) -> NDArray[np.bool_]:
-    """Windows whose tilt differs from 0 at :data:`TILT_ALPHA` (two-sided, Bonferroni)."""
-    assert dev.coef is not None and dev.cov is not None
-    with np.errstate(invalid="ignore", divide="ignore"):
-        t = dev.coef[:, 1] / np.sqrt(dev.cov[:, 1, 1])
-    level = TILT_ALPHA / (2.0 * max(t.size, 1)) if TILT_FAMILYWISE else TILT_ALPHA / 2.0
-    return (dev.n_params == 2) & (np.abs(np.nan_to_num(t)) > stats.norm.isf(level))
 
 
 def _loose_notes(pl_upper: NDArray, win_max: NDArray, f_hz: NDArray, sizes: NDArray,
@@ -407,8 +357,9 @@ def pool_bands(
         Each window's deviation from its group's shape: a level only, a
         level and a tilt in log frequency for every window, or ("auto") a
         tilt for the windows whose tilt is significant at
-        :data:`TILT_ALPHA` (family-wise) and a level for the others; a window
-        with a significant tilt is also given a shape group of its own. Windows whose
+        :data:`~psdbound.spectra.groups.TILT_ALPHA` (family-wise) and a
+        level for the others; a window with a significant tilt is also given
+        a shape group of its own. Windows whose
         Gauss-Markov part differs while the white noise is shared differ
         most at the lowest frequencies, which a level averages away; a tilt
         for every window costs a wide margin at the band ends. Measured in
@@ -454,7 +405,7 @@ def pool_bands(
     test_bands = (merge_bands(bands, min_window_dof=0.0, min_width_hz=2.0 * smoothing_hz)
                   if smoothing_hz > 0 else bands)  # fmt: skip
     zt, vt = test_bands.log_unbiased()
-    labels = _shape_groups(zt, vt, np.isfinite(zt), _log_frequency(test_bands.centres_hz),
+    labels = shape_groups(zt, vt, np.isfinite(zt), log_frequency(test_bands.centres_hz),
                            test_bands.dof, shape_alpha, max_groups)  # fmt: skip
     n_g = int(labels.max()) + 1
     alpha = 1.0 - confidence_level
