@@ -118,6 +118,7 @@ FIELDS = (
     "sigma_gm_mm", "tau_s", "sigma_wn_mm", "ref_var_mm2",
     "bound_sigma_gm_mm", "bound_tau_s", "bound_sigma_wn_mm",
     "verdict", "covered", "n_uncovered", "allowed", "min_psd_ratio", "f_at_min_hz",
+    "params_in_set",
     "worst_window", "var_ratio", "f_min_hz", "fmin_T", "n_groups",
     "confidence_level", "coverage", "run_s", "error",
 )  # fmt: skip
@@ -200,6 +201,18 @@ def simulate_window(n: int, sigma: float, tau: float, wn: float, dt: float,
 BOUND_OPTIONS: dict[str, Any] = {}
 
 
+def _in_model_set(res: Any, wins: list[tuple[int, float, float, float]]) -> str:
+    """Whether every window's true (sigma_GM, tau, sigma_WN) lies in the reported intervals."""
+    ms = res.model_set
+    if ms is None:
+        return ""
+    def inside(v: float, iv: tuple[float, float]) -> bool:
+        return iv[0] * (1 - 1e-9) <= v <= iv[1] * (1 + 1e-9)
+
+    return str(all(inside(sg, ms.sigma_gm_interval_m) and inside(t, ms.tau_interval_s)
+                   and inside(w, ms.sigma_wn_interval_m) for _, sg, t, w in wins))
+
+
 def _number_or_text(value: str) -> Any:
     try:
         return float(value)
@@ -266,7 +279,7 @@ def run_one(cls: str, dt: float, run: int, seed: int, join_nan: bool = False) ->
             worst_window=worst, var_ratio=(b.sigma_gm_m**2 + b.sigma_wn_m**2) / ref_var,
             f_min_hz=res.f_min_hz, fmin_T=res.f_min_hz * max(ns) * dt,
             n_groups=res.limits.n_groups, confidence_level=res.limits.confidence_level,
-            coverage=res.limits.coverage)  # fmt: skip
+            coverage=res.limits.coverage, params_in_set=_in_model_set(res, wins))  # fmt: skip
     except Exception as exc:  # a failing run is a result, not a crash
         rec["error"] = f"{type(exc).__name__}: {' '.join(str(exc).split())}"[:300]
     rec["run_s"] = time.perf_counter() - t0
@@ -302,6 +315,9 @@ def summarise(recs: list[dict[str, Any]]) -> dict[str, Any]:
         "groups": _med(done, "n_groups"), "min_ratio_med": _med(bd, "min_psd_ratio"),
         "min_ratio_min": float(min(mins)) if mins else float("nan"),
         "run_s": _med(recs, "run_s"),
+        "in_set": float(np.mean([r["params_in_set"] == "True" for r in bd
+                                 if r.get("params_in_set")])) if any(
+            r.get("params_in_set") for r in bd) else float("nan"),
     }  # fmt: skip
 
 
@@ -413,11 +429,16 @@ def main(argv: list[str] | None = None) -> int:
                  default=float("nan"))  # fmt: skip
     hom = {dt: stats.get(variant_label("hom", dt), {}).get("var_ratio", float("nan"))
            for dt in SAMPLINGS}  # fmt: skip
+    in_set = {dt: stats.get(variant_label("hom", dt), {}).get("in_set", float("nan"))
+              for dt in SAMPLINGS}  # fmt: skip
+    print("model set (tau, sigma_GM, sigma_WN intervals) containing the homogeneous truth: "
+          + ", ".join(f"{dt:g} s {_f(v)}" for dt, v in in_set.items()))
     all_pass = bool(stats) and all(s["pass"] for s in stats.values())
     var_pass = all(not math.isnan(v) and v <= TARGET_VAR_RATIO for v in hom.values())
     print(
         f"RESULT n_per_class={n} worst_coverage={_f(cov.get(worst, float('nan')))} "
         f"worst_class={worst} hom30_var_ratio={_f(hom[30.0])} hom1hz_var_ratio={_f(hom[1.0])} "
+        f"hom30_params_in_set={_f(in_set[30.0])} hom1hz_params_in_set={_f(in_set[1.0])} "
         f"fmin_T_max={_f(fmin_t)} errors={sum(s['errors'] for s in stats.values())} "
         f"not_bounded={sum(s['not_bounded'] for s in stats.values())} "
         f"var_ratio_pass={str(var_pass).lower()} "
