@@ -5,50 +5,41 @@ know which models the data cannot tell apart (a filter designed with the
 wrong time constant can fail to bound its own error covariance even when the
 PSD looks close; see docs/method/kalman.rst). This module gives that set.
 
-The main group's windows are pooled band by band exactly as for the bound
-(:func:`psdbound.spectra.pooled.pool_bands`): the random-effects mean of the
-unbiased log band PSDs, ``y_b``, with its variance ``s_b^2`` (sampling
-variance plus the DerSimonian-Laird between-window spread). A model
-``theta = (sigma_GM, tau, sigma_WN)`` predicts the band average of its
-sampled PSD, ``m_b(theta)``, and is judged by
+**Construction.** The main group's windows are pooled on *test bands* (the
+bands merged until each is at least the estimator's smoothing width ``2 W``
+wide, so that their averages are nearly independent), each window's band
+values divided by its level (``PooledLimits.level_log``). In every test band
+the pooled value has an exact two-sided chi-square confidence interval at
+``(1 - confidence_level) / B`` (Bonferroni over the ``B`` bands). A model
+``theta = (sigma_GM, tau, sigma_WN)`` is in the set when the band average it
+predicts lies inside every band's interval. The prediction is the *exact*
+expectation of the multitaper estimate of a mean-removed window of the
+median length (:mod:`psdbound.spectra.expectation`): near the lowest
+frequencies the estimate of a steep spectrum lies up to twice above the
+band-mean PSD, and a model that ignores it reads the flattening as a short
+time constant. If the truth is a GM + white process, all its band
+expectations lie in their intervals with probability at least
+``confidence_level``, so the set contains it at least that often: no
+asymptotic likelihood-ratio approximation, no over-dispersion factor.
 
-    chi2(theta) = sum_b (y_b - log m_b(theta))^2 / s_b^2.
+**Reported intervals** are the projections of the set on each parameter,
+widened by the windows' levels (each window's truth is the group's times its
+level: the sigma intervals are scaled by the largest window term of the
+bound, ``exp(t / 2)``, up, and by its mirror down), and widened to contain the
+bound itself (:meth:`ModelSet.with_model`). An interval that reaches the
+search grid's edge is reported as open on that side. The coverage of the
+homogeneous truth is measured in ``benchmarks/bound_coverage.py``.
 
-The set is the likelihood-ratio region
-
-    chi2(theta) - chi2_min <= phi * chi2_3^{-1}(level),
-
-with ``phi = max(1, chi2_min / (B - 3))`` inflating it when the model does
-not fit the band means to within their stated errors (over-dispersion, the
-usual quasi-likelihood correction), and the reported intervals are the
-projections of this joint region onto each parameter: every model in the
-box of intervals need not be in the region, but every model of the region
-is in the box, which is what a design for "every process in the set" needs
-(Langel et al. 2021; Garcia Crespillo et al. 2023). The region is found on
-a grid (48 time constants, 81 GM variances and 41 white-noise levels per
-time constant, then a finer grid over that region); an interval that reaches
-the coarse grid's edge is reported as open on that side.
-
-Bands below two smoothing half-widths of the estimator (multitaper
-``W = NW / (N dt)``) are not used: there the estimates are biased low (the
-taper smoothing of the spectral peak at zero frequency and each window's
-mean removal), which no sampling variance describes. Measured coverage of
-the joint 95 % set on simulated windows (``tests/spectra/test_intervals.py``
-and 60-trial runs): 85 % (40 trials, seed 20) to 100 % (60 trials, seed 5)
-for tau = 30 s in 16 windows of 1200 s, 92 % for
-tau = 10 s in 8 windows, 88 % for tau = 120 s in 16 windows of 1200 s (a
-time constant a tenth of the window length is poorly determined and the
-residual low-frequency bias shows: the tau interval then spans a factor of
-about 6). Starting the bands at three half-widths gave 95 % and 90 % for the
-last two but a tau interval 2.5 times wider in the first.
+The earlier construction (a likelihood-ratio region of the band means with a
+boxcar model of the estimator's smoothing) contained the homogeneous truth in
+70 % (30 s) and 63 % (1 s) of runs against the stated 95 %: the model missed
+the estimator's bias at the lowest bands, and the narrow low bands, which
+share multitaper ordinates, were counted as independent.
 
 References
 ----------
-.. [1] Venzon, D. J., & Moolgavkar, S. H. (1988). A method for computing
-   profile-likelihood-based confidence intervals. *Applied Statistics*,
-   37(1), 87-94.
-.. [2] McCullagh, P., & Nelder, J. A. (1989). *Generalized Linear Models*
-   (2nd ed.), section 4.5 (over-dispersion). Chapman & Hall.
+.. [1] Percival, D. B., & Walden, A. T. (1993). *Spectral Analysis for Physical
+   Applications*, chapter 7. Cambridge University Press.
 """
 
 from __future__ import annotations
@@ -58,22 +49,23 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy import stats
+from scipy import optimize, stats
 
-from psdbound.spectra.bands import BandSpectra
-from psdbound.spectra.models import gm_psd_sampled
-from psdbound.spectra.pooled import PooledLimits, random_effects_mean
+from psdbound.spectra.bands import BandSpectra, merge_bands
+from psdbound.spectra.expectation import (
+    EXACT_BELOW,
+    gm_band_expectation,
+    lag_kernels,
+    smoothed_band_expectation,
+)
+from psdbound.spectra.pooled import PooledLimits
 
 __all__ = ["ModelSet", "model_set"]
 
-#: Grid sizes: time constants, GM variances per time constant, white-noise levels.
-N_TAU, N_VAR, N_WHITE = 48, 81, 41
-#: Points per band for the band average of a model PSD.
-_POINTS_PER_BAND = 24
-#: Bands are used from this many estimator smoothing half-widths up.
-LOW_BAND_FACTOR = 2.0
-#: Fewest bands for three parameters and a dispersion estimate.
-MIN_BANDS = 5
+#: Time constants searched (log-spaced; the variances are exact linear programs per tau).
+N_TAU = 96
+#: Fewest test bands for three parameters.
+MIN_BANDS = 4
 
 
 @dataclass(frozen=True)
@@ -93,11 +85,10 @@ class ModelSet:
     confidence_level : float
         Level of the joint region.
     chi2_min : float
-        Smallest chi-square over the grid.
+        Least-squares misfit of the best model to the pooled band values
+        (log units, weighted by their variances).
     n_bands : int
-        Bands used.
-    dispersion : float
-        ``max(1, chi2_min / (n_bands - 3))``.
+        Test bands used.
     """
 
     best: dict[str, float]
@@ -108,17 +99,16 @@ class ModelSet:
     confidence_level: float
     chi2_min: float
     n_bands: int
-    dispersion: float
     includes: tuple[str, ...] = ()
 
     def with_model(self, name: str, sigma_gm_m: float, tau_s: float,
                    sigma_wn_m: float) -> ModelSet:  # fmt: skip
         """Return the set widened to contain one more model (e.g. the bound itself).
 
-        The likelihood-ratio region describes the group's *mean* spectrum;
-        the bound lies above the windows that differ from it, so its
-        parameters can lie outside. A Kalman-filter design for "every model
-        of the set" must include the bound: the reported intervals are the
+        The set describes the group's windows; the bound lies above them
+        with margins of its own, so its parameters can lie outside. A
+        Kalman-filter design for "every model of the set" must include the
+        bound: the reported intervals are the
         hull of the region and the models added here (named in
         ``includes``).
         """
@@ -141,73 +131,70 @@ class ModelSet:
             "confidence_level": self.confidence_level,
             "chi2_min": self.chi2_min,
             "n_bands": self.n_bands,
-            "dispersion": self.dispersion,
             "includes": list(self.includes),
-            "method": "joint likelihood-ratio region of (sigma_GM, tau, sigma_WN) for the main "
-            "group's pooled band means (random-effects variances, over-dispersion scaled), "
-            "projected on each parameter (a grid search), widened to contain the models named "
-            "in 'includes' (the bound itself)",
+            "method": "the (sigma_GM, tau, sigma_WN) whose exact expected multitaper band "
+            "averages lie inside every test band's exact chi-square interval of the main "
+            "group's pooled spectrum (Bonferroni over bands), projected on each parameter (a "
+            "grid search), widened by the windows' levels and to contain the models named in "
+            "'includes' (the bound itself)",
         }
 
 
-def _main_group_means(
-    bands: BandSpectra, limits: PooledLimits
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
-    """Random-effects mean log PSD of group 0 per band, its variance, and which bands have one."""
-    z, v = bands.log_unbiased()
+def _pooled_test_bands(
+    bands: BandSpectra, limits: PooledLimits, smoothing_hz: float
+) -> tuple[BandSpectra, NDArray[np.float64], NDArray[np.float64]]:
+    """Group 0 on test bands: level-corrected pooled values and their degrees of freedom."""
     rows = limits.groups == 0
-    z, v = z[rows], v[rows]
-    ok = np.isfinite(z) & np.isfinite(v)
-    n_b = z.shape[1]
-    y, s2 = np.full(n_b, np.nan), np.full(n_b, np.nan)
-    for b in range(n_b):
-        use = ok[:, b]
-        if use.sum() >= 1:
-            tau2 = float(limits.tau2[0, b]) if np.isfinite(limits.tau2[0, b]) else 0.0
-            _, y[b], s2[b] = random_effects_mean(z[use, b], v[use, b], tau2)
-    have = np.isfinite(y) & np.isfinite(s2) & (s2 > 0)
-    return y, s2, have
+    test = merge_bands(bands, min_window_dof=0.0, min_width_hz=2.0 * smoothing_hz)
+    level = np.zeros(rows.sum()) if limits.level_log is None else limits.level_log[rows]
+    s, nu = test.psd_m2_hz[rows], test.dof[rows]
+    ok = np.isfinite(s) & (nu > 0) & (s > 0)
+    num = np.where(ok, nu * np.where(ok, s, 0.0) * np.exp(-level)[:, None], 0.0).sum(axis=0)
+    dof = np.where(ok, nu, 0.0).sum(axis=0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        pooled = np.where(dof > 0, num / dof, np.nan)
+    return test, pooled, dof
 
 
-def _region(
-    y: NDArray[np.float64],
-    s2: NDArray[np.float64],
-    f_pts: NDArray[np.float64],
-    dt_s: float,
-    taus: NDArray[np.float64],
-    steps: NDArray[np.float64],
-    whites: NDArray[np.float64],
-    threshold: float,
-    chi2_floor: float | None,
-) -> dict[str, Any]:
-    """Chi-square on a (tau, GM variance, white level) grid and the region under the threshold.
+def _tau_slice(
+    u: NDArray[np.float64], e: NDArray[np.float64], lower: NDArray[np.float64],
+    upper: NDArray[np.float64], pooled: NDArray[np.float64],
+) -> tuple[float, float, float, float] | None:
+    """For one tau: the range of GM and white variances whose band expectations fit every interval.
 
-    The GM variance grid of each tau is ``steps`` times the level that matches
-    the band means at that tau (the region is narrow in variance for a given
-    tau, wide across taus). ``chi2_floor``: a smaller minimum found before.
+    ``v u_b + w e_b`` must lie in ``[lower_b, upper_b]`` for all bands, ``v, w >= 0``: a
+    convex polygon, whose extent in ``v`` and in ``w`` four linear programs give. None when
+    it is empty.
     """
-    n_b = y.size
-    unit = np.stack([gm_psd_sampled(f_pts, 1.0, t, dt_s).mean(axis=1) for t in taus])
-    var = np.exp(np.median(y[None, :] - np.log(unit), axis=1))[:, None] * steps[None, :]
-    chi2 = np.empty((taus.size, steps.size, whites.size))
-    for i in range(taus.size):
-        model = var[i][:, None, None] * unit[i][None, None, :] + whites[None, :, None]
-        chi2[i] = np.sum((y - np.log(model)) ** 2 / s2, axis=2)
-    k = np.unravel_index(int(np.argmin(chi2)), chi2.shape)
-    c_min = float(chi2[k]) if chi2_floor is None else min(float(chi2[k]), chi2_floor)
-    dispersion = max(1.0, c_min / max(n_b - 3, 1))
-    ti, vi, wi = np.nonzero(chi2 <= c_min + dispersion * threshold)
-    sigma_wn = np.sqrt(whites / (2.0 * dt_s))
-    return {
-        "index": (ti, vi, wi),
-        "chi2_min": c_min,
-        "dispersion": dispersion,
-        "best": {"sigma_gm_m": float(np.sqrt(var[k[0], k[1]])), "tau_s": float(taus[k[0]]),
-                 "sigma_wn_m": float(sigma_wn[k[2]])},  # fmt: skip
-        "taus": taus[ti],
-        "sigma_gm": np.sqrt(var[ti, vi]),
-        "sigma_wn": sigma_wn[wi],
-    }
+    sv, sw = float(np.median(pooled / u)), float(np.median(pooled / e))
+    a = np.column_stack([u * sv, e * sw]) / pooled[:, None]
+    a_ub = np.vstack([a, -a])
+    b_ub = np.concatenate([upper / pooled, -lower / pooled])
+    ext = []
+    for c in ([1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0]):
+        res = optimize.linprog(c, A_ub=a_ub, b_ub=b_ub, bounds=[(0, None), (0, None)],
+                               method="highs")  # fmt: skip
+        if res.status != 0:
+            return None
+        ext.append(float(res.fun))
+    return ext[0] * sv, -ext[1] * sv, ext[2] * sw, -ext[3] * sw
+
+
+def _best(
+    unit: NDArray, e: NDArray, pooled: NDArray, dof: NDArray, taus: NDArray, ok: NDArray
+) -> tuple[dict[str, float], float]:
+    """Return the model of least weighted log misfit among the feasible time constants."""
+    best, out = np.inf, {}
+    for i in np.flatnonzero(ok):
+        a = np.column_stack([unit[i], e]) / pooled[:, None]
+        x, _ = optimize.nnls(a * np.sqrt(dof)[:, None], np.sqrt(dof))
+        model = a @ x
+        misfit = float(np.sum(np.log(np.maximum(model, 1e-300)) ** 2 * dof / 2.0))
+        if misfit < best:
+            best = misfit
+            out = {"sigma_gm_m": float(np.sqrt(x[0])), "tau_s": float(taus[i]),
+                   "sigma_wn_m": float(np.sqrt(x[1]))}  # fmt: skip
+    return out, best
 
 
 def model_set(
@@ -223,82 +210,78 @@ def model_set(
     Parameters
     ----------
     bands : BandSpectra
-        Band-averaged window PSDs (:func:`psdbound.spectra.bands.band_spectra`).
+        Band-averaged window PSDs (:func:`psdbound.spectra.bands.band_spectra`),
+        with the windows' durations.
     limits : PooledLimits
-        The pooled limits (for the groups and between-window spreads).
+        The pooled limits (for the groups and the windows' levels).
     dt_s : float
         Sampling interval, seconds.
     confidence_level : float, default 0.95
-        Level of the joint region.
+        Level of the set.
     smoothing_hz : float, default 0
-        Half-width of the estimator's spectral smoothing, Hz (multitaper:
-        ``W = NW / (N dt)``, in its ``params["bandwidth_hz"]``): an estimate
-        at ``f`` is the PSD averaged over ``f +- W``, which flattens a
-        Gauss-Markov spectrum near zero frequency; the model is averaged the
-        same way, else a long window's flattened low end reads as a long
-        time constant.
+        Half-width ``W`` of the multitaper smoothing, Hz (its
+        ``params["bandwidth_hz"]``); the exact expectation needs it.
 
     Returns
     -------
     ModelSet or None
-        None when there are fewer than ``MIN_BANDS`` bands with data.
+        None when there are too few test bands, the estimator is not the
+        multitaper, or no GM + white model lies inside every band's
+        interval (the data are not such a process at this level).
     reason : str
         Why there is no set (empty otherwise).
-
-    Examples
-    --------
-    >>> fit = psdbound.fit()  # doctest: +SKIP
-    >>> fit.bound_results.model_set.tau_interval_s  # doctest: +SKIP
     """
-    y, s2, have = _main_group_means(bands, limits)
-    # below a few smoothing widths the estimates are biased low (taper smoothing of the
-    # spectral peak at 0 and the windows' own mean removal): those bands are not used
-    have &= bands.edges_hz[:-1] >= LOW_BAND_FACTOR * smoothing_hz
+    if smoothing_hz <= 0 or bands.duration_s is None:
+        return None, "the model set needs the multitaper estimator (its exact expectation)"
+    test, pooled, dof = _pooled_test_bands(bands, limits, smoothing_hz)
+    have = np.isfinite(pooled) & (dof > 0)
     n_b = int(have.sum())
     if n_b < MIN_BANDS:
-        return None, f"{n_b} frequency bands with data, at least {MIN_BANDS} needed"
-    lo = bands.edges_hz[:-1][have]
-    hi = np.minimum(bands.edges_hz[1:][have], 0.5 / dt_s)
-    y, s2 = y[have], s2[have]
-    # what a band average of the estimates expects: the PSD averaged uniformly in frequency
-    # over the band widened by the estimator's smoothing half-width (folded at 0 and Nyquist)
-    frac = np.linspace(0.0, 1.0, _POINTS_PER_BAND)
-    f_pts = (lo - smoothing_hz)[:, None] + (hi - lo + 2.0 * smoothing_hz)[:, None] * frac
-    nyq = 0.5 / dt_s
-    f_pts = np.abs(f_pts)
-    f_pts = np.where(f_pts > nyq, 2.0 * nyq - f_pts, f_pts)
-    taus = np.geomspace(dt_s, 10.0 / (2.0 * np.pi * float(lo[0])), N_TAU)
-    whites = np.concatenate([[0.0], float(np.exp(y.min())) * np.geomspace(1e-3, 10.0, N_WHITE - 1)])
-    steps = np.geomspace(1e-2, 1e2, N_VAR)
-    threshold = float(stats.chi2.ppf(confidence_level, 3))
-    # a coarse grid over everything, then a fine one over the coarse region (+- 3 steps)
-    coarse = _region(y, s2, f_pts, dt_s, taus, steps, whites, threshold, None)
-    ti, vi, wi = coarse["index"]
-    open_ends = {
-        "tau_s": (bool(ti.min() == 0), bool(ti.max() == N_TAU - 1)),
-        "sigma_gm_m": (bool(vi.min() == 0), bool(vi.max() == N_VAR - 1)),
-        "sigma_wn_m": (False, bool(wi.max() == N_WHITE - 1)),  # 0 is a true lower end
-    }
-
-    def around(grid: NDArray[np.float64], idx: NDArray[np.intp], n: int) -> NDArray[np.float64]:
-        a, b = grid[max(int(idx.min()) - 3, 0)], grid[min(int(idx.max()) + 3, grid.size - 1)]
-        if a == 0.0:  # white noise: keep 0 and refine from the first positive level
-            return np.concatenate([[0.0], np.geomspace(grid[1], b, n - 1)])
-        return np.geomspace(a, b, n)
-
-    fine = _region(y, s2, f_pts, dt_s, around(taus, ti, 41), around(steps, vi, 61),
-                   around(whites, wi, 41), threshold, coarse["chi2_min"])  # fmt: skip
-    best, c_min, dispersion = fine["best"], fine["chi2_min"], fine["dispersion"]
-    tau_r, gm_r, wn_r = fine["taus"], fine["sigma_gm"], fine["sigma_wn"]
+        return None, f"{n_b} test bands with data, at least {MIN_BANDS} needed"
+    lo, hi = test.edges_hz[:-1][have], np.minimum(test.edges_hz[1:][have], 0.5 / dt_s)
+    pooled, dof = pooled[have], dof[have]
+    a = (1.0 - confidence_level) / n_b
+    lower = dof * pooled / stats.chi2.isf(a / 2.0, dof)
+    upper = dof * pooled / stats.chi2.ppf(a / 2.0, dof)
+    rows = limits.groups == 0
+    t_s = float(np.median(test.duration_s[rows]))
+    n = int(round(t_s / dt_s))
+    nw = smoothing_hz * t_s
+    taus = np.geomspace(0.5 * dt_s, max(10.0 / (2.0 * np.pi * float(lo[0])), 2.0 * t_s), N_TAU)
+    low = lo < EXACT_BELOW * smoothing_hz
+    unit = np.zeros((taus.size, n_b))  # expected band averages per unit GM variance
+    white_unit = np.full(n_b, 2.0 * dt_s)  # white noise: unbiased away from zero frequency
+    if low.any():
+        kernels, has = lag_kernels(n, dt_s, lo[low], hi[low], nw=nw)
+        if not has.all():
+            return None, "a test band holds no Fourier frequency of the median window"
+        unit[:, low] = gm_band_expectation(kernels, taus, dt_s)
+        white_unit[low] = 2.0 * dt_s * kernels[:, 0]  # R(l) = variance at l = 0 only
+    if (~low).any():
+        unit[:, ~low] = smoothed_band_expectation(n, dt_s, lo[~low], hi[~low], nw=nw,
+                                                  taus_s=taus)  # fmt: skip
+    slices = [_tau_slice(unit[i], white_unit, lower, upper, pooled) for i in range(taus.size)]
+    ok = np.array([sl is not None for sl in slices])
+    if not ok.any():
+        return None, ("no Gauss-Markov + white-noise model lies inside every band's "
+                      f"{100 * confidence_level:g} % interval")  # fmt: skip
+    ext = np.array([sl for sl in slices if sl is not None])
+    idx = np.flatnonzero(ok)
+    best, misfit = _best(unit, white_unit, pooled, dof, taus, ok)
+    widen = float(np.nanmax(limits.window_term_log[0])) / 2.0 if (
+        limits.window_term_log is not None) else 0.0  # fmt: skip
+    gm = np.sqrt(np.maximum(ext[:, :2], 0.0))
+    wn = np.sqrt(np.maximum(ext[:, 2:], 0.0))
     out = ModelSet(
         best=best,
-        tau_interval_s=(float(tau_r.min()), float(tau_r.max())),
-        sigma_gm_interval_m=(float(gm_r.min()), float(gm_r.max())),
-        sigma_wn_interval_m=(float(wn_r.min()), float(wn_r.max())),
-        open_ends=open_ends,
+        tau_interval_s=(float(taus[idx].min()), float(taus[idx].max())),
+        sigma_gm_interval_m=(float(gm.min() * np.exp(-widen)), float(gm.max() * np.exp(widen))),
+        sigma_wn_interval_m=(float(wn.min() * np.exp(-widen)), float(wn.max() * np.exp(widen))),
+        open_ends={"tau_s": (bool(idx.min() == 0), bool(idx.max() == N_TAU - 1)),
+                   "sigma_gm_m": (False, bool(idx.max() == N_TAU - 1)),
+                   "sigma_wn_m": (False, False)},  # fmt: skip
         confidence_level=float(confidence_level),
-        chi2_min=c_min,
+        chi2_min=misfit,
         n_bands=n_b,
-        dispersion=float(dispersion),
     )
     return out, ""

