@@ -24,10 +24,10 @@ from numpy.typing import NDArray
 from scipy import fft as sp_fft
 from scipy.signal import windows
 
-__all__ = ["gm_band_expectation", "lag_kernels", "smoothed_band_expectation"]
+__all__ = ["far_lag_kernels", "gm_band_expectation", "lag_kernels"]
 
-#: Bands from this many smoothing half-widths up use the smoothed form (the mean removal
-#: no longer matters there); below it the exact lag form.
+#: Bands from this many smoothing half-widths up use :func:`far_lag_kernels` (the mean
+#: removal no longer matters there); below it :func:`lag_kernels`.
 EXACT_BELOW = 12.0
 
 
@@ -105,59 +105,31 @@ def gm_band_expectation(
     return 2.0 * dt_s * acf @ kernels.T
 
 
-def smoothed_band_expectation(
-    n: int, dt_s: float, lo_hz: NDArray[np.float64], hi_hz: NDArray[np.float64], *,
-    nw: float, taus_s: NDArray[np.float64], points: int = 33, per_band: int = 24,
-) -> NDArray[np.float64]:
-    """Return expected band averages far from 0 Hz: the PSD smoothed by the spectral window.
+def far_lag_kernels(
+    n: int, dt_s: float, lo_hz: NDArray[np.float64], hi_hz: NDArray[np.float64], *, nw: float
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """Lag weights of the bands far from 0 Hz, where the window's mean removal does not matter.
 
-    Away from the zero frequency the mean removal does not matter and the
-    multitaper estimate's expectation is the PSD convolved with the average
-    spectral window of the tapers (concentrated within ``+- W``; sampled at
-    ``points`` offsets over ``+- 1.5 W``, weights normalised).
-
-    Parameters
-    ----------
-    n : int
-        Window length, samples.
-    dt_s : float
-        Sampling interval, seconds.
-    lo_hz, hi_hz : ndarray, shape (B,)
-        Band edges, Hz.
-    nw : float
-        Time-half-bandwidth product.
-    taus_s : ndarray, shape (T,)
-        Time constants, seconds.
-    points : int, default 33
-        Offsets of the spectral window.
-    per_band : int, default 24
-        Fourier frequencies of a band used (evenly spaced among its own).
-
-    Returns
-    -------
-    ndarray, shape (T, B)
-        Expected band averages of a unit-variance sampled GM process, m^2/Hz per m^2.
+    There ``c(l) = e^{-i 2 pi f l} rho(l)`` with ``rho`` the tapers' mean
+    autocorrelation, so ``w_b(l) = 2 rho(l) mean_j cos(2 pi f_j l)``: exact,
+    leakage from the spectral peak at 0 Hz included (a spectral window cut at
+    a few ``W`` missed 3.7 % at 14 W for a steep spectrum), and cheap. Same
+    returns as :func:`lag_kernels`.
     """
-    from psdbound.spectra.models import gm_psd_sampled
-
     k = max(1, int(np.floor(2.0 * nw)) - 1)
     tapers = np.atleast_2d(windows.dpss(n, nw, Kmax=k))
-    w_hz = nw / (n * dt_s)
-    offsets = np.linspace(-1.5 * w_hz, 1.5 * w_hz, points)
-    t = np.arange(n)
-    kernel = np.mean(np.abs(tapers @ np.exp(-2j * np.pi * np.outer(t, offsets) * dt_s)) ** 2,
-                     axis=0)  # fmt: skip
-    kernel /= kernel.sum()
-    nyq = 0.5 / dt_s
-    out = np.zeros((np.size(taus_s), lo_hz.size))
+    spec = sp_fft.rfft(tapers, 2 * n, axis=1)
+    rho = np.mean(sp_fft.irfft(np.abs(spec) ** 2, 2 * n, axis=1)[:, :n], axis=0)
+    lags = np.arange(n)
+    j_all = np.arange(1, n // 2 + 1)
+    f_all = j_all / (n * dt_s)
+    out = np.zeros((lo_hz.size, n))
+    has = np.zeros(lo_hz.size, dtype=bool)
     for b, (lo, hi) in enumerate(zip(lo_hz, hi_hz, strict=True)):
-        f_j = np.arange(np.ceil(lo * n * dt_s), np.ceil(hi * n * dt_s)) / (n * dt_s)
-        f_j = f_j[(f_j >= lo) & (f_j < hi) & (f_j > 0)]
-        if f_j.size == 0:
-            f_j = np.array([0.5 * (lo + hi)])
-        f_j = f_j[np.linspace(0, f_j.size - 1, min(per_band, f_j.size)).astype(int)]
-        grid = np.abs(f_j[:, None] + offsets[None, :])
-        grid = np.where(grid > nyq, 2.0 * nyq - grid, grid)
-        for i, tau in enumerate(np.atleast_1d(taus_s)):
-            out[i, b] = float(np.mean(gm_psd_sampled(grid, 1.0, float(tau), dt_s) @ kernel))
-    return out
+        js = j_all[(f_all >= lo) & (f_all < hi)]
+        if js.size == 0:
+            continue
+        has[b] = True
+        mean_cos = np.mean(np.cos(2.0 * np.pi * np.outer(js, lags) / n), axis=0)
+        out[b] = np.where(lags == 0, rho, 2.0 * rho * mean_cos)
+    return out, has

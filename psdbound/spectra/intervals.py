@@ -54,9 +54,9 @@ from scipy import optimize, stats
 from psdbound.spectra.bands import BandSpectra, merge_bands
 from psdbound.spectra.expectation import (
     EXACT_BELOW,
+    far_lag_kernels,
     gm_band_expectation,
     lag_kernels,
-    smoothed_band_expectation,
 )
 from psdbound.spectra.pooled import PooledLimits
 
@@ -258,8 +258,8 @@ def model_set(
         unit[:, low] = gm_band_expectation(kernels, taus, dt_s)
         white_unit[low] = 2.0 * dt_s * kernels[:, 0]  # R(l) = variance at l = 0 only
     if (~low).any():
-        unit[:, ~low] = smoothed_band_expectation(n, dt_s, lo[~low], hi[~low], nw=nw,
-                                                  taus_s=taus)  # fmt: skip
+        kernels, _ = far_lag_kernels(n, dt_s, lo[~low], hi[~low], nw=nw)
+        unit[:, ~low] = gm_band_expectation(kernels, taus, dt_s)
     slices = [_tau_slice(unit[i], white_unit, lower, upper, pooled) for i in range(taus.size)]
     ok = np.array([sl is not None for sl in slices])
     if not ok.any():

@@ -87,3 +87,29 @@ def test_demo_result_carries_the_intervals_around_the_injected_truth():
     assert b["tau_interval_s"][0] <= truth["tau_s"] <= b["tau_interval_s"][1]
     assert b["sigma_gm_interval_m"][0] <= truth["sigma_gm_m"] <= b["sigma_gm_interval_m"][1]
     assert res.bound.sigma_gm_m >= b["model_set"]["best"]["sigma_gm_m"]  # a bound, above the fit
+
+
+def test_exact_multitaper_expectation_against_simulation():
+    from psdbound.spectra import gm_psd_sampled
+    from psdbound.spectra.expectation import far_lag_kernels, gm_band_expectation, lag_kernels
+
+    n, tau, nw = 1200, 300.0, 4.0
+    rng = np.random.default_rng(0)
+    w = nw / (n * DT)
+    lo = np.array([1.25, 2.2, 5.0, 14.0]) * w
+    hi = lo * 1.26
+    kernels, has = lag_kernels(n, DT, lo, hi, nw=nw)
+    exact = gm_band_expectation(kernels, np.array([tau]), DT)[0]
+    far = gm_band_expectation(far_lag_kernels(n, DT, lo, hi, nw=nw)[0], np.array([tau]), DT)[0]
+    acc = np.zeros(lo.size)
+    for x in _windows(rng, 1.0, tau, 0.0, n_windows=300, n=n):
+        p = estimate_psd(x, DT)
+        acc += [p.psd_m2_hz[(p.f_hz >= a) & (p.f_hz < b)].mean()
+                for a, b in zip(lo, hi, strict=True)]
+    assert has.all()
+    np.testing.assert_allclose(acc / 300, exact, rtol=0.06)
+    # away from 0 Hz the form without the mean removal agrees with the exact one
+    assert far[-1] == pytest.approx(exact[-1], rel=5e-3)
+    # the band-mean PSD is about half the expectation at 1.25 W: why the exact form is needed
+    band_mean = gm_psd_sampled(np.linspace(lo[0], hi[0], 50), 1.0, tau, DT).mean()
+    assert band_mean < 0.6 * exact[0]
