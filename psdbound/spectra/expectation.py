@@ -19,6 +19,8 @@ the expected band average of a unit-variance sampled Gauss-Markov process.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+
 import numpy as np
 from numpy.typing import NDArray
 from scipy import fft as sp_fft
@@ -29,6 +31,23 @@ __all__ = ["far_lag_kernels", "gm_band_expectation", "lag_kernels"]
 #: Bands from this many smoothing half-widths up use :func:`far_lag_kernels` (the mean
 #: removal no longer matters there); below it :func:`lag_kernels`.
 EXACT_BELOW = 12.0
+
+
+def _tapers(n: int, nw: float) -> NDArray[np.float64]:
+    """Return the default multitaper's DPSS tapers, ``K = max(1, floor(2 NW) - 1)``."""
+    return np.atleast_2d(windows.dpss(n, nw, Kmax=max(1, int(np.floor(2.0 * nw)) - 1)))
+
+
+def _band_ordinates(
+    n: int, dt_s: float, lo_hz: NDArray[np.float64], hi_hz: NDArray[np.float64]
+) -> Iterator[tuple[int, NDArray[np.int64]]]:
+    """Each band with Fourier frequencies ``lo <= j / (n dt) < hi``: (band index, the j)."""
+    j_all = np.arange(1, n // 2 + 1)
+    f_all = j_all / (n * dt_s)
+    for b, (lo, hi) in enumerate(zip(lo_hz, hi_hz, strict=True)):
+        js = j_all[(f_all >= lo) & (f_all < hi)]
+        if js.size:
+            yield b, js
 
 
 def lag_kernels(
@@ -56,17 +75,11 @@ def lag_kernels(
     has : ndarray of bool, shape (B,)
         Bands that hold at least one Fourier frequency.
     """
-    k = max(1, int(np.floor(2.0 * nw)) - 1)
-    tapers = np.atleast_2d(windows.dpss(n, nw, Kmax=k))
+    tapers = _tapers(n, nw)
     t = np.arange(n)
-    j_all = np.arange(1, n // 2 + 1)
-    f_all = j_all / (n * dt_s)
     out = np.zeros((lo_hz.size, n))
     has = np.zeros(lo_hz.size, dtype=bool)
-    for b, (lo, hi) in enumerate(zip(lo_hz, hi_hz, strict=True)):
-        js = j_all[(f_all >= lo) & (f_all < hi)]
-        if js.size == 0:
-            continue
+    for b, js in _band_ordinates(n, dt_s, lo_hz, hi_hz):
         has[b] = True
         phase = np.exp(-2j * np.pi * np.outer(js, t) / n)  # (J, n)
         acc = np.zeros(n)
@@ -116,19 +129,12 @@ def far_lag_kernels(
     a few ``W`` missed 3.7 % at 14 W for a steep spectrum), and cheap. Same
     returns as :func:`lag_kernels`.
     """
-    k = max(1, int(np.floor(2.0 * nw)) - 1)
-    tapers = np.atleast_2d(windows.dpss(n, nw, Kmax=k))
-    spec = sp_fft.rfft(tapers, 2 * n, axis=1)
+    spec = sp_fft.rfft(_tapers(n, nw), 2 * n, axis=1)
     rho = np.mean(sp_fft.irfft(np.abs(spec) ** 2, 2 * n, axis=1)[:, :n], axis=0)
     lags = np.arange(n)
-    j_all = np.arange(1, n // 2 + 1)
-    f_all = j_all / (n * dt_s)
     out = np.zeros((lo_hz.size, n))
     has = np.zeros(lo_hz.size, dtype=bool)
-    for b, (lo, hi) in enumerate(zip(lo_hz, hi_hz, strict=True)):
-        js = j_all[(f_all >= lo) & (f_all < hi)]
-        if js.size == 0:
-            continue
+    for b, js in _band_ordinates(n, dt_s, lo_hz, hi_hz):
         has[b] = True
         mean_cos = np.mean(np.cos(2.0 * np.pi * np.outer(js, lags) / n), axis=0)
         out[b] = np.where(lags == 0, rho, 2.0 * rho * mean_cos)
