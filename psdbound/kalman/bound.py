@@ -56,6 +56,7 @@ For a time-varying elevation, keep the normalised Gauss-Markov state and put
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, replace
 from os import PathLike
 from pathlib import Path
@@ -99,6 +100,16 @@ class GMStateSpace(NamedTuple):
     phi: float | NDArray[np.float64]
     qd_m2: float | NDArray[np.float64]
     r_m2: float | NDArray[np.float64]
+
+    @property
+    def p0_m2(self) -> float | NDArray[np.float64]:
+        """Initial state variance, m^2: the stationary ``Qd / (1 - Phi^2) = sigma_gm^2``.
+
+        A filter started with less under-states the error until the state
+        has converged; the stationary variance is the least that bounds a
+        Gauss-Markov error from the first step.
+        """
+        return self.qd_m2 / -np.expm1(2.0 * np.log(self.phi))
 
 
 @dataclass(frozen=True)
@@ -221,8 +232,15 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
         return cls(m.sigma_gm_m, m.tau_s, m.sigma_wn_m, m.dt_s, mapping=mapping, source="fit")
 
     @classmethod
-    def from_result(cls, path: str | PathLike[str]) -> GaussMarkovBound:
+    def from_result(
+        cls, path: str | PathLike[str], *, allow_not_bounded: bool = False
+    ) -> GaussMarkovBound:
         """Read the bound from a ``psdbound fit`` result file (``result.json``).
+
+        A result whose verdict is not ``"bounded"`` is refused (its
+        ``verdict_reasons`` are in the message) unless ``allow_not_bounded``:
+        a filter built on it would carry a number the fit itself said not to
+        trust.
 
         The file is read and checked by :func:`psdbound.results.read_document`
         (schema version ``"1"`` and its required fields). The bound is read
@@ -240,6 +258,9 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
         ----------
         path : str or path-like
             The result file.
+        allow_not_bounded : bool, default False
+            Read the numbers of a ``"not-bounded"`` result anyway (for study,
+            not for a protection level).
 
         Returns
         -------
@@ -248,7 +269,8 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
         Raises
         ------
         InputError
-            If the file is missing or not JSON, the schema version is not
+            If the verdict is not "bounded" (and ``allow_not_bounded`` is
+            false), the file is missing or not JSON, the schema version is not
             ``"1"``, a field is missing (messages of
             :func:`~psdbound.results.read_document`), or a bound value is not
             a number, negative (or zero for ``tau_s``, ``dt_s``) or
@@ -256,6 +278,12 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
         """
         p = Path(path)
         doc = read_document(p)
+        verdict = doc.get("verdict", "bounded")
+        if verdict != "bounded" and not allow_not_bounded:
+            why = "; ".join(str(r) for r in doc.get("verdict_reasons", [])) or "no reason given"
+            raise InputError(
+                f"the verdict is {verdict!r} ({why}): this bound is not for a filter; pass "
+                "allow_not_bounded=True to read it anyway", path=p)  # fmt: skip
 
         def section(name: str) -> dict[str, Any]:
             if name not in doc:
@@ -393,7 +421,13 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
         Returns
         -------
         GMStateSpace
-            ``(phi, qd_m2, r_m2)``.
+            ``(phi, qd_m2, r_m2)``; ``.p0_m2`` is the initial state variance.
+
+        Warns
+        -----
+        UserWarning
+            A filter step shorter than the data interval (no white level is
+            known above the data's Nyquist frequency).
 
         Raises
         ------
@@ -401,6 +435,12 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
             For a bad interval or mode, or an elevation without a mapping.
         """
         dt = self.checked_dt_s(dt_s)
+        if dt < self.dt_s * (1.0 - 1e-9):
+            warnings.warn(
+                f"filter step {dt:g} s is shorter than the data interval {self.dt_s:g} s the "
+                f"bound was fitted at: the data say nothing above their Nyquist frequency "
+                f"{self.nyquist_hz:g} Hz, so R ({white_noise!r} white-noise mode) is an "
+                "extrapolation there", stacklevel=2)  # fmt: skip
         phi = math.exp(-dt / self.tau_s)
         # sigma^2 (1 - phi^2), written without cancellation for dt << tau
         qd = self.sigma_gm_m**2 * -math.expm1(-2.0 * dt / self.tau_s)

@@ -244,3 +244,23 @@ def test_elevation_mapping_scales_sigma():
     assert b.at_elevation(90.0).sigma_gm_m == pytest.approx(0.005, rel=1e-12)
     with pytest.raises(InputError, match="no elevation mapping"):
         be.at_elevation(20.0)
+
+
+def test_export_refuses_a_not_bounded_result_and_gives_p0(tmp_path):
+    p = tmp_path / "result.json"
+    doc = result_doc()
+    doc.update(verdict="not-bounded", verdict_reasons=["tau at the end of its grid"])
+    p.write_text(json.dumps(doc))
+    with pytest.raises(InputError, match="not-bounded.*tau at the end of its grid"):
+        GaussMarkovBound.from_result(p)
+    b = GaussMarkovBound.from_result(p, allow_not_bounded=True)
+    ss = b.to_state_space(30.0)
+    assert ss.p0_m2 == pytest.approx(b.sigma_gm_m**2, rel=1e-12)
+    phi, qd, r = ss  # still unpacks as three
+    assert qd == pytest.approx(b.sigma_gm_m**2 * (1 - phi**2))
+
+
+def test_filter_step_shorter_than_the_data_interval_warns():
+    b = GaussMarkovBound.from_params(0.004, 60.0, 0.001, 30.0)
+    with pytest.warns(UserWarning, match="shorter than the data interval"):
+        b.to_state_space(1.0)
