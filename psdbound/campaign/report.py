@@ -51,13 +51,14 @@ def _figure(doc: dict[str, Any]):
 def _table(doc: dict[str, Any]) -> str:
     head = ("<tr><th>station</th><th>day</th><th>other days</th><th>held-out bound "
             "sigma_GM / tau / sigma_WN</th><th>windows covered</th><th>worst excess</th>"
-            "<th>KF max gen. eigenvalue</th></tr>")  # fmt: skip
+            "<th>KF max gen. eigenvalue (windows bounded)</th></tr>")  # fmt: skip
     body = "".join(
         f"<tr><td>{html.escape(r['station'])}</td><td>{r['day']}</td><td>{r['n_other_days']}</td>"
         f"<td>{1e3 * r['bound']['sigma_gm_m']:.2f} mm / {r['bound']['tau_s']:.1f} s / "
         f"{1e3 * r['bound']['sigma_wn_m']:.2f} mm</td>"
         f"<td>{100 * r['windows_covered_fraction']:.0f} %</td>"
-        f"<td>{r['worst_excess_db']:.1f} dB</td><td>{r['kf_max_generalized_eigenvalue']:.2f}</td>"
+        f"<td>{r['worst_excess_db']:.1f} dB</td><td>{r['kf_max_generalized_eigenvalue']:.2f} "
+        f"({100 * r.get('kf_windows_bounded_fraction', float('nan')):.0f} %)</td>"
         "</tr>"
         for r in doc["held_out"]
     )

@@ -167,7 +167,8 @@ class CampaignResult:
                 f"  held out {h['station']} {h['day']}: windows covered "
                 f"{100 * h['windows_covered_fraction']:.0f} %, worst excess "
                 f"{h['worst_excess_db']:.1f} dB, KF max generalised eigenvalue "
-                f"{h['kf_max_generalized_eigenvalue']:.2f}"
+                f"{h['kf_max_generalized_eigenvalue']:.2f} (windows bounded "
+                f"{100 * h.get('kf_windows_bounded_fraction', float('nan')):.0f} %)"
             )
         return "\n".join(lines)
 
