@@ -52,6 +52,7 @@ def stage_warnings(
             f"no white-noise floor resolved at {interval_s:g} s sampling (Nyquist "
             f"{0.5 / interval_s:.4g} Hz): sigma_WN = 0; the bound says nothing above Nyquist"
         )
+    bound += _bound_notes(bounded)
     groups = [
         ("reading", inputs.warnings),
         ("cutoff", cutoff.warnings if cutoff is not None else ()),
@@ -63,6 +64,27 @@ def stage_warnings(
         ("code multipath", code.warnings if code is not None else ()),
     ]
     return [{"stage": name, "warnings": list(w)} for name, w in groups if w]
+
+
+def _bound_notes(res: BoundResults) -> list[str]:
+    """Warnings of the pooled rule: loose bands, and a time constant the data do not bound."""
+    out = [] if res.pooled is None else [f"pooled limits: {n}" for n in res.pooled.notes]
+    ms = res.model_set
+    if ms is not None and ms.open_ends.get("tau_s", (False, False))[1]:
+        out.append(
+            f"the data do not bound the time constant above (the models consistent with them "
+            f"reach tau = {ms.tau_interval_s[1]:.4g} s, the search's end): the Gauss-Markov "
+            f"plateau lies below the lowest stated frequency {res.bound.f_min_hz:.3g} Hz, and "
+            f"the bound's variance and its PSD below that frequency are an extrapolation the "
+            f"data do not support"
+        )
+    if ms is not None and ms.widening > 1.0:
+        out.append(
+            f"no Gauss-Markov + white-noise model fits every band's "
+            f"{100 * ms.confidence_level:g} % interval: the model set's intervals were widened "
+            f"{ms.widening:.3g} times (bound.model_set.widening)"
+        )
+    return out
 
 
 def _bound_section(res: BoundResults) -> dict[str, Any]:

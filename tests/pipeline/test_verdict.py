@@ -183,3 +183,17 @@ def test_zip_of_several_files_is_read_whole(tmp_path):
     assert zipped.bound.sigma_gm_m == pytest.approx(whole.bound.sigma_gm_m, rel=1e-9)
     assert any("2 observation files merged" in w for w in zipped.warnings)
     assert zipped.inputs.observations[0].path.startswith(f"{archive}:ESBC00.rnx")
+
+
+def test_an_unresolved_plateau_is_said_not_silently_extrapolated():
+    """Issue 28, part 1 (in part): the data not bounding tau above is a warning of the bound."""
+    from types import SimpleNamespace
+
+    from psdbound.pipeline.document import _bound_notes
+
+    ms = SimpleNamespace(open_ends={"tau_s": (False, True)}, tau_interval_s=(40.0, 8580.0),
+                         widening=1.3, confidence_level=0.95)  # fmt: skip
+    res = SimpleNamespace(pooled=None, model_set=ms, bound=SimpleNamespace(f_min_hz=0.002))
+    notes = _bound_notes(res)
+    assert any("do not bound the time constant above" in n for n in notes)
+    assert any("widened 1.3 times" in n for n in notes)
