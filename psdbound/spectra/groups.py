@@ -34,7 +34,7 @@ def log_frequency(
 
 def shape_groups(
     z: NDArray, v: NDArray, ok: NDArray, x: NDArray, dof: NDArray, shape_alpha: float,
-    max_groups: int, split_tilted: bool = True,
+    max_groups: int,
 ) -> NDArray[np.int64]:
     """Group the windows by spectral shape: a window that departs from its group moves on."""
     n_w = z.shape[0]
@@ -47,9 +47,9 @@ def shape_groups(
             dev = window_deviations(z[members], v[members], ok[members], x, model="level",
                                     dof=dof[members])  # fmt: skip
             off = dev.shape_p < shape_alpha / n_w
-            if split_tilted:  # a significant tilt (family-wise) is another shape too
-                off |= tilted(window_deviations(z[members], v[members], ok[members], x,
-                                                 model="tilt", dof=dof[members]))  # fmt: skip
+            # a significant tilt (family-wise) is another shape too
+            off |= tilted(window_deviations(z[members], v[members], ok[members], x,
+                                            model="tilt", dof=dof[members]))  # fmt: skip
             if not off.any() or off.all():
                 break
             members = members[~off]

@@ -169,6 +169,15 @@ def _pooled_test_bands(
     return test, pooled, dof
 
 
+def _constraints(
+    u: NDArray, e: NDArray, lower: NDArray, upper: NDArray, pooled: NDArray
+) -> tuple[NDArray, NDArray, float, float]:
+    """``lower <= v u + w e <= upper`` as ``A x <= b`` in scaled variables (and the scales)."""
+    sv, sw = float(np.median(pooled / u)), float(np.median(pooled / e))
+    a = np.column_stack([u * sv, e * sw]) / pooled[:, None]
+    return (np.vstack([a, -a]), np.concatenate([upper / pooled, -lower / pooled]), sv, sw)
+
+
 def _tau_slice(
     u: NDArray[np.float64], e: NDArray[np.float64], lower: NDArray[np.float64],
     upper: NDArray[np.float64], pooled: NDArray[np.float64],
@@ -179,10 +188,7 @@ def _tau_slice(
     convex polygon, whose extent in ``v`` and in ``w`` four linear programs give. None when
     it is empty.
     """
-    sv, sw = float(np.median(pooled / u)), float(np.median(pooled / e))
-    a = np.column_stack([u * sv, e * sw]) / pooled[:, None]
-    a_ub = np.vstack([a, -a])
-    b_ub = np.concatenate([upper / pooled, -lower / pooled])
+    a_ub, b_ub, sv, sw = _constraints(u, e, lower, upper, pooled)
     ext = []
     for c in ([1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0]):
         res = optimize.linprog(c, A_ub=a_ub, b_ub=b_ub, bounds=[(0, None), (0, None)],
@@ -194,11 +200,9 @@ def _tau_slice(
 
 
 def _feasible(u: NDArray, e: NDArray, lower: NDArray, upper: NDArray, pooled: NDArray) -> bool:
-    sv, sw = float(np.median(pooled / u)), float(np.median(pooled / e))
-    a = np.column_stack([u * sv, e * sw]) / pooled[:, None]
-    res = optimize.linprog([0.0, 0.0], A_ub=np.vstack([a, -a]),
-                           b_ub=np.concatenate([upper / pooled, -lower / pooled]),
-                           bounds=[(0, None), (0, None)], method="highs")  # fmt: skip
+    a_ub, b_ub, _, _ = _constraints(u, e, lower, upper, pooled)
+    res = optimize.linprog([0.0, 0.0], A_ub=a_ub, b_ub=b_ub, bounds=[(0, None), (0, None)],
+                           method="highs")  # fmt: skip
     return res.status == 0
 
 

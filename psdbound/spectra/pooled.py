@@ -250,7 +250,7 @@ class _GroupLimits:
 
 def _group_limits(
     bands: BandSpectra, test_bands: BandSpectra, rows: NDArray[np.intp],
-    levels: tuple[float, float, float], coverage: float, clusters: NDArray[np.int64] | None,
+    levels: tuple[float, float], coverage: float, clusters: NDArray[np.int64] | None,
     rho: float, model: str,
 ) -> _GroupLimits:
     """Exact group levels per band, the windows' spread limit and its quantile factor.
@@ -258,7 +258,8 @@ def _group_limits(
     The windows' levels come from ``test_bands`` (bands at least the estimator's smoothing
     wide, whose averages are nearly independent); the limits are stated on ``bands``.
     """
-    a_mean, a_spread, a_count = levels
+    a_mean, a_window = levels
+    a_spread = a_count = a_window / 2.0  # the tolerance diagnostics (no share of their own)
     zt, vt = test_bands.log_unbiased()
     okt = np.isfinite(zt[rows])
     x_test = log_frequency(test_bands.centres_hz)
@@ -267,7 +268,7 @@ def _group_limits(
                             dof=test_bands.dof[rows])  # fmt: skip
     d_fine, se_fine = dev.at(x_fine)
     m = rows.size
-    k = np.full(m, simultaneous_factor(2.0 * a_spread, m))
+    k = np.full(m, simultaneous_factor(a_window, m))
     if model != "level":
         tilt = window_deviations(zt[rows], vt[rows], okt, x_test, model="tilt",
                                  dof=test_bands.dof[rows])  # fmt: skip
@@ -275,7 +276,7 @@ def _group_limits(
         if use.any():
             d_t, se_t = tilt.at(x_fine)
             d_fine[use], se_fine[use] = d_t[use], se_t[use]
-            k[use] = simultaneous_factor(2.0 * a_spread, m, n_params=2)
+            k[use] = simultaneous_factor(a_window, m, n_params=2)
     z, v = bands.log_unbiased()
     z, v = z[rows], v[rows]
     ok = np.isfinite(z)
@@ -410,7 +411,7 @@ def pool_bands(
     n_g = int(labels.max()) + 1
     alpha = 1.0 - confidence_level
     a_win = (1.0 - MEAN_SHARE) * alpha / n_g  # per group: the windows' own upper levels
-    levels = (MEAN_SHARE * alpha / (n_g * n_b), a_win / 2.0, a_win / 2.0)
+    levels = (MEAN_SHARE * alpha / (n_g * n_b), a_win)
     out = {k: np.full((n_g, n_b), np.nan) for k in ("mean", "tau2", "p", "eff", "max", "up")}
     level, level_se, shape_p = np.full(n_w, np.nan), np.full(n_w, np.nan), np.ones(n_w)
     spread, z_star, window_term = np.zeros(n_g), np.zeros(n_g), np.zeros((n_g, n_b))

@@ -96,7 +96,7 @@ class SeriesBound:
             f"{'sampling interval':<26}{b.dt_s:g} s (Nyquist {b.nyquist_hz:.4g} Hz)",
             f"{'stated from':<26}{self.f_min_hz:.4g} Hz to Nyquist",
             f"{'windows':<26}{self.n_windows} in {self.limits.n_groups} shape group(s)",
-            f"{'bound over data (median)':<26}{self.fit.gap_db_median:.1f} dB above the limits",
+            f"{'bound over limits (median)':<26}{self.fit.gap_db_median:.1f} dB above the limits",
             "-" * 72,
             self.covers,
         ]
