@@ -59,6 +59,8 @@ FLAGS: dict[tuple[str, str], str] = {
     ("bound", "objective"): "--objective",
     ("bound", "target"): "--target",
     ("bound", "level"): "--level",
+    ("bound", "tau_max_s"): "--tau-max-s",
+    ("verdict", "low_frequency"): "--low-frequency",
     ("validation", "geometries"): "--geometry",
     ("validation", "threshold"): "--validation-threshold",
     ("code_multipath", "codes"): "--code-multipath",
@@ -218,6 +220,12 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="envelope rule: bound the estimates or their confidence-interval tops")
     p.add_argument("--level", type=float,
                    help="envelope rule: confidence level for --target upper (probability)")
+    p.add_argument("--tau-max-s", type=float,
+                   help="pooled rule: prior upper limit of the multipath time constant, s, used "
+                   "below the lowest band where the data do not bound it")
+    p.add_argument("--low-frequency", choices=("prior", "refuse"),
+                   help="when the data do not bound the time constant: state the bound on the "
+                   "prior --tau-max-s, or refuse (exit 3)")
     p.add_argument("--geometry", action="append",
                    help="reflection geometry for the cutoff check, e.g. wall:d=25 (d, h in m; "
                    "repeatable)")
@@ -280,7 +288,8 @@ def _cli_values(args: argparse.Namespace) -> list[tuple[str, dict[str, Any], dic
         ("spectra", dict(estimator=args.estimator), {}),
         ("bound", dict(rule=args.rule, confidence_level=args.confidence_level,
                        coverage=args.coverage, objective=args.objective, target=args.target,
-                       level=args.level), {}),
+                       level=args.level, tau_max_s=args.tau_max_s), {}),
+        ("verdict", dict(low_frequency=args.low_frequency), {}),
         ("validation", dict(geometries=tuple(args.geometry) if args.geometry else None,
                             threshold=args.validation_threshold), {}),
         ("code_multipath", dict(codes=args.code_multipath, edges_deg=args.code_edges_deg,

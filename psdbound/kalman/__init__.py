@@ -57,6 +57,7 @@ from psdbound.kalman.aviation import (
 )
 from psdbound.kalman.bound import WHITE_NOISE_MODES, GaussMarkovBound, GMStateSpace
 from psdbound.kalman.covariance import analyze_covariance
+from psdbound.kalman.error_model import Component, ErrorModel, ErrorStateSpace
 from psdbound.kalman.kf_araim import (
     PositionCovariance,
     monte_carlo_position_covariance,
@@ -79,10 +80,13 @@ __all__ = [
     "F_L5_HZ",
     "WHITE_NOISE_MODES",
     "AugmentedModel",
+    "Component",
     "CovarianceAnalysis",
     "DesignCheck",
+    "ErrorModel",
     "ErrorProcess",
     "ErrorSequences",
+    "ErrorStateSpace",
     "GMStateSpace",
     "GaussMarkovBound",
     "GaussMarkovSet",

@@ -10,6 +10,7 @@ import numpy as np
 
 from psdbound.common import package_versions
 from psdbound.ionosphere.policy import CutoffChoice
+from psdbound.kalman.error_model import Component, error_model_section
 from psdbound.pipeline.config import FitConfig
 from psdbound.pipeline.products import CodeOverbound
 from psdbound.pipeline.stages import InputData, Isolated, Screened, Validated, Windowed
@@ -69,15 +70,24 @@ def stage_warnings(
 def _bound_notes(res: BoundResults) -> list[str]:
     """Warnings of the pooled rule: loose bands, and a time constant the data do not bound."""
     out = [] if res.pooled is None else [f"pooled limits: {n}" for n in res.pooled.notes]
-    ms = res.model_set
-    if ms is not None and ms.open_ends.get("tau_s", (False, False))[1]:
+    ms, low = res.model_set, res.low_frequency
+    if low is not None and low.prior_binding:
+        b = low.before or {}
         out.append(
             f"the data do not bound the time constant above (the models consistent with them "
-            f"reach tau = {ms.tau_interval_s[1]:.4g} s, the search's end): the Gauss-Markov "
-            f"plateau lies below the lowest stated frequency {res.bound.f_min_hz:.3g} Hz, and "
-            f"the bound's variance and its PSD below that frequency are an extrapolation the "
-            f"data do not support"
+            f"reach the search's end): the Gauss-Markov plateau lies below the lowest stated "
+            f"frequency {res.bound.f_min_hz:.3g} Hz. Below it the bound covers the admitted "
+            f"models with tau up to the prior {low.tau_max_s:g} s (bound.tau_max_s); it was "
+            f"raised for that from {1000 * b.get('sigma_gm_m', np.nan):.2f} mm / "
+            f"{b.get('tau_s', np.nan):.4g} s (the tightest bound over the bands alone)"
+            if low.raised else
+            f"the data do not bound the time constant above: below the lowest stated frequency "
+            f"{res.bound.f_min_hz:.3g} Hz the statement rests on the prior tau <= "
+            f"{low.tau_max_s:g} s (bound.tau_max_s)"
         )
+    if low is not None and low.status == "unchecked":
+        out.append(f"below the lowest stated frequency {res.bound.f_min_hz:.3g} Hz the bound is "
+                   f"an extrapolation not checked against the data ({low.reason})")
     if ms is not None and ms.widening > 1.0:
         out.append(
             f"no Gauss-Markov + white-noise model fits every band's "
@@ -116,6 +126,7 @@ def _bound_section(res: BoundResults) -> dict[str, Any]:
         ),
         "pooled": _pooled_section(res),
         **_model_set_section(res),
+        "low_frequency": None if res.low_frequency is None else res.low_frequency.as_dict(),
         "gap_db_median": b.gap_db_median,
         "gap_db_p05": b.gap_db_p05,
         "band_hz": [b.f_min_hz, b.f_max_hz],
@@ -294,6 +305,22 @@ def _screening_section(screened: Screened) -> dict[str, Any]:
     }  # fmt: skip
 
 
+def _error_model(doc: dict[str, Any]) -> dict[str, Any]:
+    """Return the ``error_model`` section: the bound's parts and what the high-pass removed."""
+    val = doc.get("validation") or {}
+    removed = val.get("max_removed_rms_m")
+    slow = []
+    if removed is not None and np.isfinite(removed) and removed > 0:
+        slow.append(Component(
+            "slow", "random-constant-per-arc", float(removed), None, False,
+            f"multipath the high-pass removes below f_c (validation.max_removed_rms_m: the "
+            f"largest RMS along the data's passes over the reflectors "
+            f"{', '.join(val.get('geometries_used', []))}, amplitude ratio "
+            f"{val.get('alpha', float('nan')):g}); the bound cannot see it, so it is carried "
+            f"as a constant per arc"))  # fmt: skip
+    return error_model_section(doc["bound"], mapping=doc.get("mapping"), slow=slow)
+
+
 def build_document(
     *,
     config: FitConfig,
@@ -365,6 +392,7 @@ def build_document(
         },
         "figures": figures,
     }
+    doc["error_model"] = _error_model(doc)
     if code is not None:
         doc["code_multipath"] = code.details
     if inputs.demo is not None:

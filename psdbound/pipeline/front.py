@@ -55,6 +55,7 @@ class FitResults:
                  **stage_results: Any) -> None:  # fmt: skip
         self.document = document
         self.config = config
+        self._source = str(stage_results.pop("source", ""))
         self.inputs = stage_results.get("inputs")
         self.cutoff = stage_results.get("cutoff")
         self.isolated = stage_results.get("isolated")
@@ -77,6 +78,20 @@ class FitResults:
 
         b = self.document["bound"]
         return GaussMarkovWhiteNoise(b["sigma_gm_m"], b["tau_s"], b["sigma_wn_m"], b["dt_s"])
+
+    @property
+    def error_model(self) -> Any:
+        """The complete error model for a Kalman filter (every component, state-space export).
+
+        Returns
+        -------
+        psdbound.kalman.ErrorModel
+            Read from the document's ``error_model`` section, so a loaded
+            ``result.json`` gives the same model.
+        """
+        from psdbound.kalman.error_model import ErrorModel
+
+        return ErrorModel.from_document(self.document, source=self._source)
 
     @property
     def verdict(self) -> str:
@@ -348,4 +363,4 @@ def load(path: str | os.PathLike[str]) -> FitResults:
     >>> again.bound.tau_s == res.bound.tau_s and again.verdict == res.verdict
     True
     """
-    return FitResults(read_document(path))
+    return FitResults(read_document(path), source=str(path))

@@ -377,7 +377,7 @@ def bound(
         power_response=gain if options.rule == "pooled" else None,
         rule=options.rule, objective=options.objective, f_min_hz=f_min_hz,
         confidence_level=options.confidence_level, coverage=options.coverage,
-        shape_alpha=options.shape_alpha,
+        shape_alpha=options.shape_alpha, tau_max_s=options.tau_max_s,
         bands_per_decade=options.bands_per_decade, target=options.target, level=options.level,
     )  # fmt: skip
 

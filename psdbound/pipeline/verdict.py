@@ -51,6 +51,14 @@ cutoff validation
     0.216 m) puts all its power below any cutoff a 30 s file allows, so that
     criterion fails every such station whatever the size of the error it
     hides.
+low frequencies
+    Below the lowest band the bound lies above every Gauss-Markov + white
+    model the data admit (``bound.low_frequency``,
+    :mod:`psdbound.spectra.lowfreq`). Where the data do not bound the time
+    constant above, that statement rests on the prior ``tau <= tau_max_s``:
+    with ``low_frequency = "refuse"`` (default ``"prior"``) such a bound is
+    not bounded; when the data admit only time constants above the prior,
+    it is never bounded.
 """
 
 from __future__ import annotations
@@ -58,7 +66,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from psdbound.common.options import Number, check_fields, option
+from psdbound.common.options import Choice, Number, check_fields, option
+from psdbound.spectra.lowfreq import POLICIES, low_frequency_reasons
 
 __all__ = ["VerdictOptions", "judge"]
 
@@ -80,6 +89,10 @@ class VerdictOptions:
     max_never_stationary_fraction : float, default 0.2
         Largest fraction of the screened data left outside every stationary
         window.
+    low_frequency : {"prior", "refuse"}, default "prior"
+        Whether a bound whose statement below its lowest band rests on the
+        prior ``tau <= tau_max_s`` (the data do not bound tau above) is
+        bounded (``"prior"``, said in the statement and the warnings) or not.
 
     Raises
     ------
@@ -93,6 +106,7 @@ class VerdictOptions:
     min_band_ratio: float = option(4.0, Number(lo=1.0, hi=1e6))
     max_excluded_fraction: float = option(0.5, Number(lo=0.0, hi=1.0))
     max_never_stationary_fraction: float = option(0.2, Number(lo=0.0, hi=1.0))
+    low_frequency: str = option("prior", Choice(POLICIES, noun="low-frequency policy"))
 
     def __post_init__(self) -> None:
         check_fields(self)
@@ -188,6 +202,7 @@ def judge(document: dict[str, Any], options: VerdictOptions | None = None) -> tu
                 f"({rejected / 3600:.2f} h) failed every stationarity test (limit "
                 f"{100 * opt.max_never_stationary_fraction:g} %)"
             )
+    reasons += low_frequency_reasons(b.get("low_frequency"), opt.low_frequency)
     scr = document.get("screening")
     if scr and scr.get("excluded_fraction", 0.0) > opt.max_excluded_fraction:
         reasons.append(

@@ -221,6 +221,7 @@ def fit_bound(
     level: float = 0.95,
     tau_range_s: tuple[float, float] | None = None,
     n_grid: int = 64,
+    floor: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
 ) -> BoundFit:
     """Fit the tightest GMRP + white-noise bound over a set of PSD estimates.
 
@@ -242,6 +243,11 @@ def fit_bound(
         Search range for ``tau``; default ``(dt/2, 20 / f_min)``.
     n_grid : int, default 64
         Log-spaced ``tau`` grid size before refinement.
+    floor : (ndarray, ndarray), optional
+        Frequencies (Hz, > 0) and PSD values (m^2/Hz) the bound must also lie
+        on or above that are not data (e.g. the models the data admit below
+        the lowest band, :mod:`psdbound.spectra.lowfreq`): constraints of the
+        linear programs, left out of the margins and the gap figures.
 
     Returns
     -------
@@ -270,11 +276,15 @@ def fit_bound(
             f"PSD frequencies reach {f_all.max():g} Hz, above the Nyquist frequency {nyq:g} Hz "
             f"of dt = {dt_s:g} s"
         )
-    fc, sc = _staircase(f_all, s_all)
-    scale = float(sc.max())
-    s_norm = sc / scale
     f_min = float(f_all.min())
     f_max = float(f_all.max())
+    f_con, s_con = f_all, s_all
+    if floor is not None:
+        f_con = np.concatenate([f_all, np.asarray(floor[0], dtype=float)])
+        s_con = np.concatenate([s_all, np.asarray(floor[1], dtype=float)])
+    fc, sc = _staircase(f_con, s_con)
+    scale = float(sc.max())
+    s_norm = sc / scale
     white = 2.0 * dt_s
     if objective == "variance":
 
@@ -319,9 +329,9 @@ def fit_bound(
             best_tau, best_val = float(np.exp(r.x)), float(r.fun)
     _, x = solve(best_tau)
     var_gm, var_wn = float(x[0]) * scale, float(x[1]) * scale
-    # enforce the bound exactly on every data point
-    model = var_gm * gm_psd_sampled(f_all, 1.0, best_tau, dt_s) + var_wn * white
-    worst = float(np.min(model / s_all))
+    # enforce the bound exactly on every data point (and floor point)
+    model = var_gm * gm_psd_sampled(f_con, 1.0, best_tau, dt_s) + var_wn * white
+    worst = float(np.min(model / s_con))
     if worst < 1.0:  # solver tolerance: scale up so the bound holds (1e-12 for rounding)
         up = (1.0 + 1e-12) / worst
         var_gm, var_wn = var_gm * up, var_wn * up

@@ -22,6 +22,7 @@ from psdbound.spectra.bound import RULES, BoundFit, fit_bound
 from psdbound.spectra.dependence import overlap_correlation, reference_clusters
 from psdbound.spectra.estimators import PSDEstimate, estimate_psd
 from psdbound.spectra.intervals import ModelSet, model_set
+from psdbound.spectra.lowfreq import TAU_MAX_S, LowFrequency, bound_below
 from psdbound.spectra.pooled import PooledLimits, fit_pooled_bound, statement
 from psdbound.stationarity.windowing import WindowSet
 
@@ -55,6 +56,9 @@ class BoundResults:
         The GM + white-noise models consistent with the pooled spectrum
         (:func:`psdbound.spectra.intervals.model_set`; None for the envelope
         rule or with too few bands, ``model_set_note`` says why).
+    low_frequency : LowFrequency or None
+        What the bound covers below its lowest band
+        (:mod:`psdbound.spectra.lowfreq`; None for the envelope rule).
     """
 
     bound: BoundFit
@@ -68,6 +72,7 @@ class BoundResults:
     model_set: ModelSet | None = None
     model_set_note: str = ""
     dependence: dict[str, Any] = field(default_factory=dict)
+    low_frequency: LowFrequency | None = None
 
     @property
     def margins(self) -> NDArray[np.float64]:
@@ -98,7 +103,8 @@ class BoundResults:
                     f"{b.f_min_hz:.3g} Hz to Nyquist; no confidence level is stated for the "
                     "true PSD of the data")  # fmt: skip
         assert self.pooled is not None and self.bands is not None
-        return statement(self.pooled, self.bands)
+        low = "" if self.low_frequency is None else "; " + self.low_frequency.sentence()
+        return statement(self.pooled, self.bands) + low
 
     def params(self) -> dict[str, float]:
         """Bound parameters with units in their names."""
@@ -202,6 +208,7 @@ class BoundModel:
         target: str = "point",
         level: float = 0.95,
         n_grid: int = 64,
+        tau_max_s: float = TAU_MAX_S,
     ) -> BoundResults:
         """Fit the tightest bound over the windows' PSDs.
 
@@ -231,6 +238,10 @@ class BoundModel:
             Envelope rule: confidence level for ``target="upper"``.
         n_grid : int, default 64
             Size of the log-spaced ``tau`` grid.
+        tau_max_s : float, default 900
+            Pooled rule: prior upper limit of the time constant, seconds,
+            used below the lowest band only where the data do not bound it
+            (:mod:`psdbound.spectra.lowfreq`).
 
         Returns
         -------
@@ -269,11 +280,14 @@ class BoundModel:
         )  # fmt: skip
         smoothing = [p.params.get("bandwidth_hz", 0.0) for p in psds]
         ms, why = model_set(bands, pooled, dt, confidence_level=confidence_level,
-                            smoothing_hz=float(np.median(smoothing)))  # fmt: skip
+                            smoothing_hz=float(np.median(smoothing)), tau_max_s=tau_max_s)
+        bound, low = bound_below(bound, bands, pooled, ms, dt, tau_max_s=tau_max_s,
+                                 objective=objective, n_grid=n_grid, reason=why)
         if ms is not None:  # the reported set contains the bound it accompanies
             ms = ms.with_model("bound", bound.sigma_gm_m, bound.tau_s, bound.sigma_wn_m)
         return BoundResults(bound, rule="pooled", bands=bands, pooled=pooled, model_set=ms,
-                            model_set_note=why, dependence=dependence, **common)  # fmt: skip
+                            model_set_note=why, dependence=dependence, low_frequency=low,
+                            **common)  # fmt: skip
 
     def dependence(self) -> dict[str, Any]:
         """Clusters of windows that share an error source, and their correlation.

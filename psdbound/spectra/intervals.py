@@ -47,7 +47,7 @@ References
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -100,6 +100,17 @@ class ModelSet:
         real multipath is not exactly one, and this says by how much).
     includes : tuple of str
         Models the intervals were widened to contain (the bound).
+    slices : ndarray, shape (n, 5)
+        The set itself, per time constant in it: ``tau_s`` and the least and
+        largest GM and white variances (m^2) whose band expectations fit,
+        before the windows' levels (:mod:`psdbound.spectra.lowfreq`).
+    vertices : ndarray, shape (k, 3)
+        The corners of every slice: ``tau_s``, GM variance and white
+        variance (m^2). The largest of any linear function of the PSD over
+        the set (at the searched time constants) lies at one of them.
+    window_factor : float
+        Largest factor from the group's PSD to a covered window's
+        (``exp`` of the largest window term), >= 1.
     """
 
     best: dict[str, float]
@@ -112,6 +123,11 @@ class ModelSet:
     n_bands: int
     widening: float = 1.0
     includes: tuple[str, ...] = ()
+    slices: NDArray[np.float64] = field(default_factory=lambda: np.zeros((0, 5)), repr=False,
+                                        compare=False)
+    vertices: NDArray[np.float64] = field(default_factory=lambda: np.zeros((0, 3)),
+                                          repr=False, compare=False)
+    window_factor: float = 1.0
 
     def with_model(self, name: str, sigma_gm_m: float, tau_s: float,
                    sigma_wn_m: float) -> ModelSet:  # fmt: skip
@@ -199,6 +215,26 @@ def _tau_slice(
     return ext[0] * sv, -ext[1] * sv, ext[2] * sw, -ext[3] * sw
 
 
+def _corners(u: NDArray, e: NDArray, lower: NDArray, upper: NDArray,
+             pooled: NDArray) -> NDArray[np.float64]:  # fmt: skip
+    """Return the corners ``(v, w)`` of one time constant's polygon of admitted variances.
+
+    Every pair of constraint lines (the band intervals and ``v, w >= 0``) is
+    intersected; the intersections that satisfy every constraint are the corners.
+    """
+    a_ub, b_ub, sv, sw = _constraints(u, e, lower, upper, pooled)
+    a = np.vstack([a_ub, [[-1.0, 0.0], [0.0, -1.0]]])
+    b = np.r_[b_ub, 0.0, 0.0]
+    i, j = np.triu_indices(b.size, 1)
+    det = a[i, 0] * a[j, 1] - a[i, 1] * a[j, 0]
+    ok = np.abs(det) > 1e-12
+    i, j, det = i[ok], j[ok], det[ok]
+    x = (b[i] * a[j, 1] - b[j] * a[i, 1]) / det
+    y = (a[i, 0] * b[j] - a[j, 0] * b[i]) / det
+    inside = (a @ np.vstack([x, y]) <= (b + 1e-9 * (1.0 + np.abs(b)))[:, None]).all(axis=0)
+    return np.column_stack([np.maximum(x[inside], 0.0) * sv, np.maximum(y[inside], 0.0) * sw])
+
+
 def _feasible(u: NDArray, e: NDArray, lower: NDArray, upper: NDArray, pooled: NDArray) -> bool:
     a_ub, b_ub, _, _ = _constraints(u, e, lower, upper, pooled)
     res = optimize.linprog([0.0, 0.0], A_ub=a_ub, b_ub=b_ub, bounds=[(0, None), (0, None)],
@@ -254,6 +290,7 @@ def model_set(
     *,
     confidence_level: float = 0.95,
     smoothing_hz: float = 0.0,
+    tau_max_s: float = 0.0,
 ) -> tuple[ModelSet | None, str]:
     """Return the GM + white-noise models consistent with the pooled spectrum.
 
@@ -271,6 +308,10 @@ def model_set(
     smoothing_hz : float, default 0
         Half-width ``W`` of the multitaper smoothing, Hz (its
         ``params["bandwidth_hz"]``); the exact expectation needs it.
+    tau_max_s : float, default 0
+        The search reaches at least twice this time constant, seconds (so
+        that whether the data bound ``tau`` below a prior maximum can be
+        read from the set).
 
     Returns
     -------
@@ -297,7 +338,8 @@ def model_set(
     t_s = float(np.median(test.duration_s[rows]))
     n = int(round(t_s / dt_s))
     nw = smoothing_hz * t_s
-    taus = np.geomspace(0.5 * dt_s, max(10.0 / (2.0 * np.pi * float(lo[0])), 2.0 * t_s), N_TAU)
+    taus = np.geomspace(0.5 * dt_s, max(10.0 / (2.0 * np.pi * float(lo[0])), 2.0 * t_s,
+                                        2.0 * tau_max_s), N_TAU)  # fmt: skip
     low = lo < EXACT_BELOW * smoothing_hz
     unit = np.zeros((taus.size, n_b))  # expected band averages per unit GM variance
     white_unit = np.full(n_b, 2.0 * dt_s)  # white noise: unbiased away from zero frequency
@@ -337,5 +379,9 @@ def model_set(
         chi2_min=misfit,
         n_bands=n_b,
         widening=widening,
+        slices=np.column_stack([taus[idx], ext]),
+        vertices=np.vstack([np.column_stack([np.full(len(c), taus[i]), c]) for i in idx
+                            for c in [_corners(unit[i], white_unit, lower, upper, pooled)]]),
+        window_factor=float(np.exp(2.0 * widen)),
     )
     return out, ""

@@ -18,6 +18,7 @@ from psdbound.common.options import (
 )
 from psdbound.spectra.bound import OBJECTIVES, RULES
 from psdbound.spectra.estimators import METHODS
+from psdbound.spectra.lowfreq import TAU_MAX_S
 
 __all__ = ["BoundOptions", "ESTIMATOR_OPTIONS", "SpectraOptions", "check_estimator_options"]
 
@@ -160,6 +161,11 @@ class BoundOptions:
     level : float
         Envelope rule: confidence level of the per-window upper limits
         (``target="upper"``), in (0, 1).
+    tau_max_s : float
+        Pooled rule: prior upper limit of the multipath time constant,
+        seconds. Below the lowest band the bound lies above every model the
+        data admit; where the data do not bound ``tau`` above, only models up
+        to this one (:mod:`psdbound.spectra.lowfreq`).
 
     Raises
     ------
@@ -175,6 +181,7 @@ class BoundOptions:
     bands_per_decade: int = option(10, Number(lo=1, hi=100, integer=True))
     target: str = option("point", Choice(("point", "upper"), noun="target"))
     level: float = option(0.95, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True))
+    tau_max_s: float = option(TAU_MAX_S, Number(lo=0.0, hi=1e6, lo_open=True, unit="s"))
 
     def __post_init__(self) -> None:
         check_fields(self)

@@ -66,7 +66,7 @@ from psdbound.spectra.limits import (
     window_deviations,
 )
 
-__all__ = ["PooledLimits", "excess_statistic", "fit_pooled_bound", "pool_bands",
+__all__ = ["PooledLimits", "excess_statistic", "fit_limits", "fit_pooled_bound", "pool_bands",
            "random_effects_mean", "statement"]
 
 #: Share of ``1 - confidence_level`` spent on the group levels (the rest on the windows).
@@ -144,6 +144,8 @@ class PooledLimits:
     notes : tuple of str
         Bands whose limit lies more than :data:`LOOSE_DB` above the largest
         window, with the reason.
+    shape_alpha : float
+        Level of the shape tests that formed the groups.
     """
 
     f_hz: NDArray[np.float64]
@@ -163,6 +165,7 @@ class PooledLimits:
     window_term_log: NDArray[np.float64] | None = None
     effective_dof: NDArray[np.float64] | None = None
     notes: tuple[str, ...] = ()
+    shape_alpha: float = 0.05
 
     @property
     def n_groups(self) -> int:
@@ -436,6 +439,7 @@ def pool_bands(
         level_log=level, level_se_log=level_se, spread_upper_log_sd=spread,
         tolerance_factor=z_star, window_term_log=window_term, effective_dof=out["eff"],
         notes=_loose_notes(out["up"], out["max"], bands.centres_hz, sizes, out["eff"]),
+        shape_alpha=shape_alpha,
     )
 
 
@@ -523,9 +527,49 @@ def fit_pooled_bound(
                         shape_alpha=shape_alpha, smoothing_hz=smoothing_hz(psds),
                         deviation_model=deviation_model,
                         clusters=clusters, cluster_correlation=cluster_correlation)  # fmt: skip
-    # A limit holds for the band's mean PSD; the PSD can exceed the mean near the lower edge
-    # (a steep in-band slope) and near the upper edge (flat in-band, bound still falling).
-    # Held: U sqrt(r) at the lower edge (r = f_hi / f_lo), U at the centre and upper edge.
+    fit = fit_limits(limits, bands, dt_s, objective=objective, n_grid=n_grid)
+    return fit, bands, limits
+
+
+def fit_limits(
+    limits: PooledLimits,
+    bands: BandSpectra,
+    dt_s: float,
+    *,
+    objective: str = "variance",
+    n_grid: int = 64,
+    floor: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
+) -> BoundFit:
+    """Fit the tightest GM + white-noise bound above pooled band limits.
+
+    A limit holds for the band's mean PSD; the PSD can exceed the mean near
+    the lower edge (a steep in-band slope) and near the upper edge (flat
+    in-band, bound still falling). The bound is held at ``U sqrt(r)`` at the
+    lower edge (``r = f_hi / f_lo``) and at ``U`` at the centre and the upper
+    edge.
+
+    Parameters
+    ----------
+    limits : PooledLimits
+        The limits (:func:`pool_bands`).
+    bands : BandSpectra
+        The bands they are stated on.
+    dt_s : float
+        Sampling interval, seconds.
+    objective : {"variance", "area"}, default "variance"
+        Tightness objective (:func:`fit_bound`).
+    n_grid : int, default 64
+        ``tau`` grid size.
+    floor : (ndarray, ndarray), optional
+        Further points (Hz, m^2/Hz) the bound must lie above, not data
+        (:func:`fit_bound`).
+
+    Returns
+    -------
+    BoundFit
+        ``target="pooled"``, ``level`` the limits' confidence level, stated
+        from the lowest band edge to Nyquist; ``margins`` per group.
+    """
     lo, hi = bands.edges_hz[:-1], np.minimum(bands.edges_hz[1:], 0.5 / dt_s)
     target = []
     for row in limits.upper_m2_hz:
@@ -533,13 +577,14 @@ def fit_pooled_bound(
         f = np.concatenate([lo[have], limits.f_hz[have], hi[have]])
         u = np.concatenate([row[have] * np.sqrt(hi[have] / lo[have]), row[have], row[have]])
         target.append(_BandLimits(f, u))
-    fit = fit_bound(target, dt_s, objective=objective, target="point", n_grid=n_grid)
+    fit = fit_bound(target, dt_s, objective=objective, target="point", n_grid=n_grid,
+                    tau_range_s=(0.5 * dt_s, 20.0 / float(bands.edges_hz[0])), floor=floor)
     # the bound is stated over the bands' full span, lowest edge to Nyquist
-    fit = replace(fit, target="pooled", level=confidence_level, f_min_hz=float(bands.edges_hz[0]),
-                  f_max_hz=0.5 / dt_s,
-                  meta={"n_bands": int(limits.f_hz.size), "coverage": coverage,
-                        "n_groups": limits.n_groups, "shape_alpha": shape_alpha})  # fmt: skip
-    return fit, bands, limits
+    return replace(fit, target="pooled", level=limits.confidence_level,
+                   f_min_hz=float(bands.edges_hz[0]), f_max_hz=0.5 / dt_s,
+                   meta={"n_bands": int(limits.f_hz.size), "coverage": limits.coverage,
+                         "n_groups": limits.n_groups,
+                         "shape_alpha": limits.shape_alpha})  # fmt: skip
 
 
 def statement(limits: PooledLimits, bands: BandSpectra) -> str:

@@ -21,6 +21,13 @@ from psdbound.spectra.bands import BandSpectra, resolved_from_hz
 from psdbound.spectra.bound import BoundFit
 from psdbound.spectra.estimators import MIN_SAMPLES, PSDEstimate, estimate_psd
 from psdbound.spectra.intervals import ModelSet, model_set
+from psdbound.spectra.lowfreq import (
+    POLICIES,
+    TAU_MAX_S,
+    LowFrequency,
+    bound_below,
+    low_frequency_reasons,
+)
 from psdbound.spectra.models import GaussMarkovWhiteNoise
 from psdbound.spectra.pooled import PooledLimits, fit_pooled_bound, smoothing_hz, statement
 
@@ -63,6 +70,9 @@ class SeriesBound:
         spectrum, widened to contain the bound
         (:func:`psdbound.spectra.intervals.model_set`); None with too few
         bands.
+    low_frequency : LowFrequency or None
+        What the bound covers below ``f_min_hz``, down to 0 Hz
+        (:mod:`psdbound.spectra.lowfreq`).
     """
 
     bound: GaussMarkovWhiteNoise
@@ -76,6 +86,7 @@ class SeriesBound:
     limits: PooledLimits
     notes: tuple[str, ...] = field(default_factory=tuple)
     model_set: ModelSet | None = None
+    low_frequency: LowFrequency | None = None
 
     @property
     def n_windows(self) -> int:
@@ -160,12 +171,14 @@ def split_stretches(
     return out, notes
 
 
-def _verdict(fit: BoundFit, limits: PooledLimits) -> tuple[str, ...]:
+def _verdict(fit: BoundFit, limits: PooledLimits, low: LowFrequency,
+             policy: str) -> tuple[str, ...]:  # fmt: skip
     reasons = []
     if not np.isfinite(fit.objective_value) or fit.total_variance_m2 <= 0.0:
         reasons.append("no positive bound could be fitted")
     if not np.isfinite(limits.upper_m2_hz).any():
         reasons.append("no frequency band has data")
+    reasons += low_frequency_reasons(low.as_dict(), policy)
     return tuple(reasons)
 
 
@@ -185,6 +198,8 @@ def bound_series(
     cluster_correlation: float = 0.0,
     deviation_model: str = "auto",
     objective: str = "variance",
+    tau_max_s: float = TAU_MAX_S,
+    low_frequency_policy: str = "prior",
 ) -> SeriesBound:
     """Bound evenly sampled error series by a Gauss-Markov + white-noise PSD.
 
@@ -224,6 +239,14 @@ def bound_series(
         (:func:`psdbound.spectra.pooled.pool_bands`).
     objective : {"variance", "area"}, default "variance"
         Tightness objective.
+    tau_max_s : float, default 900
+        Prior upper limit of the time constant, seconds: where the data do
+        not bound it, the bound covers the admitted models with time
+        constants up to this below the lowest band
+        (:mod:`psdbound.spectra.lowfreq`).
+    low_frequency_policy : {"prior", "refuse"}, default "prior"
+        ``"refuse"``: not bounded when the statement below the lowest band
+        would rest on the prior.
 
     Returns
     -------
@@ -250,6 +273,11 @@ def bound_series(
     """
     if not (np.isfinite(dt_s) and dt_s > 0):
         raise InputError(f"sampling interval must be positive and finite, got {dt_s!r} s")
+    if low_frequency_policy not in POLICIES:
+        raise InputError(f"low_frequency_policy must be one of {POLICIES}, got "
+                         f"{low_frequency_policy!r}")  # fmt: skip
+    if not (np.isfinite(tau_max_s) and tau_max_s > 0):
+        raise InputError(f"tau_max_s must be positive and finite, got {tau_max_s!r} s")
     if min_samples < MIN_SAMPLES:
         raise InputError(f"min_samples must be at least {MIN_SAMPLES}, got {min_samples}")
     stretches, notes = split_stretches(series, min_samples=min_samples)
@@ -266,14 +294,17 @@ def bound_series(
         shape_alpha=shape_alpha, bands_per_decade=bands_per_decade, clusters=cl,
         cluster_correlation=cluster_correlation, deviation_model=deviation_model,
         objective=objective)  # fmt: skip
-    reasons = _verdict(fit, limits)
-    ms, _ = model_set(bands, limits, dt_s, confidence_level=confidence_level,
-                      smoothing_hz=smoothing_hz(psds))  # fmt: skip
+    ms, why = model_set(bands, limits, dt_s, confidence_level=confidence_level,
+                        smoothing_hz=smoothing_hz(psds), tau_max_s=tau_max_s)  # fmt: skip
+    fit, low = bound_below(fit, bands, limits, ms, dt_s, tau_max_s=tau_max_s,
+                           objective=objective, reason=why)  # fmt: skip
+    reasons = _verdict(fit, limits, low, low_frequency_policy)
     if ms is not None:
         ms = ms.with_model("bound", fit.sigma_gm_m, fit.tau_s, fit.sigma_wn_m)
 
     return SeriesBound(
         bound=fit.model, verdict=NOT_BOUNDED if reasons else BOUNDED, verdict_reasons=reasons,
-        f_min_hz=float(fit.f_min_hz), covers=statement(limits, bands), fit=fit, psds=psds,
-        bands=bands, limits=limits, notes=notes, model_set=ms)  # fmt: skip
+        f_min_hz=float(fit.f_min_hz), covers=statement(limits, bands) + "; " + low.sentence(),
+        fit=fit, psds=psds, bands=bands, limits=limits, notes=notes, model_set=ms,
+        low_frequency=low)  # fmt: skip
 

@@ -190,10 +190,15 @@ def test_an_unresolved_plateau_is_said_not_silently_extrapolated():
     from types import SimpleNamespace
 
     from psdbound.pipeline.document import _bound_notes
+    from psdbound.spectra.lowfreq import LowFrequency
 
     ms = SimpleNamespace(open_ends={"tau_s": (False, True)}, tau_interval_s=(40.0, 8580.0),
                          widening=1.3, confidence_level=0.95)  # fmt: skip
-    res = SimpleNamespace(pooled=None, model_set=ms, bound=SimpleNamespace(f_min_hz=0.002))
+    low = LowFrequency("prior", 900.0, before={"sigma_gm_m": 0.004, "tau_s": 40.0,
+                                               "sigma_wn_m": 0.0}, raised=True)  # fmt: skip
+    res = SimpleNamespace(pooled=None, model_set=ms, bound=SimpleNamespace(f_min_hz=0.002),
+                          low_frequency=low)  # fmt: skip
     notes = _bound_notes(res)
+    assert any("prior 900 s" in n and "raised" in n for n in notes)
     assert any("do not bound the time constant above" in n for n in notes)
     assert any("widened 1.3 times" in n for n in notes)

@@ -1,0 +1,475 @@
+"""The complete multipath error model a Kalman filter takes from a fit.
+
+:class:`ErrorModel` gathers every component the fit states, each with its
+parameters, where it comes from and what a filter needs of it:
+
+``gauss_markov``
+    The PSD bound's first-order Gauss-Markov part (``sigma_gm_m``, ``tau_s``;
+    elevation-mapped). Below the bound's lowest band it lies above every
+    Gauss-Markov + white model the data admit (``bound.low_frequency``;
+    :mod:`psdbound.spectra.lowfreq`).
+``slow``
+    The multipath the high-pass removed below the cutoff, which the bound
+    cannot see: its RMS along the data's passes (``validation``), carried as
+    a random constant per arc (state transition 1, no process noise, initial
+    variance ``sigma^2``, reset at each new arc). A random constant is the
+    most conservative stationary-variance model of an error slower than
+    every filter time constant; its PSD is a line at 0 Hz, left out of
+    :meth:`ErrorModel.psd` (which says so). Present only when the
+    validation estimated it.
+``white``
+    The bound's white part (``sigma_wn_m`` per sample at the data interval
+    ``dt_s``; elevation-mapped).
+
+:meth:`ErrorModel.to_state_space` returns ``(phi, q, r, p0)`` for a filter
+interval, with one state per correlated component; it refuses a fit whose
+verdict is not ``"bounded"`` unless ``allow_not_bounded=True``, and warns
+when the filter step is shorter than the data interval (no white level is
+known above the data's Nyquist frequency). The same numbers are in
+``result.json`` (``error_model``), so ``psdbound.load(path).error_model``
+gives the model of a stored fit.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any, NamedTuple
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from psdbound.errors import InputError
+from psdbound.spectra.models import GaussMarkovWhiteNoise
+
+__all__ = ["Component", "ErrorModel", "ErrorStateSpace", "error_model_section"]
+
+#: Kinds of component.
+KINDS = ("gauss-markov", "random-constant-per-arc", "white")
+
+
+@dataclass(frozen=True)
+class Component:
+    """One component of the error model.
+
+    Attributes
+    ----------
+    name : str
+        ``"gauss_markov"``, ``"slow"`` or ``"white"``.
+    kind : {"gauss-markov", "random-constant-per-arc", "white"}
+        Its process.
+    sigma_m : float
+        Standard deviation, metres (per sample at ``dt_s`` for white noise).
+    tau_s : float or None
+        Time constant, seconds (Gauss-Markov only).
+    elevation_mapped : bool
+        Whether ``sigma_m`` is at the zenith scale of the fit's elevation
+        mapping (multiply by ``m(el)``) or applies at every elevation.
+    source : str
+        Where the numbers come from and what they assume.
+    """
+
+    name: str
+    kind: str
+    sigma_m: float
+    tau_s: float | None = None
+    elevation_mapped: bool = True
+    source: str = ""
+
+    def __post_init__(self) -> None:
+        if self.kind not in KINDS:
+            raise InputError(
+                f"component {self.name!r}: kind must be one of {KINDS}, got {self.kind!r}"
+            )
+        if not (math.isfinite(self.sigma_m) and self.sigma_m >= 0.0):
+            raise InputError(f"component {self.name!r}: sigma_m must be >= 0, got {self.sigma_m}")
+        if self.kind == "gauss-markov" and not (self.tau_s is not None and self.tau_s > 0.0):
+            raise InputError(f"component {self.name!r}: a Gauss-Markov tau_s must be > 0")
+
+    @property
+    def variance_m2(self) -> float:
+        """Variance, m^2."""
+        return self.sigma_m**2
+
+    def as_dict(self) -> dict[str, Any]:
+        """JSON-ready form."""
+        return {
+            "name": self.name,
+            "kind": self.kind,
+            "sigma_m": self.sigma_m,
+            "tau_s": self.tau_s,
+            "elevation_mapped": self.elevation_mapped,
+            "source": self.source,
+        }
+
+
+class ErrorStateSpace(NamedTuple):
+    """Discrete state-space model of the error for one filter interval.
+
+    ``x[k+1] = phi x[k] + w[k]``, ``w ~ N(0, q)``; error ``e[k] = sum(x[k]) + v[k]``,
+    ``v ~ N(0, r)``; start with ``x[0] ~ N(0, p0)``.
+
+    Attributes
+    ----------
+    states : tuple of str
+        Component name of each state (the correlated components).
+    phi : ndarray, shape (n, n)
+        State transition (diagonal).
+    q_m2 : ndarray, shape (n, n)
+        Process-noise covariance, m^2.
+    r_m2 : float
+        White measurement-noise variance per filter sample, m^2.
+    p0_m2 : ndarray, shape (n, n)
+        Initial state covariance, m^2: each state's stationary variance, the
+        least that bounds it from the first step (and, for the slow state,
+        at every new arc).
+    """
+
+    states: tuple[str, ...]
+    phi: NDArray[np.float64]
+    q_m2: NDArray[np.float64]
+    r_m2: float
+    p0_m2: NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class ErrorModel:
+    """Every component of a fit's multipath error model (module docstring).
+
+    Attributes
+    ----------
+    components : tuple of Component
+        The components, Gauss-Markov first.
+    dt_s : float
+        Data interval the white level and the bound were stated at, seconds.
+    f_min_hz : float
+        Lowest band of the data, Hz (below it the model rests on
+        ``low_frequency``).
+    verdict : str
+        The fit's verdict.
+    verdict_reasons : tuple of str
+        Why not bounded.
+    low_frequency : str
+        What the model covers below ``f_min_hz`` (the fit's statement).
+    mapping : dict or None
+        Elevation mapping ``{"a", "b", "c_deg"}`` of the elevation-mapped
+        components (None: they apply to the raw error).
+    source : str
+        Where the model was read from.
+    """
+
+    components: tuple[Component, ...]
+    dt_s: float
+    f_min_hz: float
+    verdict: str = "bounded"
+    verdict_reasons: tuple[str, ...] = ()
+    low_frequency: str = ""
+    mapping: dict[str, float] | None = None
+    source: str = ""
+    _by_name: dict[str, Component] = field(default_factory=dict, init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.dt_s) and self.dt_s > 0):
+            raise InputError(f"dt_s must be > 0, got {self.dt_s}")
+        object.__setattr__(self, "_by_name", {c.name: c for c in self.components})
+
+    # --------------------------------------------------------------- access
+    def __getitem__(self, name: str) -> Component:
+        """Return the component called ``name``."""
+        try:
+            return self._by_name[name]
+        except KeyError:
+            raise KeyError(f"no component {name!r}; have {sorted(self._by_name)}") from None
+
+    def _bound(self) -> GaussMarkovWhiteNoise:
+        gm, wn = self._by_name.get("gauss_markov"), self._by_name.get("white")
+        return GaussMarkovWhiteNoise(
+            gm.sigma_m if gm else 0.0, gm.tau_s if gm else 1.0, wn.sigma_m if wn else 0.0, self.dt_s
+        )
+
+    @property
+    def nyquist_hz(self) -> float:
+        """Nyquist frequency of the data, Hz."""
+        return 0.5 / self.dt_s
+
+    def variance_m2(self, dt_s: float | None = None, *, white_noise: str = "conservative") -> float:
+        """Total variance of one sample at interval ``dt_s`` (all components), m^2.
+
+        Parameters
+        ----------
+        dt_s : float, optional
+            Sampling interval, seconds; default the data interval.
+        white_noise : {"psd", "per_sample", "conservative"}, default "conservative"
+            The white part's variance at another interval
+            (:meth:`psdbound.spectra.GaussMarkovWhiteNoise.white_variance_m2`).
+
+        Returns
+        -------
+        float
+        """
+        slow = sum(c.variance_m2 for c in self.components if c.kind == "random-constant-per-arc")
+        return self._bound().variance_m2(dt_s, white_noise=white_noise) + slow
+
+    def _check_band(self, f: NDArray[np.float64], nyquist_hz: float) -> None:
+        if (f < 0).any():
+            raise InputError("frequencies must be >= 0 Hz")
+        if (f > nyquist_hz * (1 + 1e-9)).any():
+            warnings.warn(
+                f"frequencies above the data's Nyquist frequency {nyquist_hz:g} Hz: "
+                "the data say nothing there; the model is an extrapolation",
+                stacklevel=3,
+            )
+
+    def psd(self, f_hz: ArrayLike) -> NDArray[np.float64]:
+        """Continuous-time one-sided PSD of the correlated and white parts, m^2/Hz.
+
+        The slow random constant is a line at 0 Hz (variance
+        :attr:`Component.variance_m2`) and is not included; a filter takes
+        it from :meth:`to_state_space`.
+
+        Parameters
+        ----------
+        f_hz : array_like
+            Frequencies, Hz (>= 0; above the data's Nyquist frequency a
+            warning: extrapolated).
+
+        Returns
+        -------
+        ndarray
+        """
+        f = np.asarray(f_hz, dtype=float)
+        self._check_band(f, self.nyquist_hz)
+        return self._bound().psd(f)
+
+    def sampled_psd(
+        self, f_hz: ArrayLike, dt_s: float | None = None, *, white_noise: str = "conservative"
+    ) -> NDArray[np.float64]:
+        """One-sided PSD of the model sampled at ``dt_s`` (aliases folded in), m^2/Hz.
+
+        Parameters
+        ----------
+        f_hz : array_like
+            Frequencies, Hz, in ``[0, 1/(2 dt_s)]``.
+        dt_s : float, optional
+            Sampling interval, seconds; default the data interval.
+        white_noise : {"psd", "per_sample", "conservative"}, default "conservative"
+            The white part at another interval.
+
+        Returns
+        -------
+        ndarray
+        """
+        b = self._bound()
+        dt = b.checked_dt_s(dt_s)
+        f = np.asarray(f_hz, dtype=float)
+        if (f < 0).any() or (f > 0.5 / dt * (1 + 1e-9)).any():
+            raise InputError(f"frequencies must lie in [0, {0.5 / dt:g}] Hz for dt = {dt:g} s")
+        if dt < self.dt_s * (1 - 1e-9):
+            self._check_band(f, self.nyquist_hz)
+        return b.sampled_psd(f, dt, white_noise=white_noise)
+
+    # --------------------------------------------------------------- export
+    def to_state_space(
+        self,
+        dt_s: float | None = None,
+        *,
+        allow_not_bounded: bool = False,
+        white_noise: str = "conservative",
+    ) -> ErrorStateSpace:
+        """Discrete state-space model for a filter interval (one state per correlated part).
+
+        Parameters
+        ----------
+        dt_s : float, optional
+            Filter interval, seconds; default the data interval.
+        allow_not_bounded : bool, default False
+            Export the model of a fit whose verdict is not ``"bounded"``
+            (for study, not for a protection level).
+        white_noise : {"psd", "per_sample", "conservative"}, default "conservative"
+            The white part's variance at another interval.
+
+        Returns
+        -------
+        ErrorStateSpace
+
+        Warns
+        -----
+        UserWarning
+            A filter step shorter than the data interval.
+
+        Raises
+        ------
+        InputError
+            A not-bounded fit (unless allowed), a bad interval or mode.
+        """
+        if self.verdict != "bounded" and not allow_not_bounded:
+            why = "; ".join(self.verdict_reasons) or "no reason given"
+            raise InputError(
+                f"the verdict is {self.verdict!r} ({why}): this model is not for "
+                "a filter; pass allow_not_bounded=True to export it anyway"
+            )
+        b = self._bound()
+        dt = b.checked_dt_s(dt_s)
+        if dt < self.dt_s * (1.0 - 1e-9):
+            warnings.warn(
+                f"filter step {dt:g} s is shorter than the data interval {self.dt_s:g} s: the "
+                f"data say nothing above their Nyquist frequency {self.nyquist_hz:g} Hz, so R "
+                f"({white_noise!r} white-noise mode) is an extrapolation there",
+                stacklevel=2,
+            )
+        states = [c for c in self.components if c.kind != "white"]
+        phi = np.array(
+            [math.exp(-dt / c.tau_s) if c.kind == "gauss-markov" else 1.0 for c in states]
+        )
+        q = np.array(
+            [
+                c.variance_m2 * -math.expm1(-2.0 * dt / c.tau_s)
+                if c.kind == "gauss-markov"
+                else 0.0
+                for c in states
+            ]
+        )
+        p0 = np.array([c.variance_m2 for c in states])
+        return ErrorStateSpace(
+            tuple(c.name for c in states),
+            np.diag(phi),
+            np.diag(q),
+            b.white_variance_m2(dt, white_noise=white_noise),
+            np.diag(p0),
+        )
+
+    # ----------------------------------------------------------------- I/O
+    def as_dict(self) -> dict[str, Any]:
+        """JSON-ready form (``error_model`` of result.json)."""
+        ss = self.to_state_space(allow_not_bounded=True)
+        return {
+            "components": [c.as_dict() for c in self.components],
+            "dt_s": self.dt_s,
+            "nyquist_hz": self.nyquist_hz,
+            "f_min_hz": self.f_min_hz,
+            "low_frequency": self.low_frequency,
+            "variance_m2": self.variance_m2(),
+            "state_space": {
+                "dt_s": self.dt_s,
+                "states": list(ss.states),
+                "phi": np.diag(ss.phi).tolist(),
+                "q_m2": np.diag(ss.q_m2).tolist(),
+                "r_m2": ss.r_m2,
+                "p0_m2": np.diag(ss.p0_m2).tolist(),
+            },
+            "mapping": self.mapping,
+        }
+
+    @classmethod
+    def from_document(cls, document: dict[str, Any], *, source: str = "") -> ErrorModel:
+        """Read the model of a result document (``psdbound.load(path).document``).
+
+        Parameters
+        ----------
+        document : dict
+            A result document with an ``error_model`` section.
+        source : str, optional
+            Where it came from (for messages).
+
+        Returns
+        -------
+        ErrorModel
+
+        Raises
+        ------
+        InputError
+            No ``error_model`` section (a result written before it existed:
+            refit), or a malformed component.
+        """
+        sec = document.get("error_model")
+        if not isinstance(sec, dict):
+            raise InputError(
+                f"{source or 'the result'} has no 'error_model' section (written "
+                "by an older psdbound): fit again"
+            )
+        comps = tuple(
+            Component(
+                **{
+                    k: c.get(k)
+                    for k in ("name", "kind", "sigma_m", "tau_s", "elevation_mapped", "source")
+                }
+            )
+            for c in sec["components"]
+        )
+        return cls(
+            comps,
+            float(sec["dt_s"]),
+            float(sec["f_min_hz"]),
+            verdict=str(document.get("verdict", "bounded")),
+            verdict_reasons=tuple(document.get("verdict_reasons", ())),
+            low_frequency=str(sec.get("low_frequency", "")),
+            mapping=sec.get("mapping"),
+            source=source,
+        )
+
+    def summary(self) -> str:
+        """Return a text table of the components."""
+        rows = [
+            f"error model ({self.verdict}; data interval {self.dt_s:g} s, stated from "
+            f"{self.f_min_hz:.3g} Hz to Nyquist {self.nyquist_hz:.3g} Hz)"
+        ]
+        for c in self.components:
+            tau = f"tau {c.tau_s:.4g} s" if c.tau_s else c.kind
+            rows.append(
+                f"  {c.name:<13}{1000 * c.sigma_m:8.3f} mm  {tau}"
+                + ("  (x m(el))" if c.elevation_mapped else "")
+            )
+        rows.append(f"  below {self.f_min_hz:.3g} Hz: {self.low_frequency}")
+        return "\n".join(rows)
+
+
+def error_model_section(
+    bound: dict[str, Any],
+    *,
+    mapping: dict[str, Any] | None,
+    slow: Sequence[Component] = (),
+) -> dict[str, Any]:
+    """Build the ``error_model`` section of a result document from its ``bound`` section.
+
+    Parameters
+    ----------
+    bound : dict
+        The ``bound`` section (``sigma_gm_m``, ``tau_s``, ``sigma_wn_m``,
+        ``dt_s``, ``band_hz``, ``low_frequency``).
+    mapping : dict or None
+        The ``mapping`` section.
+    slow : sequence of Component
+        Slow components estimated elsewhere (the cutoff validation).
+
+    Returns
+    -------
+    dict
+    """
+    low = bound.get("low_frequency") or {}
+    gm = Component(
+        "gauss_markov",
+        "gauss-markov",
+        float(bound["sigma_gm_m"]),
+        float(bound["tau_s"]),
+        True,
+        "the PSD bound's Gauss-Markov part (bound.sigma_gm_m, bound.tau_s)",
+    )
+    wn = Component(
+        "white",
+        "white",
+        float(bound["sigma_wn_m"]),
+        None,
+        True,
+        "the PSD bound's white part, per sample at bound.dt_s (bound.sigma_wn_m)",
+    )
+    mp = None if mapping is None else {k: mapping[k] for k in ("a", "b", "c_deg")}
+    model = ErrorModel(
+        (gm, *slow, wn),
+        float(bound["dt_s"]),
+        float(bound["band_hz"][0]),
+        low_frequency=str(low.get("statement", "not checked (envelope rule)")),
+        mapping=mp,
+    )
+    return model.as_dict()

@@ -1,0 +1,295 @@
+"""Below the lowest band: the bound must cover every model the data admit, down to 0 Hz.
+
+The pooled limits hold from the lowest band ``f_min`` to Nyquist. A Kalman
+filter uses the error model at every frequency, most of all the low ones it
+averages over, so the bound's PSD below ``f_min`` is part of the statement.
+Extrapolating the fitted Gauss-Markov plateau is not: above ``f_min`` a slow
+process shows only its ``1/f^2`` tail, and the tightest bound over the bands
+then has a short time constant whose plateau lies far under the slow truth
+(a 600 s truth at 30 s: 0.025 times its PSD at 0 Hz).
+
+**Rule.** The model set (:func:`psdbound.spectra.intervals.model_set`) holds
+every GM + white model whose exact band expectations fit the pooled spectrum
+at the stated level. Below ``f_min`` the bound is required to lie above the
+envelope of that set, each model raised by the largest factor from the group
+to a covered window (:attr:`~psdbound.spectra.intervals.ModelSet.window_factor`),
+at frequencies from ``f_min`` down to ``1e-4 f_min`` (where every admitted
+plateau is flat). The set's PSD at ``f`` is linear in the two variances, so
+its largest value per time constant lies at a corner of that time constant's
+polygon of admitted variances
+(:attr:`~psdbound.spectra.intervals.ModelSet.vertices`): the envelope is the
+largest PSD over the corners, exact at the searched time constants. The
+bound is refitted with these points as constraints of its linear programs
+(:func:`psdbound.spectra.pooled.fit_limits`); where the tightest bound already
+lies above them nothing changes.
+
+**Prior.** When the data do not bound ``tau`` above (the set reaches its
+search edge), the envelope grows without limit as ``tau`` does: the data
+alone cannot state a bound at 0 Hz. The envelope is then taken over
+``tau <= tau_max_s``, a stated prior (default :data:`TAU_MAX_S` = 900 s, the
+upper end of the raw carrier-multipath time constants, 10-900 s, used for
+Kalman-filter ARAIM with uncertain Gauss-Markov errors [1]_), and the result
+says so (:attr:`LowFrequency.prior_binding`). With ``policy="refuse"`` such a
+case is not bounded instead.
+
+Why the envelope suffices for a first-order truth: if a GM + white truth lies
+under the bound at ``f_min`` and is one of the admitted models, the bound lies
+above it at every lower frequency by construction of the envelope. That the
+truth *is* first-order GM + white is the model's assumption; a slow component
+of another shape is covered only as far as its band averages constrain the
+set.
+
+References
+----------
+.. [1] Langel, S., Garcia Crespillo, O., & Joerger, M. (2021). Overbounding the
+   effect of uncertain Gauss-Markov noise in Kalman filtering. *NAVIGATION*,
+   68(2), 259-276 (time constants known only to lie in an interval).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from psdbound.spectra.bands import BandSpectra
+from psdbound.spectra.bound import BoundFit
+from psdbound.spectra.intervals import ModelSet
+from psdbound.spectra.models import gm_psd_sampled
+from psdbound.spectra.pooled import PooledLimits, fit_limits
+
+__all__ = [
+    "LowFrequency",
+    "POLICIES",
+    "TAU_MAX_S",
+    "bound_below",
+    "envelope_below",
+    "low_frequency_reasons",
+]
+
+#: Default prior upper limit of the multipath time constant, seconds.
+TAU_MAX_S = 900.0
+#: What to do when the data do not bound tau above: use the prior, or refuse.
+POLICIES = ("prior", "refuse")
+#: Envelope frequencies below f_min, as fractions of it (1e-4: every admitted plateau is flat).
+_FRACTIONS = np.geomspace(1e-4, 1.0, 41)
+
+
+@dataclass(frozen=True)
+class LowFrequency:
+    """What the bound covers below its lowest band.
+
+    Attributes
+    ----------
+    status : {"covered", "prior", "unchecked"}
+        ``"covered"``: the bound lies above every model the data admit, down
+        to 0 Hz, with no prior; ``"prior"``: the data do not bound ``tau``
+        above and the bound covers the admitted models with
+        ``tau <= tau_max_s`` only; ``"unchecked"``: no model set (``reason``).
+    tau_max_s : float
+        Prior upper limit of the time constant, seconds.
+    tau_upper_s : float
+        Largest time constant the data admit, seconds (``inf`` when the set
+        reaches its search edge).
+    f_hz, envelope_m2_hz : ndarray
+        Envelope of the admitted models below ``f_min`` (raised by the
+        window factor), Hz and m^2/Hz.
+    raised : bool
+        Whether the bound had to be raised above the tightest bound over the
+        bands to lie above the envelope.
+    before : dict
+        The tightest bound over the bands alone (``sigma_gm_m``, ``tau_s``,
+        ``sigma_wn_m``).
+    reason : str
+        Why the check could not be made (``"unchecked"``).
+    """
+
+    status: str
+    tau_max_s: float
+    tau_upper_s: float = float("inf")
+    f_hz: NDArray[np.float64] | None = None
+    envelope_m2_hz: NDArray[np.float64] | None = None
+    raised: bool = False
+    before: dict[str, float] | None = None
+    reason: str = ""
+
+    @property
+    def prior_binding(self) -> bool:
+        """Whether the statement at 0 Hz rests on the prior ``tau <= tau_max_s``."""
+        return self.status == "prior"
+
+    def sentence(self) -> str:
+        """Return the low-frequency part of the statement, in words."""
+        if self.status == "unchecked":
+            return (
+                "below the lowest band the bound is the fitted model's extrapolation, "
+                f"not checked against the data ({self.reason})"
+            )
+        what = (
+            "above every Gauss-Markov + white-noise model the data admit at the same "
+            "confidence (each raised to the most covered window)"
+        )
+        if self.status == "prior":
+            return (
+                f"below the lowest band, down to 0 Hz, the bound lies {what} with a time "
+                f"constant up to the prior {self.tau_max_s:g} s: the data do not bound "
+                f"the time constant above"
+            )
+        return (
+            f"below the lowest band, down to 0 Hz, the bound lies {what}; they bound the "
+            f"time constant above at {self.tau_upper_s:.4g} s"
+        )
+
+    def as_dict(self) -> dict[str, Any]:
+        """JSON-ready form (``bound.low_frequency`` of result.json)."""
+        return {
+            "status": self.status,
+            "tau_max_s": self.tau_max_s,
+            "tau_upper_s": self.tau_upper_s if np.isfinite(self.tau_upper_s) else None,
+            "raised": self.raised,
+            "before": self.before,
+            "envelope_at_0_m2_hz": (
+                float(self.envelope_m2_hz[0]) if self.envelope_m2_hz is not None else None
+            ),
+            "statement": self.sentence(),
+            "reason": self.reason,
+        }
+
+
+def envelope_below(
+    ms: ModelSet, dt_s: float, f_min_hz: float, *, tau_max_s: float = TAU_MAX_S
+) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
+    """Return the envelope of the admitted models below ``f_min_hz``.
+
+    Parameters
+    ----------
+    ms : ModelSet
+        The model set, with its slices.
+    dt_s : float
+        Sampling interval, seconds.
+    f_min_hz : float
+        Lowest band edge, Hz.
+    tau_max_s : float, default :data:`TAU_MAX_S`
+        Only models with ``tau <= tau_max_s`` enter.
+
+    Returns
+    -------
+    f_hz, envelope_m2_hz : ndarray
+        Frequencies from ``1e-4 f_min`` to ``f_min`` and the envelope there
+        (empty when no admitted model has ``tau <= tau_max_s``).
+    tau_upper_s : float
+        Largest admitted time constant (``inf`` at the search edge).
+    """
+    sl, vx = ms.slices, ms.vertices
+    open_top = bool(ms.open_ends.get("tau_s", (False, False))[1])
+    tau_upper = float("inf") if open_top or sl.size == 0 else float(sl[:, 0].max())
+    use = vx[vx[:, 0] <= tau_max_s * (1.0 + 1e-9)] if vx.size else vx
+    f = f_min_hz * _FRACTIONS
+    if use.size == 0:
+        return f, np.zeros(0), tau_upper
+    psd = np.stack([v * gm_psd_sampled(f, 1.0, tau, dt_s) + w * 2.0 * dt_s for tau, v, w in use])
+    env = psd.max(axis=0) * ms.window_factor
+    return f, env, tau_upper
+
+
+def bound_below(
+    fit: BoundFit,
+    bands: BandSpectra,
+    limits: PooledLimits,
+    ms: ModelSet | None,
+    dt_s: float,
+    *,
+    tau_max_s: float = TAU_MAX_S,
+    objective: str = "variance",
+    n_grid: int = 64,
+    reason: str = "",
+) -> tuple[BoundFit, LowFrequency]:
+    """Raise the bound, where needed, above every admitted model below its lowest band.
+
+    Parameters
+    ----------
+    fit : BoundFit
+        The tightest bound over the pooled limits.
+    bands : BandSpectra
+        The bands of the limits.
+    limits : PooledLimits
+        The pooled limits.
+    ms : ModelSet or None
+        The model set (None: nothing to check; ``reason`` says why).
+    dt_s : float
+        Sampling interval, seconds.
+    tau_max_s : float, default :data:`TAU_MAX_S`
+        Prior upper limit of the time constant, seconds.
+    objective : {"variance", "area"}, default "variance"
+        Tightness objective of the refit.
+    n_grid : int, default 64
+        ``tau`` grid size of the refit.
+    reason : str, optional
+        Why there is no model set.
+
+    Returns
+    -------
+    fit : BoundFit
+        The bound (unchanged when it already covers the envelope).
+    low : LowFrequency
+        What it covers below the lowest band.
+    """
+    before = {"sigma_gm_m": fit.sigma_gm_m, "tau_s": fit.tau_s, "sigma_wn_m": fit.sigma_wn_m}
+    if ms is None or ms.vertices.size == 0:
+        return fit, LowFrequency(
+            "unchecked", tau_max_s, before=before, reason=reason or "no model set"
+        )
+    f_min = float(bands.edges_hz[0])
+    f, env, tau_upper = envelope_below(ms, dt_s, f_min, tau_max_s=tau_max_s)
+    status = "prior" if tau_upper > tau_max_s else "covered"
+    if env.size == 0:
+        return fit, LowFrequency(
+            status,
+            tau_max_s,
+            tau_upper,
+            before=before,
+            reason="no admitted model has tau <= tau_max_s",
+        )
+    raised = bool(np.any(fit.psd(f) < env * (1.0 - 1e-9)))
+    if raised:
+        fit = fit_limits(limits, bands, dt_s, objective=objective, n_grid=n_grid, floor=(f, env))
+    return fit, LowFrequency(
+        status, tau_max_s, tau_upper, f_hz=f, envelope_m2_hz=env, raised=raised, before=before
+    )
+
+
+def low_frequency_reasons(section: dict[str, Any] | None, policy: str = "prior") -> list[str]:
+    """Return why the bound cannot be stated below its lowest band (empty: it can).
+
+    Parameters
+    ----------
+    section : dict or None
+        :meth:`LowFrequency.as_dict` (``bound.low_frequency`` of result.json);
+        None: the envelope rule, no check.
+    policy : {"prior", "refuse"}, default "prior"
+        ``"refuse"``: a statement that rests on the prior ``tau <= tau_max_s``
+        is not bounded.
+
+    Returns
+    -------
+    list of str
+        One sentence per reason.
+    """
+    if not section or section["status"] == "unchecked":
+        return []
+    tau_max = section["tau_max_s"]
+    if section["status"] == "prior" and section.get("envelope_at_0_m2_hz") is None:
+        return [
+            f"low frequencies: the data admit only time constants above the prior "
+            f"maximum {tau_max:g} s (tau_max_s), so nothing bounds the error below the "
+            f"lowest band"
+        ]
+    if section["status"] == "prior" and policy == "refuse":
+        return [
+            f"low frequencies: the data do not bound the time constant above; below the "
+            f"lowest band the bound would rest on the prior tau <= {tau_max:g} s and the "
+            f"low-frequency policy is 'refuse'"
+        ]
+    return []

@@ -1,0 +1,97 @@
+"""The complete error model: components, state-space export, refusals (issue 28, part 3)."""
+
+from __future__ import annotations
+
+import copy
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+import psdbound
+from psdbound.kalman import Component, ErrorModel, GaussMarkovBound
+
+
+@pytest.fixture(scope="module")
+def demo(tmp_path_factory):
+    res = psdbound.fit()
+    path = res.to_json(tmp_path_factory.mktemp("em") / "result.json")
+    return res, path
+
+
+def test_fit_and_loaded_result_give_the_same_model(demo):
+    res, path = demo
+    em, again = res.error_model, psdbound.load(path).error_model
+    assert [c.as_dict() for c in em.components] == [c.as_dict() for c in again.components]
+    assert em.dt_s == again.dt_s == res.bound.dt_s
+    assert em["gauss_markov"].sigma_m == res.bound.sigma_gm_m
+    assert em["white"].sigma_m == res.bound.sigma_wn_m
+    assert "below the lowest band" in em.low_frequency
+    assert str(path) in again.source
+    with pytest.raises(KeyError, match="no component"):
+        em["nothing"]
+
+
+def test_state_space_matches_the_bound_and_carries_p0(demo):
+    res, _ = demo
+    em = res.error_model
+    b = res.bound
+    ss = em.to_state_space()
+    gm = GaussMarkovBound.from_params(b.sigma_gm_m, b.tau_s, b.sigma_wn_m, b.dt_s)
+    phi, qd, r = gm.to_state_space()
+    k = ss.states.index("gauss_markov")
+    assert ss.phi[k, k] == pytest.approx(phi) and ss.q_m2[k, k] == pytest.approx(qd)
+    assert ss.r_m2 == pytest.approx(r)
+    assert ss.p0_m2[k, k] == pytest.approx(b.sigma_gm_m**2)
+    # stationary: P0 = phi P0 phi + Q for every state
+    assert np.allclose(ss.phi @ ss.p0_m2 @ ss.phi.T + ss.q_m2, ss.p0_m2, rtol=1e-12, atol=0)
+    if "slow" in ss.states:  # a random constant per arc: no process noise, P0 its variance
+        j = ss.states.index("slow")
+        assert ss.phi[j, j] == 1.0 and ss.q_m2[j, j] == 0.0
+        assert ss.p0_m2[j, j] == pytest.approx(em["slow"].variance_m2)
+    assert em.variance_m2() == pytest.approx(np.trace(ss.p0_m2) + ss.r_m2)
+
+
+def test_sampled_psd_is_the_bound_at_the_data_interval(demo):
+    res, _ = demo
+    em = res.error_model
+    f = np.linspace(0.0, em.nyquist_hz, 200)
+    assert np.allclose(em.sampled_psd(f), res.bound.sampled_psd(f), rtol=1e-12)
+    with pytest.raises(psdbound.InputError):
+        em.sampled_psd([2 * em.nyquist_hz])
+
+
+def test_refusals_and_warnings(demo):
+    res, _ = demo
+    doc = copy.deepcopy(res.document)
+    doc["verdict"], doc["verdict_reasons"] = "not-bounded", ["a stated reason"]
+    em = ErrorModel.from_document(doc)
+    with pytest.raises(psdbound.InputError, match="a stated reason"):
+        em.to_state_space()
+    assert em.to_state_space(allow_not_bounded=True).states
+    good = res.error_model
+    with pytest.warns(UserWarning, match="shorter than the data interval"):
+        good.to_state_space(good.dt_s / 2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        good.to_state_space(2 * good.dt_s)  # a longer step is fine
+    with pytest.warns(UserWarning, match="Nyquist"):
+        good.psd([2 * good.nyquist_hz])
+    del doc["error_model"]
+    with pytest.raises(psdbound.InputError, match="fit again"):
+        ErrorModel.from_document(doc)
+
+
+def test_components_check_their_numbers():
+    with pytest.raises(psdbound.InputError):
+        Component("x", "pink", 0.001)
+    with pytest.raises(psdbound.InputError):
+        Component("x", "gauss-markov", 0.001, None)
+    with pytest.raises(psdbound.InputError):
+        Component("x", "white", -1.0)
+    em = ErrorModel((Component("gauss_markov", "gauss-markov", 0.003, 60.0),
+                     Component("white", "white", 0.001)), 1.0, 1e-3)  # fmt: skip
+    ss = em.to_state_space(2.0)
+    assert ss.phi[0, 0] == pytest.approx(math.exp(-2.0 / 60.0))
+    assert em.variance_m2() == pytest.approx(0.003**2 + 0.001**2)

@@ -1,0 +1,111 @@
+"""Below the lowest band: the bound covers every admitted model down to 0 Hz (issue 28, part 1)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.signal import lfilter
+
+import psdbound
+from psdbound.spectra.bound import fit_bound
+from psdbound.spectra.lowfreq import envelope_below, low_frequency_reasons
+from psdbound.spectra.models import gm_psd_sampled
+
+DT = 30.0
+#: Every frequency a filter sees: 0 Hz and a dense log grid up to Nyquist.
+F_ALL = np.r_[0.0, np.geomspace(1e-8, 0.5 / DT, 600)]
+
+
+def _windows(rng, sigma_gm, tau, sigma_wn, n_windows, n):
+    phi = np.exp(-DT / tau)
+    out = []
+    for _ in range(n_windows):
+        e = rng.normal(0.0, sigma_gm * np.sqrt(1.0 - phi**2), n)
+        e[0] = rng.normal(0.0, sigma_gm)
+        out.append(lfilter([1.0], [1.0, -phi], e) + rng.normal(0.0, sigma_wn, n))
+    return out
+
+
+def _truth(sigma_gm, tau, sigma_wn):
+    return gm_psd_sampled(F_ALL, sigma_gm, tau, DT) + 2.0 * sigma_wn**2 * DT
+
+
+@pytest.mark.parametrize("tau_s", [30.0, 120.0, 600.0, 900.0])
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_bound_covers_a_gm_truth_at_every_frequency(tau_s, seed):
+    """2-h windows at 30 s see a 600-900 s plateau only as a 1/f^2 tail: the prior covers it."""
+    rng = np.random.default_rng(seed)
+    res = psdbound.bound_series(_windows(rng, 0.003, tau_s, 0.001, 30, 240), DT)
+    assert res.verdict == "bounded"
+    ratio = res.bound.sampled_psd(F_ALL) / _truth(0.003, tau_s, 0.001)
+    assert ratio.min() >= 1.0, (res.low_frequency.as_dict(), ratio.min())
+    low = res.low_frequency
+    if tau_s >= 600.0:  # the data cannot bound tau above: said, and the prior used
+        assert low.status == "prior" and low.raised
+        assert "prior 900 s" in res.covers
+    if tau_s <= 30.0:  # the plateau is resolved: nothing is raised
+        assert low.status == "covered" and np.isfinite(low.tau_upper_s)
+
+
+def test_tightest_bound_over_the_bands_alone_under_bounds_a_slow_truth():
+    """What the rule fixes: the bound before it lies under a 600 s truth at 0 Hz."""
+    rng = np.random.default_rng(7)
+    res = psdbound.bound_series(_windows(rng, 0.003, 600.0, 0.001, 30, 240), DT)
+    b = res.low_frequency.before
+    before = gm_psd_sampled(np.array([0.0]), b["sigma_gm_m"], b["tau_s"], DT)
+    assert before[0] < 0.8 * _truth(0.003, 600.0, 0.001)[0]
+
+
+def test_refuse_policy_and_a_prior_below_the_data():
+    rng = np.random.default_rng(4)
+    xs = _windows(rng, 0.003, 600.0, 0.001, 30, 240)
+    res = psdbound.bound_series(xs, DT, low_frequency_policy="refuse")
+    assert res.verdict == "not-bounded"
+    assert any("policy is 'refuse'" in r for r in res.verdict_reasons)
+    res = psdbound.bound_series(xs, DT, tau_max_s=10.0)  # the data exclude tau <= 10 s
+    assert res.verdict == "not-bounded"
+    assert any("only time constants above the prior" in r for r in res.verdict_reasons)
+    with pytest.raises(psdbound.InputError):
+        psdbound.bound_series(xs, DT, low_frequency_policy="maybe")
+
+
+def test_envelope_lies_above_every_admitted_model():
+    """The envelope from the polygons' corners is above every model inside the polygons."""
+    rng = np.random.default_rng(5)
+    res = psdbound.bound_series(_windows(rng, 0.003, 60.0, 0.001, 30, 240), DT)
+    ms = res.model_set
+    f, env, _ = envelope_below(ms, DT, res.f_min_hz, tau_max_s=1e9)
+    assert ms.vertices[:, 1:].min() >= 0.0
+    for tau in np.unique(ms.vertices[:, 0]):
+        corners = ms.vertices[ms.vertices[:, 0] == tau, 1:]
+        # points inside a polygon are convex combinations of its corners
+        for weights in rng.dirichlet(np.ones(len(corners)), 20):
+            v, w = weights @ corners
+            psd = v * gm_psd_sampled(f, 1.0, tau, DT) + w * 2.0 * DT
+            assert np.all(psd * ms.window_factor <= env * (1 + 1e-9))
+
+
+def test_floor_points_constrain_but_do_not_count_as_data():
+    class P:
+        def __init__(self, f, s):
+            self.f_hz, self.psd_m2_hz = f, s
+
+    f = np.geomspace(1e-3, 0.5 / DT, 30)
+    data = P(f, gm_psd_sampled(f, 0.003, 30.0, DT))
+    plain = fit_bound([data], DT)
+    floor_f = np.array([1e-6])
+    floor_s = np.array([10.0 * plain.psd(floor_f)[0]])
+    raised = fit_bound([data], DT, floor=(floor_f, floor_s))
+    assert raised.psd(floor_f)[0] >= floor_s[0] * (1 - 1e-9)
+    assert raised.n_points == plain.n_points
+    assert raised.margins.min() >= 1.0
+
+
+def test_reasons_from_the_result_section():
+    assert low_frequency_reasons(None) == []
+    assert low_frequency_reasons({"status": "unchecked", "tau_max_s": 900.0}) == []
+    covered = {"status": "covered", "tau_max_s": 900.0, "envelope_at_0_m2_hz": 1e-3}
+    assert low_frequency_reasons(covered, "refuse") == []
+    prior = dict(covered, status="prior")
+    assert low_frequency_reasons(prior, "prior") == []
+    assert len(low_frequency_reasons(prior, "refuse")) == 1
