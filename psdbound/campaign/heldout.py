@@ -137,7 +137,7 @@ def held_out(results: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
                 continue
             dt = float(d["dt_s"])
             f_min = max(float(r["f_min_hz"]) for r in [*others, d])
-            bound, _, _ = pooled_days_bound(others, f_min_hz=f_min)
+            bound = pooled_days_bound(others, f_min_hz=f_min).fit
             own = band_spectra(psds_from_result(d), f_min_hz=f_min)
             ok = np.isfinite(own.psd_m2_hz)
             has = ok.any(axis=1)

@@ -185,11 +185,13 @@ def _station_bounds(results: list[dict[str, Any]]) -> list[dict[str, Any]]:
         days = [r for r in good if r["station"] == st]
         dt = float(days[0]["dt_s"])
         days = [r for r in days if np.isclose(r["dt_s"], dt)]
-        b, _, lim = pooled_days_bound(days, f_min_hz=max(float(r["f_min_hz"]) for r in days))
+        sb = pooled_days_bound(days, f_min_hz=max(float(r["f_min_hz"]) for r in days))
+        b = sb.fit
         out.append({"station": st, "n_days": len(days), "sigma_gm_m": b.sigma_gm_m,
                     "tau_s": b.tau_s, "sigma_wn_m": b.sigma_wn_m, "dt_s": dt,
                     "band_hz": [b.f_min_hz, b.f_max_hz], "confidence_level": b.level,
-                    "n_groups": lim.n_groups})  # fmt: skip
+                    "n_groups": sb.limits.n_groups,
+                    "low_frequency": sb.low_frequency.as_dict()})  # fmt: skip
     return out
 
 

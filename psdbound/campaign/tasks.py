@@ -122,7 +122,7 @@ def psds_from_result(result: dict[str, Any]) -> list[Any]:
     ]
 
 
-def pooled_days_bound(days: list[dict[str, Any]], *, f_min_hz: float) -> tuple[Any, Any, Any]:
+def pooled_days_bound(days: list[dict[str, Any]], *, f_min_hz: float) -> Any:
     """Pool the windows of several days of one station; a sidereal repeat is not independent.
 
     Windows of one satellite a whole number of sidereal days apart repeat
@@ -140,11 +140,12 @@ def pooled_days_bound(days: list[dict[str, Any]], *, f_min_hz: float) -> tuple[A
 
     Returns
     -------
-    bound, bands, limits
-        As :func:`psdbound.spectra.pooled.fit_pooled_bound`.
+    StatedBound
+        As :func:`psdbound.spectra.stated.fit_stated_bound` (with the
+        low-frequency statement).
     """
     from psdbound.spectra.dependence import repeat_clusters
-    from psdbound.spectra.pooled import fit_pooled_bound
+    from psdbound.spectra.stated import fit_stated_bound
 
     psds = [p for r in days for p in psds_from_result(r)]
     dt = float(days[0]["dt_s"])
@@ -154,5 +155,5 @@ def pooled_days_bound(days: list[dict[str, Any]], *, f_min_hz: float) -> tuple[A
         t0 = np.concatenate([np.asarray(r["win_t_start_gps_s"], dtype=float) for r in days])
         dur = np.array([p.n_samples * dt for p in psds])
         clusters = repeat_clusters(sats, t0, dur)
-    return fit_pooled_bound(psds, dt, f_min_hz=f_min_hz, clusters=clusters,
+    return fit_stated_bound(psds, dt, f_min_hz=f_min_hz, clusters=clusters,
                             cluster_correlation=1.0 if clusters is not None else 0.0)

@@ -42,6 +42,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from psdbound.errors import InputError
+from psdbound.kalman.uncertain import GaussMarkovSet
 from psdbound.spectra.models import GaussMarkovWhiteNoise
 
 __all__ = ["Component", "ErrorModel", "ErrorStateSpace", "error_model_section"]
@@ -158,6 +159,10 @@ class ErrorModel:
         components (None: they apply to the raw error).
     source : str
         Where the model was read from.
+    parameter_set : dict or None
+        Intervals of the Gauss-Markov + white models the data admit (with
+        the bound): ``tau_s``, ``sigma_gm_m``, ``sigma_wn_m`` as ``[lo, hi]``
+        (:meth:`gauss_markov_set`).
     """
 
     components: tuple[Component, ...]
@@ -168,6 +173,7 @@ class ErrorModel:
     low_frequency: str = ""
     mapping: dict[str, float] | None = None
     source: str = ""
+    parameter_set: dict[str, list[float]] | None = None
     _by_name: dict[str, Component] = field(default_factory=dict, init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -340,6 +346,40 @@ class ErrorModel:
             np.diag(p0),
         )
 
+    def gauss_markov_set(self) -> GaussMarkovSet:
+        """Return the set of Gauss-Markov processes the data admit, for an uncertain-GM design.
+
+        The intervals hold every model of the fit's model set (with ``tau`` up
+        to the prior where the data do not bound it), raised to the most
+        covered window, and the bound itself. Design a filter that is safe
+        for all of them with :meth:`psdbound.kalman.GaussMarkovSet.design`
+        and check it with :func:`psdbound.kalman.verify_design`; the design
+        assumes the true error is first-order Gauss-Markov.
+
+        Returns
+        -------
+        GaussMarkovSet
+
+        Raises
+        ------
+        InputError
+            The fit has no model set (the envelope rule, or too few bands).
+        """
+        ps = self.parameter_set
+        if not ps:
+            raise InputError(
+                f"{self.source or 'this fit'} has no admitted parameter set "
+                "(the envelope rule, or too few bands for a model set)"
+            )
+        return GaussMarkovSet(
+            ps["tau_s"][0],
+            ps["tau_s"][1],
+            ps["sigma_gm_m"][0],
+            ps["sigma_gm_m"][1],
+            ps["sigma_wn_m"][1],
+            self.dt_s,
+        )
+
     # ----------------------------------------------------------------- I/O
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready form (``error_model`` of result.json)."""
@@ -360,6 +400,7 @@ class ErrorModel:
                 "p0_m2": np.diag(ss.p0_m2).tolist(),
             },
             "mapping": self.mapping,
+            "parameter_set": self.parameter_set,
         }
 
     @classmethod
@@ -407,6 +448,7 @@ class ErrorModel:
             low_frequency=str(sec.get("low_frequency", "")),
             mapping=sec.get("mapping"),
             source=source,
+            parameter_set=sec.get("parameter_set"),
         )
 
     def summary(self) -> str:
@@ -471,5 +513,6 @@ def error_model_section(
         float(bound["band_hz"][0]),
         low_frequency=str(low.get("statement", "not checked (envelope rule)")),
         mapping=mp,
+        parameter_set=low.get("parameter_set"),
     )
     return model.as_dict()

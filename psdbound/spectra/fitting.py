@@ -21,9 +21,10 @@ from psdbound.spectra.bands import BandSpectra, resolved_from_hz
 from psdbound.spectra.bound import RULES, BoundFit, fit_bound
 from psdbound.spectra.dependence import overlap_correlation, reference_clusters
 from psdbound.spectra.estimators import PSDEstimate, estimate_psd
-from psdbound.spectra.intervals import ModelSet, model_set
-from psdbound.spectra.lowfreq import TAU_MAX_S, LowFrequency, bound_below
-from psdbound.spectra.pooled import PooledLimits, fit_pooled_bound, statement
+from psdbound.spectra.intervals import ModelSet
+from psdbound.spectra.lowfreq import TAU_MAX_S, LowFrequency
+from psdbound.spectra.pooled import PooledLimits, statement
+from psdbound.spectra.stated import fit_stated_bound
 from psdbound.stationarity.windowing import WindowSet
 
 __all__ = ["BoundModel", "BoundResults"]
@@ -272,21 +273,16 @@ class BoundModel:
         if f_min_hz is None:
             f_min_hz = min(resolved_from_hz(p) for p in psds)
         dependence = self.dependence()
-        bound, bands, pooled = fit_pooled_bound(
+        sb = fit_stated_bound(
             psds, dt, f_min_hz=f_min_hz, confidence_level=confidence_level, coverage=coverage,
             shape_alpha=shape_alpha, bands_per_decade=bands_per_decade,
             power_response=power_response, objective=objective, n_grid=n_grid,
             clusters=dependence["labels"], cluster_correlation=dependence["correlation"],
+            tau_max_s=tau_max_s,
         )  # fmt: skip
-        smoothing = [p.params.get("bandwidth_hz", 0.0) for p in psds]
-        ms, why = model_set(bands, pooled, dt, confidence_level=confidence_level,
-                            smoothing_hz=float(np.median(smoothing)), tau_max_s=tau_max_s)
-        bound, low = bound_below(bound, bands, pooled, ms, dt, tau_max_s=tau_max_s,
-                                 objective=objective, n_grid=n_grid, reason=why)
-        if ms is not None:  # the reported set contains the bound it accompanies
-            ms = ms.with_model("bound", bound.sigma_gm_m, bound.tau_s, bound.sigma_wn_m)
-        return BoundResults(bound, rule="pooled", bands=bands, pooled=pooled, model_set=ms,
-                            model_set_note=why, dependence=dependence, low_frequency=low,
+        return BoundResults(sb.fit, rule="pooled", bands=sb.bands, pooled=sb.limits,
+                            model_set=sb.model_set, model_set_note=sb.model_set_note,
+                            dependence=dependence, low_frequency=sb.low_frequency,
                             **common)  # fmt: skip
 
     def dependence(self) -> dict[str, Any]:

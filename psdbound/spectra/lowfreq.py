@@ -104,6 +104,12 @@ class LowFrequency:
         ``sigma_wn_m``).
     reason : str
         Why the check could not be made (``"unchecked"``).
+    parameter_set : dict or None
+        The admitted models with ``tau <= tau_max_s``, raised to the most
+        covered window, and the bound, as intervals: ``tau_s`` ``[lo, hi]``
+        (s), ``sigma_gm_m`` ``[lo, hi]`` and ``sigma_wn_m`` ``[lo, hi]`` (m).
+        The set a Kalman-filter design for uncertain Gauss-Markov errors
+        must be safe for (:meth:`psdbound.kalman.ErrorModel.gauss_markov_set`).
     """
 
     status: str
@@ -114,6 +120,7 @@ class LowFrequency:
     raised: bool = False
     before: dict[str, float] | None = None
     reason: str = ""
+    parameter_set: dict[str, list[float]] | None = None
 
     @property
     def prior_binding(self) -> bool:
@@ -155,6 +162,7 @@ class LowFrequency:
             ),
             "statement": self.sentence(),
             "reason": self.reason,
+            "parameter_set": self.parameter_set,
         }
 
 
@@ -256,8 +264,27 @@ def bound_below(
     if raised:
         fit = fit_limits(limits, bands, dt_s, objective=objective, n_grid=n_grid, floor=(f, env))
     return fit, LowFrequency(
-        status, tau_max_s, tau_upper, f_hz=f, envelope_m2_hz=env, raised=raised, before=before
+        status,
+        tau_max_s,
+        tau_upper,
+        f_hz=f,
+        envelope_m2_hz=env,
+        raised=raised,
+        before=before,
+        parameter_set=_parameter_set(ms, fit, tau_max_s),
     )
+
+
+def _parameter_set(ms: ModelSet, fit: BoundFit, tau_max_s: float) -> dict[str, list[float]]:
+    """Intervals of the admitted models with ``tau <= tau_max_s`` and the bound (their hull)."""
+    sl = ms.slices[ms.slices[:, 0] <= tau_max_s * (1.0 + 1e-9)]
+    wf = ms.window_factor
+    tau = [min(float(sl[:, 0].min()), fit.tau_s), max(float(sl[:, 0].max()), fit.tau_s)]
+    gm = [float(np.sqrt(sl[:, 1].min() / wf)), float(np.sqrt(sl[:, 2].max() * wf))]
+    wn = [float(np.sqrt(sl[:, 3].min() / wf)), float(np.sqrt(sl[:, 4].max() * wf))]
+    gm = [min(gm[0], fit.sigma_gm_m), max(gm[1], fit.sigma_gm_m)]
+    wn = [min(wn[0], fit.sigma_wn_m), max(wn[1], fit.sigma_wn_m)]
+    return {"tau_s": tau, "sigma_gm_m": gm, "sigma_wn_m": wn}
 
 
 def low_frequency_reasons(section: dict[str, Any] | None, policy: str = "prior") -> list[str]:

@@ -20,16 +20,11 @@ from psdbound.errors import InputError
 from psdbound.spectra.bands import BandSpectra, resolved_from_hz
 from psdbound.spectra.bound import BoundFit
 from psdbound.spectra.estimators import MIN_SAMPLES, PSDEstimate, estimate_psd
-from psdbound.spectra.intervals import ModelSet, model_set
-from psdbound.spectra.lowfreq import (
-    POLICIES,
-    TAU_MAX_S,
-    LowFrequency,
-    bound_below,
-    low_frequency_reasons,
-)
+from psdbound.spectra.intervals import ModelSet
+from psdbound.spectra.lowfreq import POLICIES, TAU_MAX_S, LowFrequency, low_frequency_reasons
 from psdbound.spectra.models import GaussMarkovWhiteNoise
-from psdbound.spectra.pooled import PooledLimits, fit_pooled_bound, smoothing_hz, statement
+from psdbound.spectra.pooled import PooledLimits, statement
+from psdbound.spectra.stated import fit_stated_bound
 
 __all__ = ["SeriesBound", "bound_series", "split_stretches"]
 
@@ -289,18 +284,13 @@ def bound_series(
     if f_min_hz is None:
         f_min_hz = min(resolved_from_hz(p) for p in psds)
     cl = None if clusters is None else np.asarray(clusters, dtype=np.int64)
-    fit, bands, limits = fit_pooled_bound(
+    sb = fit_stated_bound(
         psds, dt_s, f_min_hz=f_min_hz, confidence_level=confidence_level, coverage=coverage,
         shape_alpha=shape_alpha, bands_per_decade=bands_per_decade, clusters=cl,
         cluster_correlation=cluster_correlation, deviation_model=deviation_model,
-        objective=objective)  # fmt: skip
-    ms, why = model_set(bands, limits, dt_s, confidence_level=confidence_level,
-                        smoothing_hz=smoothing_hz(psds), tau_max_s=tau_max_s)  # fmt: skip
-    fit, low = bound_below(fit, bands, limits, ms, dt_s, tau_max_s=tau_max_s,
-                           objective=objective, reason=why)  # fmt: skip
+        objective=objective, tau_max_s=tau_max_s)  # fmt: skip
+    fit, bands, limits, ms, low = sb.fit, sb.bands, sb.limits, sb.model_set, sb.low_frequency
     reasons = _verdict(fit, limits, low, low_frequency_policy)
-    if ms is not None:
-        ms = ms.with_model("bound", fit.sigma_gm_m, fit.tau_s, fit.sigma_wn_m)
 
     return SeriesBound(
         bound=fit.model, verdict=NOT_BOUNDED if reasons else BOUNDED, verdict_reasons=reasons,

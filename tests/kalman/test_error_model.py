@@ -95,3 +95,20 @@ def test_components_check_their_numbers():
     ss = em.to_state_space(2.0)
     assert ss.phi[0, 0] == pytest.approx(math.exp(-2.0 / 60.0))
     assert em.variance_m2() == pytest.approx(0.003**2 + 0.001**2)
+
+
+def test_parameter_set_holds_the_truth_and_the_bound_and_its_design_is_safe(demo):
+    """Part 4: the uncertain-GM design is fed a set that contains the bound (and the truth)."""
+    from psdbound.kalman import verify_design
+
+    res, _ = demo
+    truth = res.document["demo"]["injected"]
+    gs = res.error_model.gauss_markov_set()
+    b = res.bound
+    assert gs.tau_lo_s <= b.tau_s <= gs.tau_hi_s and gs.sigma_hi_m >= b.sigma_gm_m
+    assert gs.tau_lo_s <= truth["tau_s"] <= gs.tau_hi_s
+    assert gs.sigma_lo_m <= truth["sigma_gm_m"] <= gs.sigma_hi_m
+    # a one-state filter estimating a constant through the multipath: safe for every corner
+    check = verify_design(gs.design(), [[1.0]], [[0.0]], [[1.0]], None, dt_s=b.dt_s,
+                          n_steps=int(6 * gs.tau_hi_s / b.dt_s), p0_base=[[100.0]])  # fmt: skip
+    assert check.bounded(), check.worst

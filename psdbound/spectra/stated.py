@@ -1,0 +1,111 @@
+"""The pooled bound with everything it states: limits, model set and the low frequencies.
+
+One chain, used by :meth:`psdbound.spectra.BoundModel.fit`,
+:func:`psdbound.bound_series` and the campaign's pooled days:
+
+1. :func:`~psdbound.spectra.pooled.fit_pooled_bound`: band averages, pooled
+   limits and the tightest bound above them from ``f_min`` to Nyquist;
+2. :func:`~psdbound.spectra.intervals.model_set`: the Gauss-Markov + white
+   models the data admit;
+3. :func:`~psdbound.spectra.lowfreq.bound_below`: the bound raised, where
+   needed, above every admitted model below ``f_min``, down to 0 Hz.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from typing import Any, NamedTuple
+
+import numpy as np
+from numpy.typing import NDArray
+
+from psdbound.spectra.bands import BandSpectra
+from psdbound.spectra.bound import BoundFit
+from psdbound.spectra.estimators import PSDEstimate
+from psdbound.spectra.intervals import ModelSet, model_set
+from psdbound.spectra.lowfreq import TAU_MAX_S, LowFrequency, bound_below
+from psdbound.spectra.pooled import PooledLimits, fit_pooled_bound, smoothing_hz
+
+__all__ = ["StatedBound", "fit_stated_bound"]
+
+
+class StatedBound(NamedTuple):
+    """A pooled bound and what it states.
+
+    Attributes
+    ----------
+    fit : BoundFit
+        The bound.
+    bands : BandSpectra
+        The windows' band averages.
+    limits : PooledLimits
+        The pooled limits it lies above.
+    model_set : ModelSet or None
+        The admitted models, widened to contain the bound.
+    model_set_note : str
+        Why there is no model set.
+    low_frequency : LowFrequency
+        What the bound covers below its lowest band.
+    """
+
+    fit: BoundFit
+    bands: BandSpectra
+    limits: PooledLimits
+    model_set: ModelSet | None
+    model_set_note: str
+    low_frequency: LowFrequency
+
+
+def fit_stated_bound(
+    psds: Sequence[PSDEstimate],
+    dt_s: float,
+    *,
+    f_min_hz: float,
+    confidence_level: float = 0.95,
+    tau_max_s: float = TAU_MAX_S,
+    objective: str = "variance",
+    n_grid: int = 64,
+    power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]] | None = None,
+    **pool_options: Any,
+) -> StatedBound:
+    """Fit the pooled bound, its model set and its low-frequency statement.
+
+    Parameters
+    ----------
+    psds : sequence of PSDEstimate
+        One estimate per (disjoint) window.
+    dt_s : float
+        Sampling interval, seconds.
+    f_min_hz : float
+        Lowest band edge, Hz.
+    confidence_level : float, default 0.95
+        Level of the statement and of the model set.
+    tau_max_s : float, default 900
+        Prior upper limit of the time constant below the lowest band, seconds
+        (:mod:`psdbound.spectra.lowfreq`).
+    objective : {"variance", "area"}, default "variance"
+        Tightness objective.
+    n_grid : int, default 64
+        ``tau`` grid size.
+    power_response : callable, optional
+        ``|H(f)|^2`` of a high-pass the data went through.
+    **pool_options
+        ``coverage``, ``shape_alpha``, ``bands_per_decade``, ``clusters``,
+        ``cluster_correlation``, ``deviation_model``
+        (:func:`~psdbound.spectra.pooled.fit_pooled_bound`).
+
+    Returns
+    -------
+    StatedBound
+    """
+    fit, bands, limits = fit_pooled_bound(
+        psds, dt_s, f_min_hz=f_min_hz, confidence_level=confidence_level,
+        power_response=power_response, objective=objective, n_grid=n_grid, **pool_options,
+    )  # fmt: skip
+    ms, why = model_set(bands, limits, dt_s, confidence_level=confidence_level,
+                        smoothing_hz=smoothing_hz(psds), tau_max_s=tau_max_s)  # fmt: skip
+    fit, low = bound_below(fit, bands, limits, ms, dt_s, tau_max_s=tau_max_s,
+                           objective=objective, n_grid=n_grid, reason=why)  # fmt: skip
+    if ms is not None:  # the reported set contains the bound it accompanies
+        ms = ms.with_model("bound", fit.sigma_gm_m, fit.tau_s, fit.sigma_wn_m)
+    return StatedBound(fit, bands, limits, ms, why, low)
