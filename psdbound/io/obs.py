@@ -291,11 +291,26 @@ def _keep_codes(raw: dict[str, RawBlock], codes: set[str]) -> dict[str, RawBlock
     return out
 
 
+def _codes_in_header(code: str, header: ObsHeader, want_sys: set[str] | None) -> set[str]:
+    """Return the header's codes for ``code`` (itself, or its RINEX 2 name), for the systems."""
+    out = set()
+    for s, types in header.obs_types.items():
+        if want_sys is not None and s not in want_sys:
+            continue
+        if code in types:
+            out.add(code)
+        elif header.version < 3 and RINEX2_TO_RINEX3.get(code) is None:
+            alias = [v2 for v2, v3 in RINEX2_TO_RINEX3.items() if v3 == code and v2 in types]
+            out.update(alias[:1])
+    return out
+
+
 def read_obs(
     path: str | os.PathLike[str],
     *,
     systems: str | Iterable[str] | None = None,
     codes: Iterable[str] | None = None,
+    optional_codes: Iterable[str] = (),
 ) -> Observations:
     """Read a RINEX 2.1x or 3.0x observation file.
 
@@ -311,6 +326,9 @@ def read_obs(
         Observation codes to keep (``["L1C", "L2W"]``; for RINEX 2 files the
         RINEX 2 codes or their RINEX 3 equivalents). All by default. Each
         requested code must exist for at least one requested system.
+    optional_codes : iterable of str, optional
+        With ``codes``: further codes kept where the file has them (e.g. an
+        SNR), without an error where it does not.
 
     Returns
     -------
@@ -364,31 +382,17 @@ def read_obs(
     if codes is not None:
         want_codes = set()
         for c in codes:
-            found = False
-            for s, types in header.obs_types.items():
-                if want_sys is not None and s not in want_sys:
-                    continue
-                if c in types:
-                    want_codes.add(c)
-                    found = True
-                elif header.version < 3 and RINEX2_TO_RINEX3.get(c) is None:
-                    alias = [v2 for v2, v3 in RINEX2_TO_RINEX3.items() if v3 == c and v2 in types]
-                    if alias:
-                        want_codes.add(alias[0])
-                        found = True
+            found = _codes_in_header(c, header, want_sys)
             if not found:
-                avail = sorted(
-                    {
-                        t
-                        for s, ts in header.obs_types.items()
-                        for t in ts
-                        if want_sys is None or s in want_sys
-                    }
-                )
+                avail = sorted({t for s, ts in header.obs_types.items() for t in ts
+                                if want_sys is None or s in want_sys})  # fmt: skip
                 raise InputError(
                     f"observation code {c!r} is not in the header; available: {' '.join(avail)}",
                     path=p,
                 )
+            want_codes |= found
+        for c in optional_codes:
+            want_codes |= _codes_in_header(c, header, want_sys)
     read_codes = _with_reference_codes(header, want_sys, want_codes)
     if header.version >= 3:  # a view, not a copy of the data section (tens of MB a day at 1 Hz)
         t, flags, raw, notes = parse_v3(memoryview(text)[start:], header, p, want_sys, read_codes)

@@ -250,7 +250,10 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
             "sampling": {"interval_s", "nyquist_hz"}
             "mapping":  {"a", "b", "c_deg"}  or null (bound on the raw error)
 
-        Other keys are ignored. Redundant numbers must agree to a relative
+        Other keys are ignored, but a ``slow`` component of the fit's
+        ``error_model`` (multipath the high-pass removed) is warned about: the
+        bound alone does not carry it (:class:`psdbound.kalman.ErrorModel`
+        does). Redundant numbers must agree to a relative
         1e-6: ``n_wn_two_sided_m2_hz = sigma_wn_m^2 dt_s``,
         ``sampling.interval_s = dt_s`` and ``nyquist_hz = 1 / (2 dt_s)``.
 
@@ -332,6 +335,14 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
                 f"'sampling.nyquist_hz' = {nyq!r} disagrees with 1 / (2 dt_s) = {0.5 / dt!r}",
                 path=p,
             )
+        slow = [c for c in (doc.get("error_model") or {}).get("components", [])
+                if c.get("name") == "slow"]  # fmt: skip
+        if slow:
+            warnings.warn(
+                f"{p}: the fit's error model also has a slow component the bound does not "
+                f"carry (multipath the high-pass removed: {1000 * slow[0]['sigma_m']:.2f} mm, "
+                f"tau {slow[0]['tau_s']:.4g} s); psdbound.load(path).error_model exports every "
+                f"component", stacklevel=2)  # fmt: skip
         mapping = None
         if doc["mapping"] is not None:
             m = section("mapping")

@@ -10,13 +10,12 @@ parameters, where it comes from and what a filter needs of it:
     :mod:`psdbound.spectra.lowfreq`).
 ``slow``
     The multipath the high-pass removed below the cutoff, which the bound
-    cannot see: its RMS along the data's passes (``validation``), carried as
-    a random constant per arc (state transition 1, no process noise, initial
-    variance ``sigma^2``, reset at each new arc). A random constant is the
-    most conservative stationary-variance model of an error slower than
-    every filter time constant; its PSD is a line at 0 Hz, left out of
-    :meth:`ErrorModel.psd` (which says so). Present only when the
-    validation estimated it.
+    cannot see: the least-variance first-order Gauss-Markov process above
+    the removed spectrum of the reflectors around the antenna along the
+    data's passes (``validation.slow``, :mod:`psdbound.validation.removed`;
+    height and amplitude ratio from the SNR where measured). It applies at
+    every elevation (not mapped). Present only when the validation ran
+    (dual-frequency isolation).
 ``white``
     The bound's white part (``sigma_wn_m`` per sample at the data interval
     ``dt_s``; elevation-mapped).
@@ -45,10 +44,10 @@ from psdbound.errors import InputError
 from psdbound.kalman.uncertain import GaussMarkovSet
 from psdbound.spectra.models import GaussMarkovWhiteNoise
 
-__all__ = ["Component", "ErrorModel", "ErrorStateSpace", "error_model_section"]
+__all__ = ["Component", "ErrorModel", "ErrorStateSpace", "error_model_section", "integrity_note"]
 
 #: Kinds of component.
-KINDS = ("gauss-markov", "random-constant-per-arc", "white")
+KINDS = ("gauss-markov", "white")
 
 
 @dataclass(frozen=True)
@@ -59,7 +58,7 @@ class Component:
     ----------
     name : str
         ``"gauss_markov"``, ``"slow"`` or ``"white"``.
-    kind : {"gauss-markov", "random-constant-per-arc", "white"}
+    kind : {"gauss-markov", "white"}
         Its process.
     sigma_m : float
         Standard deviation, metres (per sample at ``dt_s`` for white noise).
@@ -189,18 +188,60 @@ class ErrorModel:
         except KeyError:
             raise KeyError(f"no component {name!r}; have {sorted(self._by_name)}") from None
 
-    def _bound(self) -> GaussMarkovWhiteNoise:
-        gm, wn = self._by_name.get("gauss_markov"), self._by_name.get("white")
-        return GaussMarkovWhiteNoise(
-            gm.sigma_m if gm else 0.0, gm.tau_s if gm else 1.0, wn.sigma_m if wn else 0.0, self.dt_s
+    def factor(self, c: Component, elevation_deg: float | None) -> float:
+        """Return the scale of a component's sigma at an elevation (1 at zenith scale).
+
+        Parameters
+        ----------
+        c : Component
+            The component.
+        elevation_deg : float or None
+            Elevation, degrees; None: the zenith scale the model is stated at.
+
+        Returns
+        -------
+        float
+            ``m(el)`` of the fit's mapping for an elevation-mapped component,
+            1 otherwise.
+        """
+        if elevation_deg is None or not c.elevation_mapped or self.mapping is None:
+            return 1.0
+        from psdbound.stationarity.mapping import ElevationMapping
+
+        mp = self.mapping
+        return float(
+            ElevationMapping(mp["a"], mp["b"], mp["c_deg"], "fixed").factor(float(elevation_deg))
         )
+
+    def _parts(self, elevation_deg: float | None = None) -> list[GaussMarkovWhiteNoise]:
+        """One model per Gauss-Markov component; the white part rides on the first."""
+        wn = self._by_name.get("white")
+        gms = [c for c in self.components if c.kind == "gauss-markov"]
+        out = [
+            GaussMarkovWhiteNoise(
+                c.sigma_m * self.factor(c, elevation_deg), c.tau_s, 0.0, self.dt_s
+            )
+            for c in gms
+        ] or [GaussMarkovWhiteNoise(0.0, 1.0, 0.0, self.dt_s)]
+        if wn is not None:
+            m = out[0]
+            out[0] = GaussMarkovWhiteNoise(
+                m.sigma_gm_m, m.tau_s, wn.sigma_m * self.factor(wn, elevation_deg), self.dt_s
+            )
+        return out
 
     @property
     def nyquist_hz(self) -> float:
         """Nyquist frequency of the data, Hz."""
         return 0.5 / self.dt_s
 
-    def variance_m2(self, dt_s: float | None = None, *, white_noise: str = "conservative") -> float:
+    def variance_m2(
+        self,
+        dt_s: float | None = None,
+        *,
+        white_noise: str = "conservative",
+        elevation_deg: float | None = None,
+    ) -> float:
         """Total variance of one sample at interval ``dt_s`` (all components), m^2.
 
         Parameters
@@ -210,13 +251,16 @@ class ErrorModel:
         white_noise : {"psd", "per_sample", "conservative"}, default "conservative"
             The white part's variance at another interval
             (:meth:`psdbound.spectra.GaussMarkovWhiteNoise.white_variance_m2`).
+        elevation_deg : float, optional
+            Elevation, degrees: the mapped components scaled by ``m(el)``;
+            default the zenith scale.
 
         Returns
         -------
         float
         """
-        slow = sum(c.variance_m2 for c in self.components if c.kind == "random-constant-per-arc")
-        return self._bound().variance_m2(dt_s, white_noise=white_noise) + slow
+        parts = self._parts(elevation_deg)
+        return sum(m.variance_m2(dt_s, white_noise=white_noise) for m in parts)
 
     def _check_band(self, f: NDArray[np.float64], nyquist_hz: float) -> None:
         if (f < 0).any():
@@ -228,18 +272,17 @@ class ErrorModel:
                 stacklevel=3,
             )
 
-    def psd(self, f_hz: ArrayLike) -> NDArray[np.float64]:
-        """Continuous-time one-sided PSD of the correlated and white parts, m^2/Hz.
-
-        The slow random constant is a line at 0 Hz (variance
-        :attr:`Component.variance_m2`) and is not included; a filter takes
-        it from :meth:`to_state_space`.
+    def psd(self, f_hz: ArrayLike, *, elevation_deg: float | None = None) -> NDArray[np.float64]:
+        """Continuous-time one-sided PSD of every component, m^2/Hz.
 
         Parameters
         ----------
         f_hz : array_like
             Frequencies, Hz (>= 0; above the data's Nyquist frequency a
             warning: extrapolated).
+        elevation_deg : float, optional
+            Elevation, degrees (mapped components scaled by ``m(el)``);
+            default the zenith scale (``m = 1``; the slow component as it is).
 
         Returns
         -------
@@ -247,10 +290,15 @@ class ErrorModel:
         """
         f = np.asarray(f_hz, dtype=float)
         self._check_band(f, self.nyquist_hz)
-        return self._bound().psd(f)
+        return sum(m.psd(f) for m in self._parts(elevation_deg))
 
     def sampled_psd(
-        self, f_hz: ArrayLike, dt_s: float | None = None, *, white_noise: str = "conservative"
+        self,
+        f_hz: ArrayLike,
+        dt_s: float | None = None,
+        *,
+        white_noise: str = "conservative",
+        elevation_deg: float | None = None,
     ) -> NDArray[np.float64]:
         """One-sided PSD of the model sampled at ``dt_s`` (aliases folded in), m^2/Hz.
 
@@ -262,19 +310,21 @@ class ErrorModel:
             Sampling interval, seconds; default the data interval.
         white_noise : {"psd", "per_sample", "conservative"}, default "conservative"
             The white part at another interval.
+        elevation_deg : float, optional
+            Elevation, degrees; default the zenith scale.
 
         Returns
         -------
         ndarray
         """
-        b = self._bound()
-        dt = b.checked_dt_s(dt_s)
+        parts = self._parts(elevation_deg)
+        dt = parts[0].checked_dt_s(dt_s)
         f = np.asarray(f_hz, dtype=float)
         if (f < 0).any() or (f > 0.5 / dt * (1 + 1e-9)).any():
             raise InputError(f"frequencies must lie in [0, {0.5 / dt:g}] Hz for dt = {dt:g} s")
         if dt < self.dt_s * (1 - 1e-9):
             self._check_band(f, self.nyquist_hz)
-        return b.sampled_psd(f, dt, white_noise=white_noise)
+        return sum(m.sampled_psd(f, dt, white_noise=white_noise) for m in parts)
 
     # --------------------------------------------------------------- export
     def to_state_space(
@@ -283,6 +333,7 @@ class ErrorModel:
         *,
         allow_not_bounded: bool = False,
         white_noise: str = "conservative",
+        elevation_deg: float | None = None,
     ) -> ErrorStateSpace:
         """Discrete state-space model for a filter interval (one state per correlated part).
 
@@ -295,6 +346,9 @@ class ErrorModel:
             (for study, not for a protection level).
         white_noise : {"psd", "per_sample", "conservative"}, default "conservative"
             The white part's variance at another interval.
+        elevation_deg : float, optional
+            Elevation, degrees: the mapped components' variances times
+            ``m(el)^2``; default the zenith scale.
 
         Returns
         -------
@@ -316,7 +370,7 @@ class ErrorModel:
                 f"the verdict is {self.verdict!r} ({why}): this model is not for "
                 "a filter; pass allow_not_bounded=True to export it anyway"
             )
-        b = self._bound()
+        b = self._parts(elevation_deg)[0]
         dt = b.checked_dt_s(dt_s)
         if dt < self.dt_s * (1.0 - 1e-9):
             warnings.warn(
@@ -325,19 +379,11 @@ class ErrorModel:
                 f"({white_noise!r} white-noise mode) is an extrapolation there",
                 stacklevel=2,
             )
-        states = [c for c in self.components if c.kind != "white"]
-        phi = np.array(
-            [math.exp(-dt / c.tau_s) if c.kind == "gauss-markov" else 1.0 for c in states]
-        )
-        q = np.array(
-            [
-                c.variance_m2 * -math.expm1(-2.0 * dt / c.tau_s)
-                if c.kind == "gauss-markov"
-                else 0.0
-                for c in states
-            ]
-        )
-        p0 = np.array([c.variance_m2 for c in states])
+        states = [c for c in self.components if c.kind == "gauss-markov"]
+        var = np.array([c.variance_m2 * self.factor(c, elevation_deg) ** 2 for c in states])
+        phi = np.array([math.exp(-dt / c.tau_s) for c in states])
+        q = var * -np.expm1(-2.0 * dt / np.array([c.tau_s for c in states]))
+        p0 = var
         return ErrorStateSpace(
             tuple(c.name for c in states),
             np.diag(phi),
@@ -467,6 +513,36 @@ class ErrorModel:
         return "\n".join(rows)
 
 
+def integrity_note(confidence_level: float | None, coverage: float | None) -> str:
+    """Return what the bound's statement means for a protection level, in words.
+
+    Parameters
+    ----------
+    confidence_level, coverage : float or None
+        The statement's confidence and window coverage (None: the envelope
+        rule, which states neither).
+
+    Returns
+    -------
+    str
+    """
+    if confidence_level is None or coverage is None:
+        return (
+            "the envelope rule states no confidence: the model is not one a protection "
+            "level can rest on"
+        )
+    return (
+        f"A protection level multiplies the filter's sigma by K for its integrity risk (K = "
+        f"5.33 for 1e-7, two-sided Gaussian). That is valid if the model over-bounds the true "
+        f"error, which this fit states with {100 * confidence_level:g} % confidence for at "
+        f"least {100 * coverage:g} % of the stationary windows of these data: the "
+        f"{100 * (1 - confidence_level):g} % and the {100 * (1 - coverage):g} % are not part of "
+        f"K's risk and must be budgeted separately. Not covered: data screened out or never "
+        f"stationary, other days, antennas and environments, non-Gaussian tails, and time "
+        f"constants above the prior where the data do not bound them."
+    )
+
+
 def error_model_section(
     bound: dict[str, Any],
     *,
@@ -507,6 +583,7 @@ def error_model_section(
         "the PSD bound's white part, per sample at bound.dt_s (bound.sigma_wn_m)",
     )
     mp = None if mapping is None else {k: mapping[k] for k in ("a", "b", "c_deg")}
+    pooled = bound.get("pooled") or {}
     model = ErrorModel(
         (gm, *slow, wn),
         float(bound["dt_s"]),
@@ -515,4 +592,7 @@ def error_model_section(
         mapping=mp,
         parameter_set=low.get("parameter_set"),
     )
-    return model.as_dict()
+    return {
+        **model.as_dict(),
+        "integrity_note": integrity_note(bound.get("confidence_level"), pooled.get("coverage")),
+    }

@@ -143,12 +143,14 @@ def _demo_truth(scenario: dict[str, Any], res: BoundResults, interval_s: float) 
                                   sigma_wn_m=wn, dt_s=interval_s)  # fmt: skip
     b = res.bound
     f = np.geomspace(b.f_min_hz, 0.5 / interval_s, 400)
+    f_all = np.r_[0.0, np.geomspace(1e-4 * b.f_min_hz, 0.5 / interval_s, 800)]
     return {
         "truth_model": {**truth.params(), "note": "mapped DF error at zenith: GM + white "
                         "noise (multipath white noise and receiver noise combined)"},
         "truth_curve": {"f_hz": f, "psd_m2_hz": truth.sampled_psd(f)},
         "variance_ratio": b.total_variance_m2 / truth.total_variance_m2,
         "min_psd_ratio": float(np.min(b.psd(f) / truth.sampled_psd(f))),
+        "min_psd_ratio_all_f": float(np.min(b.psd(f_all) / truth.sampled_psd(f_all))),
         "psd_convention": "both sampled at the data interval (aliased), one-sided",
     }
 
@@ -308,17 +310,18 @@ def _screening_section(screened: Screened) -> dict[str, Any]:
 def _error_model(doc: dict[str, Any]) -> dict[str, Any]:
     """Return the ``error_model`` section: the bound's parts and what the high-pass removed."""
     val = doc.get("validation") or {}
-    removed = val.get("max_removed_rms_m")
-    slow = []
-    if removed is not None and np.isfinite(removed) and removed > 0:
-        slow.append(Component(
-            "slow", "random-constant-per-arc", float(removed), None, False,
-            f"multipath the high-pass removes below f_c (validation.max_removed_rms_m: the "
-            f"largest RMS along the data's passes over the reflectors "
-            f"{', '.join(val.get('geometries_used', []))}, amplitude ratio "
-            f"{val.get('alpha', float('nan')):g}); the bound cannot see it, so it is carried "
-            f"as a constant per arc"))  # fmt: skip
-    return error_model_section(doc["bound"], mapping=doc.get("mapping"), slow=slow)
+    slow, comps = val.get("slow"), []
+    if slow and slow["sigma_m"] > 0:
+        site = val.get("site_reflection") or {}
+        how = "measured from the SNR" if site.get("measured") else "assumed (configuration)"
+        comps.append(Component(
+            "slow", "gauss-markov", float(slow["sigma_m"]), float(slow["tau_s"]), False,
+            f"multipath the high-pass removes below f_c from {slow['geometry']} along the "
+            f"data's passes ({slow['n_passes']} passes, removed RMS "
+            f"{1000 * slow['removed_rms_m']:.2f} mm; amplitude ratio {slow['alpha']:.3g}, "
+            f"{how}): the least-variance Gauss-Markov process above its spectrum "
+            f"(validation.slow)"))  # fmt: skip
+    return error_model_section(doc["bound"], mapping=doc.get("mapping"), slow=comps)
 
 
 def build_document(

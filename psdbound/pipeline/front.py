@@ -164,7 +164,8 @@ class FitResults:
             lines.append(
                 f"  demo truth: bound variance / injected variance = "
                 f"{demo['variance_ratio']:.2f}; bound PSD / truth PSD >= "
-                f"{demo['min_psd_ratio']:.2f} over the bound's band"
+                f"{demo['min_psd_ratio']:.2f} over the bound's band, >= "
+                f"{demo.get('min_psd_ratio_all_f', float('nan')):.2f} from 0 Hz to Nyquist"
             )
         if d["warnings"]:
             lines.append(f"  {len(d['warnings'])} warning(s), by stage:")
@@ -319,7 +320,7 @@ def fit(
     bounded = stages.bound(windowed, spectra=cfg.spectra, options=cfg.bound, cutoff=cutoff,
                            highpass=cfg.filter, progress=say)  # fmt: skip
     validated = stages.validate(cutoff, inputs=inputs, isolated=isolated, arcs=cfg.arcs,
-                                options=cfg.validation, progress=say)
+                                options=cfg.validation, highpass=cfg.filter, progress=say)
     products = dict(inputs=inputs, cutoff=cutoff, isolated=isolated, screened=screened,
                     windowed=windowed, bounded=bounded, validated=validated,
                     code=code)  # fmt: skip

@@ -57,22 +57,26 @@ def _read_observations(
     """Read every observation file; a zip archive of several files gives one per member.
 
     ``codes``: the only observation codes kept (a dual-frequency run needs its
-    phase pair only: a third of the memory of a typical file).
+    phase pair only: a third of the memory of a typical file), with the first
+    carrier's SNR where the file has it.
     """
+    from psdbound.validation.site import snr_signal
+
+    optional = (snr_signal(codes[0]),) if codes else ()
     out = []
     for p in paths:
         if len(zip_members(p)) > 1:
             with tempfile.TemporaryDirectory(prefix="psdbound-zip-") as tmp:
                 for member in extract_zip(p, tmp):
-                    o = read_obs(member, systems=system, codes=codes)
+                    o = read_obs(member, systems=system, codes=codes, optional_codes=optional)
                     out.append(replace(o, path=f"{p}:{member.name}"))
         else:
-            out.append(read_obs(p, systems=system, codes=codes))
+            out.append(read_obs(p, systems=system, codes=codes, optional_codes=optional))
     return out
 
 
 def _codes_needed(options: InputsConfig) -> tuple[str, ...] | None:
-    """Codes a run reads: the phase pair for dual-frequency, everything for a pair."""
+    """Return the codes a run reads: the phase pair for dual-frequency, everything for a pair."""
     from psdbound.io import DEFAULT_SIGNALS
 
     if options.pair or options.method.lower() != "df" and options.method.lower() != "auto":

@@ -19,7 +19,7 @@ surface of its stage package.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -27,6 +27,7 @@ import numpy as np
 from psdbound.errors import InputError, NoDataError
 from psdbound.io import find_arcs
 from psdbound.io.options import ArcOptions
+from psdbound.io.signals import wavelength_m
 from psdbound.ionosphere.policy import CutoffChoice, CutoffOptions
 from psdbound.ionosphere.policy import choose_cutoff as _choose_cutoff
 from psdbound.isolation import (
@@ -382,28 +383,57 @@ def bound(
     )  # fmt: skip
 
 
-def _resolve_geometries(inputs: InputData, options: ValidationOptions) -> tuple[list[str], str]:
-    """Replace ``ground:h=header`` by the header's antenna height (or the fallback)."""
+def _resolve_geometries(inputs: InputData, options: ValidationOptions,
+                        measured_h_m: float | None = None) -> tuple[list[str], str]:  # fmt: skip
+    """Replace ``ground:h=header`` by the SNR-measured height, the header's, or the fallback."""
     out, note = [], ""
     for g in options.geometries:
         if g.replace(" ", "").lower() == "ground:h=header":
             h = float(inputs.observations[0].header.antenna_delta_hen_m[0])
-            if h > 0:
+            if measured_h_m is not None:
+                h, note = measured_h_m, (f"ground reflector height {measured_h_m:.3g} m "
+                                         "measured from the SNR (validation.site_reflection)")
+            elif h > 0:
                 note = f"ground reflector height {h:g} m from the RINEX header (ANTENNA: DELTA H)"
             else:
                 h = options.ground_height_m
                 note = (f"the RINEX header gives no antenna height (DELTA H = 0): ground "
                         f"reflector height {h:g} m from the configuration")  # fmt: skip
-            g = f"ground:h={h:g}"
+            g = f"ground:h={h:.3g}"
         out.append(g)
     return out, note
+
+
+def _slow_component(report: Any, geoms: Sequence[str], lams: Sequence[float], dt_s: float,
+                    gain: Callable[[np.ndarray], np.ndarray]) -> list[dict[str, Any]]:  # fmt: skip
+    """Per geometry: the removed multipath's slow Gauss-Markov bound (largest first)."""
+    from psdbound.validation.removed import removed_multipath
+
+    rows = []
+    for geom in dict.fromkeys(geoms):
+        checks = [d for d in report.direct if d.geometry.label == geom
+                  and d.convention == "physical" and d.source == "satellite"]  # fmt: skip
+        rm = removed_multipath(checks, wavelengths_m=lams, power_response=gain, dt_s=dt_s)
+        if rm is not None:
+            rows.append(rm.as_dict())
+    return sorted(rows, key=lambda r: -r["sigma_m"])
+
+
+def _site(inputs: InputData, series: Any, sats: Sequence[str], pos: Any,
+          options: ValidationOptions) -> Any:  # fmt: skip
+    """Return the ground height and alpha: from the SNR when the options ask and it can."""
+    from psdbound.validation.site import SiteReflection, site_reflection
+
+    if not options.snr or not sats:
+        return SiteReflection(options.alpha, None, False,
+                              note=f"alpha {options.alpha:g} assumed (configuration)")  # fmt: skip
+    return site_reflection(inputs.observations[0], inputs.orbit, phase_signal=series.signals[0],
+                           system=sats[0][0], receiver_xyz_m=pos, alpha=options.alpha)  # fmt: skip
 
 
 def _removed_rms(report: Any, signals: Sequence[str], sat: str, alpha: float,
                  channels: Any = None) -> list[dict]:  # fmt: skip
     """Per geometry: fraction of its power below f_c and the RMS the filter removes, m."""
-    from psdbound.io.signals import wavelength_m
-
     lams = [wavelength_m(sat, s, channels) for s in signals[:2]]
     # small-alpha phase error alpha sin(psi): variance alpha^2/2 rad^2 per carrier;
     # the DF series (e_a - e_b)/sqrt(2) has the mean of the two carriers' variances
@@ -428,6 +458,7 @@ def validate(
     isolated: Isolated,
     arcs: ArcOptions,
     options: ValidationOptions,
+    highpass: HighPass | None = None,
     progress: Progress = quiet,
 ) -> Validated:
     """Check how much multipath the cutoff removes, for reflectors around this antenna.
@@ -466,33 +497,41 @@ def validate(
     from psdbound.validation import validate_cutoff
 
     progress("cutoff validation (reflectors around this antenna, along the data's passes)")
-    geoms, note = _resolve_geometries(inputs, options)
     series = isolated.series
     sats = sorted(set(series.arc_sats))
     pos = inputs.receiver_xyz_m[0]
     pos = inputs.observations[0].header.approx_position_m if pos is None else np.asarray(pos)
+    site = _site(inputs, series, sats, pos, options)
+    geoms, note = _resolve_geometries(inputs, options, site.ground_height_m)
     report = validate_cutoff(
-        geoms, cutoff_hz=cutoff.f_c_hz, rate=options.rate, alpha=options.alpha,
+        geoms, cutoff_hz=cutoff.f_c_hz, rate=options.rate, alpha=site.alpha,
         threshold=options.threshold, orbit=inputs.orbit if pos is not None else None,
         receiver_xyz_m=pos, sats=sats, system=sats[0][0] if sats else "G",
         elevation_mask_deg=arcs.elevation_mask_deg,
     )  # fmt: skip
     channels = isolated.arcs.glonass_channels if isolated.arcs is not None else None
-    removed = _removed_rms(report, series.signals, sats[0] if sats else "G01", options.alpha,
+    removed = _removed_rms(report, series.signals, sats[0] if sats else "G01", site.alpha,
                            channels)  # fmt: skip
+    hp, dt = highpass or HighPass(), inputs.interval_s
+    lams = [wavelength_m(sats[0] if sats else "G01", sg, channels) for sg in series.signals[:2]]
+    slow = _slow_component(report, geoms, lams, dt,
+                           lambda f: hp.response(f, dt, cutoff.f_c_hz) ** 2)  # fmt: skip
     summary = report.to_dict()
     summary.update({
         "applicable": True,
         "geometries_used": geoms,
         "geometry_note": note,
+        "site_reflection": site.as_dict(),
         "removed": removed,
         "max_removed_rms_m": max(r["removed_rms_m"] for r in removed),
+        "slow": slow[0] if slow else None,
+        "slow_by_geometry": slow,
         "summary": (
             f"{'pass' if report.passed else 'fail'} (thesis criterion): largest fraction of "
             f"multipath power below f_c over {', '.join(geoms)} vs threshold "
             f"{100 * options.threshold:g} %; the filter removes up to "
             f"{1000 * max(r['removed_rms_m'] for r in removed):.2f} mm RMS "
-            f"(alpha {options.alpha:g})"
+            f"(alpha {site.alpha:.3g}, {'measured' if site.measured else 'assumed'})"
         ),
     })  # fmt: skip
     warnings = ()
@@ -503,6 +542,6 @@ def validate(
             f"{100 * worst['fraction_below_fc']:.0f} % of its multipath power below f_c "
             f"(threshold {100 * options.threshold:g} %); the filter removes about "
             f"{1000 * worst['removed_rms_m']:.2f} mm RMS of it, which the bound does not "
-            "describe (a slow, bias-like error)",
+            "see: it is the error model's slow component (error_model, validation.slow)",
         )
     return Validated(report, summary, warnings + ((note,) if note else ()))

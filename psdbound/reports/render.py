@@ -214,6 +214,16 @@ def _coverage_text(w: dict[str, Any]) -> str:
             f"{w['never_stationary_s'] / 3600:.2f} h")
 
 
+def _error_model_text(em: dict[str, Any] | None) -> str:
+    """Return the error model's components in one line."""
+    if not em:
+        return "n/a"
+    parts = [f"{c['name']} {1000 * c['sigma_m']:.2f} mm"
+             + (f" / {c['tau_s']:.1f} s" if c.get("tau_s") else f" ({c['kind']})")
+             for c in em["components"]]  # fmt: skip
+    return "; ".join(parts) + " (result.json error_model)"
+
+
 def _summary_pages(r: dict[str, Any]) -> list[Figure]:
     """Draw the summary, caveats and inputs (vector text; a second page if long)."""
     b, s, c, w = r["bound"], r["sampling"], r["cutoff"], r["windows"]
@@ -228,6 +238,8 @@ def _summary_pages(r: dict[str, Any]) -> list[Figure]:
         ("N_WN (two-sided)", f"{b['n_wn_two_sided_m2_hz']:.4g} m^2/Hz"),
         ("data covered by the bound", _coverage_text(w)),
         ("confidence", b.get("covers") or "n/a"),
+        ("error model", _error_model_text(r.get("error_model"))),
+        ("for a protection level", (r.get("error_model") or {}).get("integrity_note", "n/a")),
         ("total variance", f"{b['total_variance_m2']:.4g} m^2 ({b['objective']}, "
                            f"{b.get('rule', 'envelope')} rule)"),
         ("PSD estimator", b["estimator"]),
@@ -252,7 +264,7 @@ def _summary_pages(r: dict[str, Any]) -> list[Figure]:
     def text(x: float, dy: float, line: str, **kw: Any) -> None:
         """Write a line at the current height, then move down (a new page when full)."""
         nonlocal y
-        if y < 0.04:
+        if y < 0.03:
             pages.append(Figure(figsize=PAGE_IN))
             y = 0.95
         pages[-1].text(x, y, line, **kw)
@@ -261,22 +273,24 @@ def _summary_pages(r: dict[str, Any]) -> list[Figure]:
     text(0.08, 0.025, f"psdbound report: {_title(r)}", fontsize=14, weight="bold")
     text(0.08, 0.045, _METHOD.get(r["method"], r["method"]), fontsize=10)
     for k, v in rows:
-        lines = textwrap.wrap(v, 55) or [""]
+        long = len(v) > 3 * 55  # long statements in a smaller face, so page 1 holds them
+        lines = textwrap.wrap(v, 68 if long else 55) or [""]
         pages[-1].text(0.08, y, k, fontsize=10)
         for j, line in enumerate(lines):
-            text(0.42, 0.0155 if j < len(lines) - 1 else 0.0225, line, fontsize=10)
+            step = (0.012 if long else 0.0155) if j < len(lines) - 1 else 0.019
+            text(0.42, step, line, fontsize=8 if long else 10)
     y -= 0.015
     text(0.08, 0.028, "Caveats", fontsize=12, weight="bold")
     for wtext in r["warnings"] or ["None."]:
-        for line in textwrap.wrap(wtext, 95):
-            text(0.08, 0.016, line, fontsize=8.5)
-        y -= 0.005
+        for line in textwrap.wrap(wtext, 105):
+            text(0.08, 0.015, line, fontsize=8)
+        y -= 0.004
     y -= 0.015
     text(0.08, 0.026, "Inputs (SHA-256)", fontsize=12, weight="bold")
     for i in r["provenance"]["inputs"]:
-        text(0.08, 0.015, f"{i['role']}: {i['name']}", fontsize=8)
-        text(0.08, 0.022, i["sha256"], fontsize=7, family="monospace")
-    y -= 0.01
+        text(0.08, 0.017, f"{i['role']}: {i['name']}  {i['sha256']}", fontsize=6.5,
+             family="monospace")  # fmt: skip
+    y -= 0.005
     text(0.08, 0.0, f"created {r['provenance']['created_utc']}, psdbound "
          f"{r['provenance']['versions']['psdbound']}", fontsize=8)  # fmt: skip
     return pages

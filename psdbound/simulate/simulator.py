@@ -20,6 +20,13 @@ For antenna ``a``, satellite ``s`` and signal ``f`` (phase in metres)::
 * ``nu_f``: the truth error: ``m(el) (GM + WN) + reflections + noise`` (see
   :class:`~psdbound.simulate.scenario.MultipathModel`); with two antennas a
   fraction of the GM+WN variance is common to both.
+* SNR, dB-Hz: ``30 + 20 sin(el)`` clipped to 20-55 (3 dB lower on the
+  second carrier), plus, per reflection of amplitude ratio ``alpha``,
+  ``10 log10(1 + alpha^2 + 2 alpha cos psi)``: the power of the direct and
+  reflected signals' sum, with the same phase ``psi`` per carrier as the
+  reflection's phase error, so GNSS-IR (:mod:`psdbound.validation.reflectors`)
+  sees the reflector the phase has. Signal strength indicators follow the
+  direct SNR.
 
 Satellites are tracked above the elevation mask; tracking gaps are drawn at
 a set rate. Everything random comes from one seeded generator, so the same
@@ -138,11 +145,35 @@ def _obliquity(el_deg: NDArray[np.float64]) -> NDArray[np.float64]:
     return 1.0 / np.sqrt(1.0 - c**2)
 
 
-def _reflection_m(kind: str, d_m: float, alpha: float, el_deg, lam_m: float):
+def _reflection_psi(kind: str, d_m: float, el_deg, lam_m):
+    """Phase of the reflected signal relative to the direct one, rad.
+
+    Path delay ``2 d sin(el)`` for a ground reflector ``d`` metres below the
+    antenna, ``2 d cos(el)`` for a wall ``d`` metres away.
+    """
     el = np.radians(el_deg)
     delta = 2.0 * d_m * (np.sin(el) if kind == "ground" else np.cos(el))
-    psi = 2.0 * np.pi * delta / lam_m
+    return 2.0 * np.pi * delta / lam_m
+
+
+def _reflection_m(kind: str, d_m: float, alpha: float, el_deg, lam_m: float):
+    psi = _reflection_psi(kind, d_m, el_deg, lam_m)
     return np.arctan2(alpha * np.sin(psi), 1.0 + alpha * np.cos(psi)) * lam_m / (2.0 * np.pi)
+
+
+def _reflection_snr_db(reflections, el_deg, lams) -> NDArray[np.float64]:
+    """SNR change of the reflections per carrier, dB, shape ``el_deg.shape + (2,)``.
+
+    Each reflection multiplies the power by ``|1 + alpha e^{i psi}|^2 = 1 +
+    alpha^2 + 2 alpha cos psi`` with the ``psi`` of :func:`_reflection_m`;
+    ``el_deg`` is (epochs, sats), ``lams`` (sats, 2) wavelengths in metres.
+    """
+    out = np.zeros((*np.shape(el_deg), 2))
+    for refl in reflections:
+        for f in range(2):
+            psi = _reflection_psi(refl.kind, refl.distance_m, el_deg, lams[None, :, f])
+            out[..., f] += 10.0 * np.log10(1.0 + refl.alpha**2 + 2.0 * refl.alpha * np.cos(psi))
+    return out
 
 
 def _disturbance_tecu(sc: Scenario, t_rel_s: np.ndarray, sats: list[str]) -> np.ndarray:
@@ -326,6 +357,7 @@ def simulate(scenario: Scenario, out_dir: str | os.PathLike[str]) -> SimulationR
             * (m_el[a] / (mp.a + mp.b * np.exp(-(90.0**2) / (2 * mp.c_deg**2))))[..., None]
         )
         snr = np.clip(30.0 + 20.0 * np.sin(np.radians(np.clip(el[a], 0, 90))), 20, 55)
+        snr_refl = _reflection_snr_db(mp.reflections, el[a], lams)
         blocks = {}
         for system in sc.systems:
             cols = [j for j, s in enumerate(sats) if s[0] == system]
@@ -335,8 +367,9 @@ def simulate(scenario: Scenario, out_dir: str | os.PathLike[str]) -> SimulationR
                      CODES[system][1], SIGNALS[system][1], SNR[system][1])  # fmt: skip
             v = np.stack(
                 [np.round(code_m[:, cols, 0], 3), np.round(phase_cyc[:, cols, 0], 3),
-                 np.round(snr[:, cols], 3), np.round(code_m[:, cols, 1], 3),
-                 np.round(phase_cyc[:, cols, 1], 3), np.round(snr[:, cols] - 3.0, 3)],
+                 np.round(snr[:, cols] + snr_refl[:, cols, 0], 3),
+                 np.round(code_m[:, cols, 1], 3), np.round(phase_cyc[:, cols, 1], 3),
+                 np.round(snr[:, cols] - 3.0 + snr_refl[:, cols, 1], 3)],
                 axis=2,
             )  # fmt: skip
             keep = tracked[:, cols]

@@ -23,8 +23,8 @@ from psdbound.spectra.dependence import overlap_correlation, reference_clusters
 from psdbound.spectra.estimators import PSDEstimate, estimate_psd
 from psdbound.spectra.intervals import ModelSet
 from psdbound.spectra.lowfreq import TAU_MAX_S, LowFrequency
-from psdbound.spectra.pooled import PooledLimits, statement
-from psdbound.spectra.stated import fit_stated_bound
+from psdbound.spectra.pooled import PooledLimits
+from psdbound.spectra.stated import fit_stated_bound, statement
 from psdbound.stationarity.windowing import WindowSet
 
 __all__ = ["BoundModel", "BoundResults"]
@@ -104,8 +104,7 @@ class BoundResults:
                     f"{b.f_min_hz:.3g} Hz to Nyquist; no confidence level is stated for the "
                     "true PSD of the data")  # fmt: skip
         assert self.pooled is not None and self.bands is not None
-        low = "" if self.low_frequency is None else "; " + self.low_frequency.sentence()
-        return statement(self.pooled, self.bands) + low
+        return statement(self.pooled, self.bands, self.low_frequency)
 
     def params(self) -> dict[str, float]:
         """Bound parameters with units in their names."""

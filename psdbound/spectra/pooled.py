@@ -67,7 +67,7 @@ from psdbound.spectra.limits import (
 )
 
 __all__ = ["PooledLimits", "excess_statistic", "fit_limits", "fit_pooled_bound", "pool_bands",
-           "random_effects_mean", "statement"]
+           "random_effects_mean"]
 
 #: Share of ``1 - confidence_level`` spent on the group levels (the rest on the windows).
 MEAN_SHARE = 0.5
@@ -585,18 +585,3 @@ def fit_limits(
                    meta={"n_bands": int(limits.f_hz.size), "coverage": limits.coverage,
                          "n_groups": limits.n_groups,
                          "shape_alpha": limits.shape_alpha})  # fmt: skip
-
-
-def statement(limits: PooledLimits, bands: BandSpectra) -> str:
-    """Return what a bound above ``limits`` covers, in words (result.json ``bound.covers``)."""
-    n_w = int(limits.groups.size)
-    allowed = int(np.floor((1.0 - limits.coverage) * n_w + 1e-9))
-    return (
-        f"with {100 * limits.confidence_level:g} % confidence the bound lies above the true "
-        f"PSD of at least {100 * limits.coverage:g} % of the {n_w} windows (all but {allowed}) "
-        f"in every band from {bands.edges_hz[0]:.3g} Hz to Nyquist (band means; within a band "
-        f"the bound is held sqrt(f_hi/f_lo) above the limit at the lower edge): exact "
-        f"chi-square limits of {limits.n_groups} group(s) of one spectral shape, raised by "
-        f"every covered window's own upper deviation from its group (a level, and a tilt in "
-        f"log frequency where significant); no distribution of the windows is assumed"
-    )

@@ -23,8 +23,8 @@ from psdbound.spectra.estimators import MIN_SAMPLES, PSDEstimate, estimate_psd
 from psdbound.spectra.intervals import ModelSet
 from psdbound.spectra.lowfreq import POLICIES, TAU_MAX_S, LowFrequency, low_frequency_reasons
 from psdbound.spectra.models import GaussMarkovWhiteNoise
-from psdbound.spectra.pooled import PooledLimits, statement
-from psdbound.spectra.stated import fit_stated_bound
+from psdbound.spectra.pooled import PooledLimits
+from psdbound.spectra.stated import fit_stated_bound, statement
 
 __all__ = ["SeriesBound", "bound_series", "split_stretches"]
 
@@ -294,7 +294,7 @@ def bound_series(
 
     return SeriesBound(
         bound=fit.model, verdict=NOT_BOUNDED if reasons else BOUNDED, verdict_reasons=reasons,
-        f_min_hz=float(fit.f_min_hz), covers=statement(limits, bands) + "; " + low.sentence(),
+        f_min_hz=float(fit.f_min_hz), covers=statement(limits, bands, low),
         fit=fit, psds=psds, bands=bands, limits=limits, notes=notes, model_set=ms,
         low_frequency=low)  # fmt: skip
 

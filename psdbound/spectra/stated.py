@@ -26,7 +26,7 @@ from psdbound.spectra.intervals import ModelSet, model_set
 from psdbound.spectra.lowfreq import TAU_MAX_S, LowFrequency, bound_below
 from psdbound.spectra.pooled import PooledLimits, fit_pooled_bound, smoothing_hz
 
-__all__ = ["StatedBound", "fit_stated_bound"]
+__all__ = ["StatedBound", "fit_stated_bound", "statement"]
 
 
 class StatedBound(NamedTuple):
@@ -109,3 +109,33 @@ def fit_stated_bound(
     if ms is not None:  # the reported set contains the bound it accompanies
         ms = ms.with_model("bound", fit.sigma_gm_m, fit.tau_s, fit.sigma_wn_m)
     return StatedBound(fit, bands, limits, ms, why, low)
+
+
+def statement(limits: PooledLimits, bands: BandSpectra, low: LowFrequency | None = None) -> str:
+    """Return what a bound above ``limits`` covers, in words (result.json ``bound.covers``).
+
+    Parameters
+    ----------
+    limits : PooledLimits
+        The pooled limits.
+    bands : BandSpectra
+        Their bands.
+    low : LowFrequency, optional
+        What the bound covers below the lowest band (its sentence is added).
+
+    Returns
+    -------
+    str
+    """
+    n_w = int(limits.groups.size)
+    allowed = int(np.floor((1.0 - limits.coverage) * n_w + 1e-9))
+    text = (
+        f"with {100 * limits.confidence_level:g} % confidence the bound lies above the true "
+        f"PSD of at least {100 * limits.coverage:g} % of the {n_w} windows (all but {allowed}) "
+        f"in every band from {bands.edges_hz[0]:.3g} Hz to Nyquist (band means; within a band "
+        f"the bound is held sqrt(f_hi/f_lo) above the limit at the lower edge): exact "
+        f"chi-square limits of {limits.n_groups} group(s) of one spectral shape, raised by "
+        f"every covered window's own upper deviation from its group (a level, and a tilt in "
+        f"log frequency where significant); no distribution of the windows is assumed"
+    )
+    return text if low is None else f"{text}; {low.sentence()}"

@@ -25,7 +25,14 @@ threshold (default 10 %):
   :func:`load_modes`) and orbit rates (:func:`resolve_rate`);
 * whole runs and files: :func:`run_validation` (what ``psdbound validate``
   does), :func:`write_validation_outputs`, :func:`validation_csv`; figures
-  in :mod:`psdbound.validation.figures` (matplotlib, imported on demand).
+  in :mod:`psdbound.validation.figures` (matplotlib, imported on demand);
+* the reflection measured instead of assumed (GNSS-IR, from SNR):
+  :func:`reflector_heights` -> :class:`ReflectorHeights`, the ground
+  reflector height and amplitude ratio ``alpha`` of every rising and
+  setting arc of a station (:mod:`psdbound.validation.reflectors`), and
+  for one arc :func:`arc_height` -> :class:`ArcHeight` and
+  :func:`amplitude_ratio` (:mod:`psdbound.validation.snr_arc`, which
+  describes the method).
 """
 
 from __future__ import annotations
@@ -74,7 +81,9 @@ from psdbound.validation.modes import (
 )
 from psdbound.validation.options import ValidationOptions
 from psdbound.validation.outputs import validation_csv, write_validation_outputs
+from psdbound.validation.reflectors import ReflectorHeights, reflector_heights
 from psdbound.validation.results import DirectCheck, ExpansionCheck, ValidationReport
+from psdbound.validation.snr_arc import ArcHeight, amplitude_ratio, arc_height
 from psdbound.validation.validate import DEFAULT_THETA0_DEG, validate_cutoff
 from psdbound.validation.workflow import run_validation
 
@@ -87,14 +96,18 @@ __all__ = [
     "DEFAULT_THRESHOLD",
     "GPS_L1_WAVELENGTH_M",
     "ORBIT_RATES_HZ",
+    "ArcHeight",
     "DirectCheck",
     "DynamicMode",
     "ExpansionCheck",
     "Harmonics",
     "RateSource",
     "Reflection",
+    "ReflectorHeights",
     "SatellitePass",
     "ValidationReport",
+    "amplitude_ratio",
+    "arc_height",
     "bessel_tail_bound",
     "check_oscillation",
     "check_rotating",
@@ -108,6 +121,7 @@ __all__ = [
     "phase_error_rad",
     "phase_scale",
     "power_fraction_below",
+    "reflector_heights",
     "resolve_rate",
     "rotating_harmonics",
     "run_validation",

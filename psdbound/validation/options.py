@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from psdbound.common.options import Number, Text, Tuple, check_fields, option
+from psdbound.common.options import Boolean, Number, Text, Tuple, check_fields, option
 
 __all__ = ["ValidationOptions"]
 
@@ -35,7 +35,10 @@ class ValidationOptions:
     ``threshold``: the thesis's largest fraction of a geometry's multipath
     power below f_c, in (0, 1); ``rate``: geometry rate for the expansion
     (orbit, an aircraft mode or a frequency in Hz); ``ground_height_m``: > 0
-    and at most 1000 m.
+    and at most 1000 m. ``snr``: measure the ground reflector's height and
+    the amplitude ratio from the file's SNR where it has enough (GNSS-IR,
+    :mod:`psdbound.validation.site`); they then replace ``ground:h=header``
+    and ``alpha``.
 
     Raises
     ------
@@ -58,6 +61,7 @@ class ValidationOptions:
         "orbit", Text(what="'orbit', an aircraft mode or a frequency in Hz", validate=_check_rate)
     )
     ground_height_m: float = option(1.5, Number(lo=0.0, hi=1000.0, lo_open=True, unit="m"))
+    snr: bool = option(True, Boolean())
 
     def __post_init__(self) -> None:
         check_fields(self)

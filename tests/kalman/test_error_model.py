@@ -11,6 +11,7 @@ import pytest
 
 import psdbound
 from psdbound.kalman import Component, ErrorModel, GaussMarkovBound
+from psdbound.spectra.models import gm_psd_sampled
 
 
 @pytest.fixture(scope="module")
@@ -46,18 +47,26 @@ def test_state_space_matches_the_bound_and_carries_p0(demo):
     assert ss.p0_m2[k, k] == pytest.approx(b.sigma_gm_m**2)
     # stationary: P0 = phi P0 phi + Q for every state
     assert np.allclose(ss.phi @ ss.p0_m2 @ ss.phi.T + ss.q_m2, ss.p0_m2, rtol=1e-12, atol=0)
-    if "slow" in ss.states:  # a random constant per arc: no process noise, P0 its variance
-        j = ss.states.index("slow")
-        assert ss.phi[j, j] == 1.0 and ss.q_m2[j, j] == 0.0
-        assert ss.p0_m2[j, j] == pytest.approx(em["slow"].variance_m2)
+    assert ss.states == tuple(c.name for c in em.components if c.kind == "gauss-markov")
     assert em.variance_m2() == pytest.approx(np.trace(ss.p0_m2) + ss.r_m2)
+    # at an elevation the mapped components scale by m(el)^2, the slow one does not
+    low = em.to_state_space(elevation_deg=10.0)
+    m = em.factor(em["gauss_markov"], 10.0)
+    assert m > 1.0 and low.p0_m2[k, k] == pytest.approx(m**2 * ss.p0_m2[k, k])
+    if "slow" in ss.states:
+        j = ss.states.index("slow")
+        assert low.p0_m2[j, j] == pytest.approx(ss.p0_m2[j, j])
 
 
-def test_sampled_psd_is_the_bound_at_the_data_interval(demo):
+def test_sampled_psd_is_the_sum_of_its_components(demo):
     res, _ = demo
     em = res.error_model
     f = np.linspace(0.0, em.nyquist_hz, 200)
-    assert np.allclose(em.sampled_psd(f), res.bound.sampled_psd(f), rtol=1e-12)
+    want = res.bound.sampled_psd(f)
+    if "slow" in [c.name for c in em.components]:
+        s = em["slow"]
+        want = want + gm_psd_sampled(f, s.sigma_m, s.tau_s, em.dt_s)
+    assert np.allclose(em.sampled_psd(f), want, rtol=1e-12)
     with pytest.raises(psdbound.InputError):
         em.sampled_psd([2 * em.nyquist_hz])
 
@@ -87,6 +96,8 @@ def test_components_check_their_numbers():
     with pytest.raises(psdbound.InputError):
         Component("x", "pink", 0.001)
     with pytest.raises(psdbound.InputError):
+        Component("x", "random-constant-per-arc", 0.001)
+    with pytest.raises(psdbound.InputError):
         Component("x", "gauss-markov", 0.001, None)
     with pytest.raises(psdbound.InputError):
         Component("x", "white", -1.0)
@@ -112,3 +123,11 @@ def test_parameter_set_holds_the_truth_and_the_bound_and_its_design_is_safe(demo
     check = verify_design(gs.design(), [[1.0]], [[0.0]], [[1.0]], None, dt_s=b.dt_s,
                           n_steps=int(6 * gs.tau_hi_s / b.dt_s), p0_base=[[100.0]])  # fmt: skip
     assert check.bounded(), check.worst
+
+
+def test_reading_only_the_bound_warns_about_the_slow_component(demo):
+    res, path = demo
+    if "slow" not in [c.name for c in res.error_model.components]:
+        pytest.skip("this fit has no slow component")
+    with pytest.warns(UserWarning, match="slow component"):
+        GaussMarkovBound.from_result(path)

@@ -71,6 +71,7 @@ def test_fit_without_arguments_uses_the_demo(demo_run):
     demo = d["demo"]
     # issue 27: the bound covers every window's truth, not the mean spectrum: 1.79 measured
     assert demo["min_psd_ratio"] >= 1.0 and 1.0 <= demo["variance_ratio"] <= 2.0
+    assert demo["min_psd_ratio_all_f"] >= 1.0  # down to 0 Hz (issue 28)
     assert "bound variance / injected variance" in r.stdout
     assert "Bound variance / injected variance" in html
     assert (out / "report.pdf").stat().st_size > 50_000

@@ -54,14 +54,28 @@ def test_good_document_is_bounded():
         ("isolation.safety", {"removed_above_fc_median": 0.875}, "filter loss", 1),
         ("cutoff.f_c_hz", 9.5e-3, "below the Nyquist", 1),
         ("screening.excluded_fraction", 0.62, "most data excluded", 1),
-        ("validation", {"max_removed_rms_m": 0.009, "geometries_used": ["ground:h=1.5"]},
-         "cutoff validation", 1),
+        ("bound.low_frequency", {"status": "prior", "tau_max_s": 900.0,
+                                 "envelope_at_0_m2_hz": None}, "only time constants above", 1),
     ],
 )
 def test_each_rule_fires(path, value, words, n):
     verdict, reasons = judge(_with(path, value))
     assert verdict == "not-bounded"
     assert len(reasons) == n and any(words in r for r in reasons), reasons
+
+
+def test_removed_multipath_is_modelled_not_a_refusal():
+    """Issue 28 part 2: what the high-pass removes is the error model's slow component."""
+    d = _with("validation", {"max_removed_rms_m": 0.009, "geometries_used": ["ground:h=1.5"]})
+    assert judge(d) == ("bounded", [])
+
+
+def test_low_frequency_policy_is_an_option():
+    d = _with("bound.low_frequency", {"status": "prior", "tau_max_s": 900.0,
+                                      "envelope_at_0_m2_hz": 1e-3})  # fmt: skip
+    assert judge(d) == ("bounded", [])
+    verdict, reasons = judge(d, VerdictOptions(low_frequency="refuse"))
+    assert verdict == "not-bounded" and "policy is 'refuse'" in reasons[0]
 
 
 def test_thresholds_are_options():
