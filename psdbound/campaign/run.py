@@ -230,7 +230,7 @@ def run_campaign(
     """
     from psdbound.common import file_sha256
     from psdbound.compute import DiskCache, cache_key, default_cache_dir, run_tasks
-    from psdbound.version import __version__
+    from psdbound.version import __version__, code_digest
 
     if (options or {}).get("code_multipath", {}).get("codes"):
         raise InputError("[code_multipath] is a fit option: a campaign pools the carrier-phase "
@@ -244,7 +244,8 @@ def run_campaign(
     cache = DiskCache(
         cache_dir or default_cache_dir("campaign"),
         key=lambda it: cache_key({"task": "station-day", "version": __version__,
-                                  "sha256": it["sha256"], "options": it["options"]}),
+                                  "code": code_digest(), "sha256": it["sha256"],
+                                  "options": it["options"]}),
     )  # fmt: skip
     run = run_tasks(station_day_task, items, workers=workers, scheduler=scheduler, cache=cache,
                     progress=progress)  # fmt: skip

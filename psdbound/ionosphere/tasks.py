@@ -34,7 +34,7 @@ from psdbound.ionosphere.residual import ResidualCutoff, residual_cutoffs
 from psdbound.ionosphere.settings import CutoffSettings
 from psdbound.ionosphere.slant import simulate_slant_delay
 from psdbound.ionosphere.stations import Station, validate_station
-from psdbound.version import __version__
+from psdbound.version import __version__, code_digest
 
 __all__ = [
     "CACHE_SCHEMA",
@@ -135,6 +135,7 @@ def day_key(spec: dict[str, Any]) -> str:
     """Return the cache key of a station-day spec (orbit object and ``keep_series`` excluded)."""
     payload = {k: v for k, v in spec.items() if k not in ("orbit", "keep_series")}
     payload["psdbound"] = __version__
+    payload["code"] = code_digest()
     payload["schema"] = CACHE_SCHEMA
     return cache_key(payload)
 

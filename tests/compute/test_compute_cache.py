@@ -119,3 +119,13 @@ def test_local_cluster_start_method():
     with pytest.raises(InputError, match="start_method"):
         with dask_client(workers=1, start_method="teleport"):
             pass
+
+
+def test_code_digest_keys_results_to_the_code_that_computed_them():
+    """A version number stays put while the code changes: caches key on the source digest."""
+    import re
+
+    from psdbound.version import code_digest
+
+    d = code_digest()
+    assert re.fullmatch("[0-9a-f]{16}", d) and d == code_digest()
