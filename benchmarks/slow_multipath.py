@@ -191,7 +191,8 @@ class Case:
     index: int
 
 
-def build_cases(hours_1s: float, quick: bool) -> list[Case]:
+def build_cases(hours_1s: float, quick: bool,
+                heights_m: tuple[float, ...] = HEIGHTS_M) -> list[Case]:  # fmt: skip
     """Return the cases (the full list, or its ``--quick`` subset).
 
     Parameters
@@ -209,7 +210,7 @@ def build_cases(hours_1s: float, quick: bool) -> list[Case]:
     for dt, hours in ((30.0, HOURS_30S), (1.0, hours_1s)):
         for tau in TAUS_S:
             cases.append(Case(f"gm{tau:g}@{dt:g}s", "gm", dt, hours, tau, None, len(cases)))
-    for h in HEIGHTS_M:
+    for h in heights_m:
         cases.append(Case(f"ground{h:g}@30s", "ground", 30.0, HOURS_30S, REFL_GM[1], h,
                           len(cases)))  # fmt: skip
     if quick:
@@ -615,8 +616,11 @@ def main(argv: list[str] | None = None) -> int:
                     help="span of the 1 s days, h (default 4)")  # fmt: skip
     ap.add_argument("--cases", default="",
                     help="comma-separated case labels to run (default: all)")  # fmt: skip
+    ap.add_argument("--heights", default=",".join(f"{h:g}" for h in HEIGHTS_M),
+                    help="ground reflector heights of the reflection cases, m")  # fmt: skip
     args = ap.parse_args(argv)
-    cases = build_cases(args.hours_1s, args.quick)
+    heights = tuple(float(x) for x in args.heights.split(","))
+    cases = build_cases(args.hours_1s, args.quick, heights)
     if args.cases:
         want = set(args.cases.split(","))
         cases = [c for c in cases if c.label in want]

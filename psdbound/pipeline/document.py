@@ -317,7 +317,7 @@ def _error_model(doc: dict[str, Any]) -> dict[str, Any]:
         comps.append(Component(
             "slow", "gauss-markov", float(slow["sigma_m"]), float(slow["tau_s"]), False,
             f"multipath the high-pass removes below f_c from {slow['geometry']} along the "
-            f"data's passes ({slow['n_passes']} passes, removed RMS "
+            f"data's arcs ({slow['n_arcs']} arcs, removed RMS "
             f"{1000 * slow['removed_rms_m']:.2f} mm; amplitude ratio {slow['alpha']:.3g}, "
             f"{how}): the least-variance Gauss-Markov process above its spectrum "
             f"(validation.slow)"))  # fmt: skip

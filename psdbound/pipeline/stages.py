@@ -19,7 +19,7 @@ surface of its stage package.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -404,31 +404,51 @@ def _resolve_geometries(inputs: InputData, options: ValidationOptions,
     return out, note
 
 
-def _slow_component(report: Any, geoms: Sequence[str], lams: Sequence[float], dt_s: float,
-                    gain: Callable[[np.ndarray], np.ndarray]) -> list[dict[str, Any]]:  # fmt: skip
-    """Per geometry: the removed multipath's slow Gauss-Markov bound (largest first)."""
-    from psdbound.validation.removed import removed_multipath
+def _slow_component(series: Any, geoms: Sequence[str], site: Any, lams: Sequence[float],
+                    hp: HighPass, cutoff_hz: float) -> list[dict[str, Any]]:  # fmt: skip
+    """Per geometry: the removed multipath along the data's arcs and its slow GM (largest first).
+
+    A ground height measured from the SNR is taken with its tolerance
+    (:data:`psdbound.validation.site.HEIGHT_TOLERANCE_M`, relative
+    ``HEIGHT_TOLERANCE``): the envelope over ``h - d, h, h + d``.
+    """
+    from psdbound.validation import parse_geometry
+    from psdbound.validation.removed import envelope, removed_along_arcs
+    from psdbound.validation.site import height_tolerance_m
+
+    def removed(label: str) -> Any:
+        return removed_along_arcs(series.elevation_deg, series.arc_id,
+                                  geometry=parse_geometry(label), alpha=site.alpha,
+                                  wavelengths_m=lams, highpass=hp, dt_s=series.interval_s,
+                                  cutoff_hz=cutoff_hz)  # fmt: skip
 
     rows = []
     for geom in dict.fromkeys(geoms):
-        checks = [d for d in report.direct if d.geometry.label == geom
-                  and d.convention == "physical" and d.source == "satellite"]  # fmt: skip
-        rm = removed_multipath(checks, wavelengths_m=lams, power_response=gain, dt_s=dt_s)
+        rm = removed(geom)
+        h = site.ground_height_m
+        if rm is not None and h is not None and geom == f"ground:h={h:.3g}":
+            d = height_tolerance_m(h)
+            rm = envelope([rm, removed(f"ground:h={max(h - d, 0.05):.4g}"),
+                           removed(f"ground:h={h + d:.4g}")], geom)  # fmt: skip
         if rm is not None:
             rows.append(rm.as_dict())
     return sorted(rows, key=lambda r: -r["sigma_m"])
 
 
 def _site(inputs: InputData, series: Any, sats: Sequence[str], pos: Any,
-          options: ValidationOptions) -> Any:  # fmt: skip
+          options: ValidationOptions, cutoff_hz: float) -> Any:  # fmt: skip
     """Return the ground height and alpha: from the SNR when the options ask and it can."""
-    from psdbound.validation.site import SiteReflection, site_reflection
+    from psdbound.validation.site import SiteReflection, removed_weight, site_reflection
 
     if not options.snr or not sats:
         return SiteReflection(options.alpha, None, False,
                               note=f"alpha {options.alpha:g} assumed (configuration)")  # fmt: skip
+    lam = wavelength_m(sats[0], series.signals[0], None)
+    weight = removed_weight(series.elevation_deg, series.t_gps_s, series.arc_id,
+                            wavelength_m=lam, cutoff_hz=cutoff_hz)  # fmt: skip
     return site_reflection(inputs.observations[0], inputs.orbit, phase_signal=series.signals[0],
-                           system=sats[0][0], receiver_xyz_m=pos, alpha=options.alpha)  # fmt: skip
+                           system=sats[0][0], receiver_xyz_m=pos, alpha=options.alpha,
+                           weight=weight)  # fmt: skip
 
 
 def _removed_rms(report: Any, signals: Sequence[str], sat: str, alpha: float,
@@ -501,7 +521,7 @@ def validate(
     sats = sorted(set(series.arc_sats))
     pos = inputs.receiver_xyz_m[0]
     pos = inputs.observations[0].header.approx_position_m if pos is None else np.asarray(pos)
-    site = _site(inputs, series, sats, pos, options)
+    site = _site(inputs, series, sats, pos, options, cutoff.f_c_hz)
     geoms, note = _resolve_geometries(inputs, options, site.ground_height_m)
     report = validate_cutoff(
         geoms, cutoff_hz=cutoff.f_c_hz, rate=options.rate, alpha=site.alpha,
@@ -512,10 +532,9 @@ def validate(
     channels = isolated.arcs.glonass_channels if isolated.arcs is not None else None
     removed = _removed_rms(report, series.signals, sats[0] if sats else "G01", site.alpha,
                            channels)  # fmt: skip
-    hp, dt = highpass or HighPass(), inputs.interval_s
     lams = [wavelength_m(sats[0] if sats else "G01", sg, channels) for sg in series.signals[:2]]
-    slow = _slow_component(report, geoms, lams, dt,
-                           lambda f: hp.response(f, dt, cutoff.f_c_hz) ** 2)  # fmt: skip
+    slow = _slow_component(series, geoms, site, lams, highpass or HighPass(),
+                           cutoff.f_c_hz)  # fmt: skip
     summary = report.to_dict()
     summary.update({
         "applicable": True,

@@ -207,8 +207,6 @@ def direct_check(
         f,
         psd,
         elevation_range_deg=el,
-        mean_rad=float(np.mean(dphi)),
-        variance_rad2=float(np.var(dphi)),
     )
 
 

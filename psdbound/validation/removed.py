@@ -1,52 +1,52 @@
 """What the high-pass removes from a reflector's multipath: a slow Gauss-Markov component.
 
 The ionosphere high-pass of dual-frequency isolation removes, with the
-ionosphere, the part of the multipath below its cutoff: for a low ground
-reflector, almost all of it. The bound never sees that part, so it is
-carried as a component of its own (``error_model`` ``slow``), computed
-along the data's satellite passes:
+ionosphere, each arc's mean and the part of the multipath below its cutoff:
+for a low ground reflector, almost all of it. The bound never sees that
+part, so it is carried as a component of its own (``error_model`` ``slow``),
+computed along the data's own arcs, like with like:
 
-1. For every pass simulated by the cutoff validation
-   (:func:`psdbound.validation.direct_check`, physical convention), the
-   phase error's periodogram times what the filter removes,
-   ``1 - |H(f)|^2``, in m^2/Hz (times ``(lambda / 2 pi)^2``, averaged over the
-   two carriers of the dual-frequency combination, whose reflections have
-   independent phases; the periodogram scaled to the whole pass's variance, as
-   the Hann taper weights its middle), and the pass's mean (an offset per arc, which the
-   filter removes too; it is put at the lowest frequency ``1 / (2 T)`` with
-   the density ``mean^2 T`` of a constant over ``T`` seconds).
-2. The passes' removed spectra, interpolated on one frequency grid, are
-   averaged: the spectrum of the pooled removed series.
+1. Along every arc of the isolated series (its epochs and elevations), the
+   reflection's exact carrier-phase error on each carrier (``atan2(alpha sin
+   psi, 1 + alpha cos psi)`` in metres, :func:`psdbound.validation.phase_error_rad`)
+   is combined as the isolation combines the carriers,
+   ``(m_1 - m_2) / sqrt(2)``, and passed through the same high-pass
+   (:meth:`psdbound.isolation.HighPass.apply`, the arc mean removed first);
+   what it takes away, ``x - HP(x - mean)``, is the removed series.
+2. The removed spectrum is the length-weighted mean of the arcs' raw
+   periodograms ``2 dt |X(f)|^2 / N`` (one-sided, 0 Hz included, every sample
+   weighted alike; on the grid of a common zero-padded length), the spectrum
+   of the pooled removed series; its RMS is that of the removed samples.
 3. The slow component is the first-order Gauss-Markov process of least
    variance whose sampled PSD lies above that spectrum at every frequency
-   of the grid (for each time constant the variance is the largest ratio;
-   the time constant minimises it).
+   (for each time constant the variance is the largest ratio; the time
+   constant minimises it).
 
 Its size rests on the reflection model: the amplitude ratio ``alpha`` and
 the reflector (height or distance). Measured from the SNR where the file
-has it (:mod:`psdbound.validation.reflectors`), assumed otherwise; the
-result says which.
+has it (:mod:`psdbound.validation.site`), assumed otherwise; the result says
+which.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.integrate import trapezoid
 
 from psdbound.spectra.models import gm_psd_sampled
-from psdbound.validation.results import DirectCheck
+from psdbound.validation.direct import phase_error_rad
+from psdbound.validation.geometry import Reflection
 
-__all__ = ["RemovedMultipath", "removed_multipath", "slow_gauss_markov"]
+__all__ = ["RemovedMultipath", "envelope", "removed_along_arcs", "slow_gauss_markov"]
 
-#: Frequencies of the common grid.
-_N_GRID = 240
 #: Time constants searched for the slow component.
 _N_TAU = 160
+#: The dual-frequency combination of two carriers' multipath, (m_1 - m_2) / sqrt(2).
+_DF_SCALING = 1.0 / np.sqrt(2.0)
 
 
 @dataclass(frozen=True)
@@ -59,22 +59,22 @@ class RemovedMultipath:
         The reflector (e.g. ``"ground:h=1.5"``).
     alpha : float
         Amplitude ratio used.
-    n_passes : int
-        Satellite passes averaged.
+    n_arcs : int
+        Arcs of the data it was computed along.
     f_hz, psd_m2_hz : ndarray
         The removed spectrum (one-sided, sampled at ``dt_s``), Hz and m^2/Hz.
     rms_m : float
-        Its RMS, m (offsets included).
+        RMS of the removed samples, m.
     sigma_m, tau_s : float
-        The slow Gauss-Markov component above it: standard deviation (m) and
-        time constant (s).
+        The slow Gauss-Markov component above the spectrum: standard
+        deviation (m) and time constant (s).
     dt_s : float
         Sampling interval, s.
     """
 
     geometry: str
     alpha: float
-    n_passes: int
+    n_arcs: int
     f_hz: NDArray[np.float64]
     psd_m2_hz: NDArray[np.float64]
     rms_m: float
@@ -87,7 +87,7 @@ class RemovedMultipath:
         return {
             "geometry": self.geometry,
             "alpha": self.alpha,
-            "n_passes": self.n_passes,
+            "n_arcs": self.n_arcs,
             "removed_rms_m": self.rms_m,
             "sigma_m": self.sigma_m,
             "tau_s": self.tau_s,
@@ -102,7 +102,7 @@ def slow_gauss_markov(
     Parameters
     ----------
     f_hz : ndarray
-        Frequencies, Hz (> 0, at most Nyquist).
+        Frequencies, Hz (>= 0, at most Nyquist).
     psd_m2_hz : ndarray
         The spectrum, m^2/Hz (one-sided, sampled at ``dt_s``).
     dt_s : float
@@ -118,69 +118,120 @@ def slow_gauss_markov(
     f = np.asarray(f_hz, dtype=float)
     if not np.any(s > 0):
         return 0.0, float(dt_s)
-    taus = np.geomspace(dt_s, 100.0 / float(f.min()), _N_TAU)
+    f_lo = float(f[f > 0].min()) if np.any(f > 0) else 0.5 / dt_s
+    taus = np.geomspace(dt_s, 100.0 / f_lo, _N_TAU)
     var = np.array([np.max(s / gm_psd_sampled(f, 1.0, t, dt_s)) for t in taus])
     k = int(np.argmin(var))
     return float(np.sqrt(var[k])), float(taus[k])
 
 
-def _removed_on_grid(
-    c: DirectCheck,
-    f: NDArray[np.float64],
-    scale_m2_rad2: float,
-    power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]],
-) -> NDArray[np.float64]:
-    """One pass's removed spectrum on ``f``, m^2/Hz, with its offset at ``1 / (2 T)``."""
-    fp, sp = c.frequencies_hz[1:], c.psd_rad2_hz[1:]
-    if c.variance_rad2 is not None:  # the taper weights the middle: the whole record's variance
-        sp = sp * c.variance_rad2 / max(float(trapezoid(sp, fp)), 1e-300)
-    # the pass is sampled finer than the data when psi needs it; what the filter removes
-    # lies far below either Nyquist frequency
-    gain = power_response(np.minimum(fp, f[-1]))
-    removed = sp * np.clip(1.0 - gain, 0.0, 1.0) * scale_m2_rad2
-    out = np.interp(f, fp, removed, left=0.0, right=0.0)
-    dc = c.mean_rad**2 * scale_m2_rad2 * c.duration_s  # a constant over T, density mean^2 T
-    out[f <= 0.5 / c.duration_s] += dc
-    return out
-
-
-def removed_multipath(
-    checks: Sequence[DirectCheck],
-    *,
+def _removed_series(
+    el_deg: NDArray[np.float64],
+    geometry: Reflection,
+    alpha: float,
     wavelengths_m: Sequence[float],
-    power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]],
+    highpass: Any,
     dt_s: float,
+    cutoff_hz: float,
+) -> NDArray[np.float64]:
+    """Return what the high-pass takes from one arc's reflection multipath, m (edges cut)."""
+    th = np.radians(el_deg)
+    m = [
+        lam / (2.0 * np.pi) * phase_error_rad(geometry.phase_rad(th, wavelength_m=lam), alpha)
+        for lam in wavelengths_m[:2]
+    ]
+    x = _DF_SCALING * (m[0] - m[1])
+    y, keep = highpass.apply(x - x.mean(), dt_s, cutoff_hz)
+    return (x - y)[keep]
+
+
+def removed_along_arcs(
+    elevation_deg: NDArray[np.float64],
+    arc_id: NDArray[np.int64],
+    *,
+    geometry: Reflection,
+    alpha: float,
+    wavelengths_m: Sequence[float],
+    highpass: Any,
+    dt_s: float,
+    cutoff_hz: float,
 ) -> RemovedMultipath | None:
-    """Average the removed spectra of one reflector's passes and bound them by a slow GM.
+    """Compute one reflector's removed multipath along the data's arcs and its slow GM bound.
 
     Parameters
     ----------
-    checks : sequence of DirectCheck
-        The passes of one geometry (physical convention), at the data
-        interval.
+    elevation_deg : ndarray
+        Elevation of every sample of the isolated series, degrees (NaN where
+        unknown: those arcs are skipped).
+    arc_id : ndarray of int
+        Arc of every sample (consecutive samples at ``dt_s``).
+    geometry : Reflection
+        The reflector.
+    alpha : float
+        Amplitude ratio.
     wavelengths_m : sequence of float
-        Carrier wavelengths of the dual-frequency combination, m.
-    power_response : callable
-        ``|H(f)|^2`` of the high-pass.
+        The two carriers' wavelengths, m.
+    highpass : HighPass
+        The isolation's high-pass.
     dt_s : float
-        Data interval, s.
+        Sampling interval, s.
+    cutoff_hz : float
+        Its cutoff, Hz.
 
     Returns
     -------
     RemovedMultipath or None
-        None without passes.
+        None when no arc has elevations and survives the filter edges.
     """
-    if not checks:
+    arcs = []
+    for a in np.unique(arc_id):
+        el = elevation_deg[arc_id == a]
+        if el.size > 8 and np.isfinite(el).all():
+            r = _removed_series(el, geometry, alpha, wavelengths_m, highpass, dt_s, cutoff_hz)
+            if r.size > 2:
+                arcs.append(r)
+    if not arcs:
         return None
-    scale = float(np.mean([(lam / (2.0 * np.pi)) ** 2 for lam in wavelengths_m]))
-    t_max = max(c.duration_s for c in checks)
-    f = np.geomspace(0.25 / t_max, 0.5 / dt_s, _N_GRID)
-    weights = np.array([c.duration_s for c in checks])
-    spectra = np.array([_removed_on_grid(c, f, scale, power_response) for c in checks])
-    psd = spectra.max(axis=0)
-    low = f <= 0.5 / t_max  # the offsets' stand-in density: counted by their variance instead
-    offsets_m2 = float(weights @ np.array([c.mean_rad**2 for c in checks]) / weights.sum()) * scale
-    rms = float(np.sqrt(trapezoid(np.where(low, 0.0, psd), f) + offsets_m2))
+    # raw periodograms 2 dt |X(f)|^2 / N on one grid: each arc zero-padded to a common length
+    n_pad = 1 << int(np.ceil(np.log2(2 * max(r.size for r in arcs))))
+    f = np.fft.rfftfreq(n_pad, dt_s)
+    lengths = np.array([r.size for r in arcs], dtype=float)
+    psd = sum(np.abs(np.fft.rfft(r, n_pad)) ** 2 * (2.0 * dt_s) for r in arcs) / lengths.sum()
+    rms = float(np.sqrt(np.mean(np.concatenate(arcs) ** 2)))
     sigma, tau = slow_gauss_markov(f, psd, dt_s)
-    c0 = checks[0]
-    return RemovedMultipath(c0.geometry.label, c0.alpha, len(checks), f, psd, rms, sigma, tau, dt_s)
+    return RemovedMultipath(geometry.label, float(alpha), len(arcs), f, psd, rms, sigma, tau, dt_s)
+
+
+def envelope(parts: Sequence[RemovedMultipath], label: str) -> RemovedMultipath:
+    """Return the pointwise largest of several removed spectra (same arcs), with its slow GM.
+
+    Used over a reflector's measurement uncertainty (e.g. heights ``h - d``,
+    ``h``, ``h + d``): the narrow features of a low reflector's removed
+    spectrum move with ``h``, and a GM touching the spectrum at one height can
+    lie under it at a neighbouring one.
+
+    Parameters
+    ----------
+    parts : sequence of RemovedMultipath
+        Spectra on one frequency grid (the same arcs).
+    label : str
+        The geometry label of the result.
+
+    Returns
+    -------
+    RemovedMultipath
+    """
+    p0 = parts[0]
+    psd = np.max([p.psd_m2_hz for p in parts], axis=0)
+    sigma, tau = slow_gauss_markov(p0.f_hz, psd, p0.dt_s)
+    return RemovedMultipath(
+        label,
+        max(p.alpha for p in parts),
+        p0.n_arcs,
+        p0.f_hz,
+        psd,
+        max(p.rms_m for p in parts),
+        sigma,
+        tau,
+        p0.dt_s,
+    )

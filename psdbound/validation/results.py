@@ -195,12 +195,6 @@ class DirectCheck:
         The matching expansion's fraction, when there is one.
     elevation_range_deg : tuple of float or None
         Min and max angle of arrival over the record, degrees.
-    mean_rad : float
-        Mean of the phase error over the record, rad (a per-arc offset the
-        high-pass removes with the rest; the periodogram leaves it out).
-    variance_rad2 : float or None
-        Variance of the phase error about that mean, rad^2 (the tapered
-        periodogram weights the record's middle; this is the whole record's).
     """
 
     source: str
@@ -217,8 +211,6 @@ class DirectCheck:
     psd_rad2_hz: NDArray[np.float64] = field(repr=False)
     expansion_fraction: float | None = None
     elevation_range_deg: tuple[float, float] | None = None
-    mean_rad: float = 0.0
-    variance_rad2: float | None = None
 
     @property
     def passed(self) -> bool:

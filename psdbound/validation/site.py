@@ -7,11 +7,15 @@ station the same removed multipath; the SNR of the same file measures both
 (GNSS interferometric reflectometry, :mod:`psdbound.validation.reflectors`).
 
 From the accepted arcs of the first carrier's SNR (:data:`MIN_ARCS` at
-least): the ground height is the 10th percentile of their heights (the low
-reflectors oscillate slowest, so they put the most power below the cutoff)
-and ``alpha`` the 90th percentile of their amplitude ratios (conservative
-over directions). With fewer accepted arcs, or no SNR in the file, the
-configured values are used and said to be assumed.
+least), the reflection modelled is one arc's height and amplitude ratio
+together: the arc at the 90th percentile of ``alpha^2 w(h)``, ``w(h)`` the
+share of the data's samples where a reflector at that height oscillates
+below the cutoff (:func:`removed_weight`: low reflectors oscillate slowest).
+Taking the 10th percentile of the heights and the 90th of the ratios apart
+pairs a low reflector with a strong one that no arc showed (ZIMM: 0.54 m
+with 0.18, removed 12.7 mm as a slow component). With fewer accepted arcs,
+or no SNR in the file, the configured values are used and said to be
+assumed.
 
 A low reflector oscillates few times over 5-25 deg (``2 h / lambda`` cycles
 per unit ``sin e``: 1.8 cycles for 0.5 m on L1), and the elevation trend then
@@ -23,6 +27,7 @@ range's top raised until it does (at most :data:`MAX_TOP_DEG`).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -31,7 +36,14 @@ from numpy.typing import NDArray
 
 from psdbound.errors import InputError
 
-__all__ = ["MIN_ARCS", "SiteReflection", "site_reflection"]
+__all__ = [
+    "MIN_ARCS",
+    "SiteReflection",
+    "height_tolerance_m",
+    "removed_weight",
+    "site_reflection",
+    "snr_signal",
+]
 
 #: Fewest accepted SNR arcs for a measured height and alpha.
 MIN_ARCS = 5
@@ -43,6 +55,9 @@ MIN_CYCLES = 2.5
 MAX_TOP_DEG = 60.0
 #: The default elevation range, degrees.
 RANGE_DEG = (5.0, 25.0)
+#: Tolerance of a measured ground height: the larger of an absolute (m) and a relative part
+#: (the SNR analysis is biased by up to 4 cm below 1 m and scatters by a few % above).
+HEIGHT_TOLERANCE_M, HEIGHT_TOLERANCE = 0.05, 0.05
 
 
 @dataclass(frozen=True)
@@ -100,6 +115,103 @@ def _top_for_cycles(rh: Any) -> float:
     return min(max(top, RANGE_DEG[1]), MAX_TOP_DEG)
 
 
+def height_tolerance_m(h_m: float) -> float:
+    """Return the tolerance of a ground height measured from the SNR, m.
+
+    Parameters
+    ----------
+    h_m : float
+        The height, m.
+
+    Returns
+    -------
+    float
+        ``max(HEIGHT_TOLERANCE_M, HEIGHT_TOLERANCE h)``.
+    """
+    return max(HEIGHT_TOLERANCE_M, HEIGHT_TOLERANCE * h_m)
+
+
+def removed_weight(
+    elevation_deg: NDArray[np.float64],
+    t_gps_s: NDArray[np.float64],
+    arc_id: NDArray[np.int64],
+    *,
+    wavelength_m: float,
+    cutoff_hz: float,
+) -> Callable[[float], float]:
+    """Return ``w(h)``: the share of the data's samples where a ground reflection is below f_c.
+
+    A ground reflection at height ``h`` oscillates at ``2 h |d sin(e) / dt| / lambda``
+    Hz; where that is below the cutoff the high-pass removes it. ``w(h)`` is
+    the fraction of the data's samples (every arc, its own elevation rate)
+    where it is.
+
+    Parameters
+    ----------
+    elevation_deg, t_gps_s, arc_id : ndarray
+        The multipath series' elevations (deg), times (s) and arc labels.
+    wavelength_m : float
+        Carrier wavelength, m.
+    cutoff_hz : float
+        The high-pass cutoff, Hz.
+
+    Returns
+    -------
+    callable
+        ``w(h_m) -> float`` in [0, 1].
+    """
+    rate = np.full(elevation_deg.shape, np.nan)
+    for a in np.unique(arc_id):
+        k = np.flatnonzero(arc_id == a)
+        if k.size > 2:
+            rate[k] = np.abs(np.gradient(np.sin(np.radians(elevation_deg[k])), t_gps_s[k]))
+    rate = rate[np.isfinite(rate)]
+
+    def weight(h_m: float) -> float:
+        return float(np.mean(2.0 * h_m * rate / wavelength_m < cutoff_hz)) if rate.size else 1.0
+
+    return weight
+
+
+def _analyse(obs: Any, orbit: Any, signal: str, system: str, pos: Any) -> Any:
+    """Run the SNR analysis, with the range widened for a low reflector (may raise)."""
+    from psdbound.validation.reflectors import reflector_heights
+
+    rh = reflector_heights(obs, orbit, signal=signal, systems=system, receiver_xyz_m=pos)
+    top = _top_for_cycles(rh)
+    if top > RANGE_DEG[1]:
+        rh = reflector_heights(
+            obs,
+            orbit,
+            signal=signal,
+            systems=system,
+            receiver_xyz_m=pos,
+            elevation_range_deg=(RANGE_DEG[0], top),
+        )
+    return rh
+
+
+def _choose(
+    rh: Any, ok: NDArray[np.bool_], weight: Callable[[float], float] | None
+) -> tuple[float, float, str]:
+    """Pick the reflection to model: ``(height_m, alpha, how)``."""
+    h_all, a_all = np.asarray(rh.height_m)[ok], np.asarray(rh.alpha)[ok]
+    if weight is None:
+        h = float(np.quantile(h_all, HEIGHT_QUANTILE))
+        a = float(np.quantile(a_all, ALPHA_QUANTILE))
+        return h, a, "10th percentile of the heights, 90th of the amplitude ratios"
+    removed = a_all**2 * np.array([weight(float(x)) for x in h_all])
+    i = int(np.argsort(removed)[min(int(np.ceil(ALPHA_QUANTILE * removed.size)), removed.size) - 1])
+    return (
+        float(h_all[i]),
+        float(a_all[i]),
+        (
+            "the arc at the 90th percentile of alpha^2 x the share of the data the filter "
+            "removes at its height"
+        ),
+    )
+
+
 def site_reflection(
     obs: Any,
     orbit: Any,
@@ -108,6 +220,7 @@ def site_reflection(
     system: str,
     receiver_xyz_m: NDArray[np.float64] | None,
     alpha: float,
+    weight: Callable[[float], float] | None = None,
 ) -> SiteReflection:
     """Measure the ground height and ``alpha`` from the SNR, or fall back to ``alpha``.
 
@@ -125,13 +238,16 @@ def site_reflection(
         Receiver position, ECEF m.
     alpha : float
         The configured amplitude ratio (the fallback).
+    weight : callable, optional
+        :func:`removed_weight`: with it, the arc whose reflection the filter
+        removes most (90th percentile of ``alpha^2 w(h)`` over the accepted
+        arcs) gives height and ``alpha`` together; without it, the 10th
+        percentile of the heights and the 90th of the ratios, apart.
 
     Returns
     -------
     SiteReflection
     """
-    from psdbound.validation.reflectors import reflector_heights
-
     signal = snr_signal(phase_signal)
     if orbit is None:
         return SiteReflection(
@@ -141,19 +257,7 @@ def site_reflection(
             note=f"no orbit for the SNR analysis: alpha {alpha:g} assumed (configuration)",
         )
     try:
-        rh = reflector_heights(
-            obs, orbit, signal=signal, systems=system, receiver_xyz_m=receiver_xyz_m
-        )
-        top = _top_for_cycles(rh)
-        if top > RANGE_DEG[1]:
-            rh = reflector_heights(
-                obs,
-                orbit,
-                signal=signal,
-                systems=system,
-                receiver_xyz_m=receiver_xyz_m,
-                elevation_range_deg=(RANGE_DEG[0], top),
-            )
+        rh = _analyse(obs, orbit, signal, system, receiver_xyz_m)
     except InputError as exc:
         return SiteReflection(
             alpha,
@@ -175,19 +279,17 @@ def site_reflection(
                 f"needed): alpha {alpha:g} and the ground height assumed (configuration, header)"
             ),
         )
-    h = float(np.quantile(np.asarray(rh.height_m)[ok], HEIGHT_QUANTILE))
+    h, a, how = _choose(rh, ok, weight)
     lo, hi = rh.elevation_range_deg
-    a = float(min(np.quantile(np.asarray(rh.alpha)[ok], ALPHA_QUANTILE), 0.99))
     return SiteReflection(
-        a,
+        min(a, 0.99),
         h,
         True,
         n,
         k,
         note=(
             f"measured from {k} of {n} {signal} SNR arcs (GNSS-IR, {lo:.3g}-{hi:.3g} deg): ground "
-            f"height {h:.2f} m "
-            f"(10th percentile; median {rh.median_height_m:.2f} m), alpha {a:.3f} (90th "
-            f"percentile; median {rh.median_alpha:.3f})"
+            f"height {h:.2f} m, alpha {a:.3f} ({how}; medians {rh.median_height_m:.2f} m, "
+            f"{rh.median_alpha:.3f})"
         ),
     )
