@@ -436,14 +436,14 @@ def _slow_component(series: Any, geoms: Sequence[str], site: Any, lams: Sequence
 
 
 def _site(inputs: InputData, series: Any, sats: Sequence[str], pos: Any,
-          options: ValidationOptions, cutoff_hz: float) -> Any:  # fmt: skip
+          options: ValidationOptions, cutoff_hz: float, channels: Any) -> Any:  # fmt: skip
     """Return the ground height and alpha: from the SNR when the options ask and it can."""
     from psdbound.validation.site import SiteReflection, removed_weight, site_reflection
 
     if not options.snr or not sats:
         return SiteReflection(options.alpha, None, False,
                               note=f"alpha {options.alpha:g} assumed (configuration)")  # fmt: skip
-    lam = wavelength_m(sats[0], series.signals[0], None)
+    lam = wavelength_m(sats[0], series.signals[0], channels)
     weight = removed_weight(series.elevation_deg, series.t_gps_s, series.arc_id,
                             wavelength_m=lam, cutoff_hz=cutoff_hz)  # fmt: skip
     return site_reflection(inputs.observations[0], inputs.orbit, phase_signal=series.signals[0],
@@ -521,7 +521,8 @@ def validate(
     sats = sorted(set(series.arc_sats))
     pos = inputs.receiver_xyz_m[0]
     pos = inputs.observations[0].header.approx_position_m if pos is None else np.asarray(pos)
-    site = _site(inputs, series, sats, pos, options, cutoff.f_c_hz)
+    channels = isolated.arcs.glonass_channels if isolated.arcs is not None else None
+    site = _site(inputs, series, sats, pos, options, cutoff.f_c_hz, channels)
     geoms, note = _resolve_geometries(inputs, options, site.ground_height_m)
     report = validate_cutoff(
         geoms, cutoff_hz=cutoff.f_c_hz, rate=options.rate, alpha=site.alpha,
@@ -529,7 +530,6 @@ def validate(
         receiver_xyz_m=pos, sats=sats, system=sats[0][0] if sats else "G",
         elevation_mask_deg=arcs.elevation_mask_deg,
     )  # fmt: skip
-    channels = isolated.arcs.glonass_channels if isolated.arcs is not None else None
     removed = _removed_rms(report, series.signals, sats[0] if sats else "G01", site.alpha,
                            channels)  # fmt: skip
     lams = [wavelength_m(sats[0] if sats else "G01", sg, channels) for sg in series.signals[:2]]
