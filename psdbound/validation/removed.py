@@ -37,6 +37,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from psdbound.isolation import DF_SCALING
 from psdbound.spectra.models import gm_psd_sampled
 from psdbound.validation.direct import phase_error_rad
 from psdbound.validation.geometry import Reflection
@@ -45,8 +46,6 @@ __all__ = ["RemovedMultipath", "envelope", "removed_along_arcs", "slow_gauss_mar
 
 #: Time constants searched for the slow component.
 _N_TAU = 160
-#: The dual-frequency combination of two carriers' multipath, (m_1 - m_2) / sqrt(2).
-_DF_SCALING = 1.0 / np.sqrt(2.0)
 
 
 @dataclass(frozen=True)
@@ -140,7 +139,7 @@ def _removed_series(
         lam / (2.0 * np.pi) * phase_error_rad(geometry.phase_rad(th, wavelength_m=lam), alpha)
         for lam in wavelengths_m[:2]
     ]
-    x = _DF_SCALING * (m[0] - m[1])
+    x = DF_SCALING * (m[0] - m[1])  # the isolation's combination of the two carriers
     y, keep = highpass.apply(x - x.mean(), dt_s, cutoff_hz)
     return (x - y)[keep]
 
