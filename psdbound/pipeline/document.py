@@ -282,6 +282,17 @@ def _windows_section(
     }
 
 
+def _roti_rule(sc: Any) -> str:
+    """Return how the ROTI threshold of a block was set, in words."""
+    if sc.null is not None:
+        return (f"max(threshold, the {1 - sc.options.false_alarm:g} quantile of the ROTI the "
+                f"series' own multipath produces in the block's elevation band: a scaled "
+                f"chi-square fitted to the band's lower half) per 5-min block")  # fmt: skip
+    if sc.options.elevation_scaled:
+        return "min(threshold x m(el), cap) per 5-min block, m the elevation mapping"
+    return "flat threshold"
+
+
 def _screening_section(screened: Screened) -> dict[str, Any]:
     sc = screened.screening
     return {
@@ -295,14 +306,14 @@ def _screening_section(screened: Screened) -> dict[str, Any]:
         "scaling x sum of quarter wavelengths of its phase terms",
         "roti_threshold_tecu_min": sc.options.roti_threshold_tecu_min,
         "roti_cap_tecu_min": sc.options.roti_cap_tecu_min,
-        "roti_threshold_rule": (
-            "min(threshold x m(el), cap) per 5-min block, m the elevation mapping"
-            if sc.options.elevation_scaled else "flat threshold"
-        ),
+        "roti_threshold_rule": _roti_rule(sc),
+        "multipath_null": None if sc.null is None else sc.null.as_dict(),
+        "false_alarm_per_block": sc.options.false_alarm if sc.null is not None else None,
         "roti": "5-min blocks of ROT sampled at 30 s (Pi et al. 1997)",
         "options": {"guard_s": sc.guard_s, "ionosphere": sc.options.ionosphere,
                     "plausibility": sc.options.plausibility,
-                    "elevation_scaled": sc.options.elevation_scaled},
+                    "elevation_scaled": sc.options.elevation_scaled,
+                    "multipath_null": sc.options.multipath_null},
         "notes": list(sc.notes),
     }  # fmt: skip
 

@@ -110,14 +110,23 @@ def _low_elevation_roughness(elevation):
                                      interval_s=30.0, cutoff_hz=9.55e-4)
 
 
-def test_threshold_scales_with_the_multipath_mapping():
+def test_fixed_threshold_scales_with_the_multipath_mapping():
+    fixed = ScreeningOptions(multipath_null=False)
     low = _low_elevation_roughness(12.0)
-    flat = screen_series(low, ScreeningOptions(elevation_scaled=False))
-    scaled = screen_series(low, mapping=_Mapping())
+    flat = screen_series(low, ScreeningOptions(elevation_scaled=False, multipath_null=False))
+    scaled = screen_series(low, fixed, mapping=_Mapping())
     assert flat.excluded_fraction > 0.5  # a flat 0.15 would throw away low-elevation multipath
     assert scaled.excluded_fraction == 0.0  # 0.15 x m(12 deg) = 2.3 TECU/min
     high = _low_elevation_roughness(70.0)  # the same roughness at 70 deg is not multipath-like
-    assert screen_series(high, mapping=_Mapping()).excluded_fraction > 0.5
+    assert screen_series(high, fixed, mapping=_Mapping()).excluded_fraction > 0.5
+
+
+def test_multipath_null_keeps_rough_multipath_without_a_mapping():
+    """Issue 29: the series' own multipath sets the threshold; no mapping is needed."""
+    low = _low_elevation_roughness(12.0)
+    res = screen_series(low)  # default: the multipath null, no mapping given
+    assert res.null is not None and res.null.trusted
+    assert res.excluded_fraction < 0.02
 
 
 def test_default_guard_is_half_a_cutoff_period():
