@@ -314,7 +314,8 @@ def _threshold(el_mean: NDArray[np.float64], opt: ScreeningOptions, mapping: Any
             scaled = np.minimum(scaled, opt.roti_cap_tecu_min)
     if null is None:
         return scaled
-    thr = np.maximum(base, null.threshold(el_mean, opt.false_alarm))
+    # two tests per block (alone, and in a 15-min run): the false-alarm probability is split
+    thr = np.maximum(base, null.threshold(el_mean, 0.5 * opt.false_alarm))
     return thr if null.trusted else np.minimum(thr, np.maximum(base, scaled))
 
 
@@ -389,13 +390,16 @@ def screen_series(
         start, stop, roti, vmax = bk["start"], bk["stop"], bk["roti"], bk["vmax"]
         thr = _threshold(bk["el"], opt, mapping, null)
         iono = (roti > thr) & ~np.isnan(roti) if opt.ionosphere else np.zeros(roti.size, bool)
+        if opt.ionosphere and null is not None and null.trusted:
+            iono |= null.persistent(roti, bk["el"], false_alarm=0.5 * opt.false_alarm,
+                                    floor_tecu_min=opt.roti_threshold_tecu_min)  # fmt: skip
         implaus = (vmax > limit) if opt.plausibility else np.zeros(roti.size, bool)
         keep = np.ones(t.size, bool)
         for b0, b1 in _spans(iono | implaus, start, stop):
             s0, s1 = start[b0] - guard_s, stop[b1] + guard_s
             sel = (t >= s0) & (t < s1)
             keep &= ~sel
-            if np.any(implaus[b0:b1 + 1]):
+            if np.any(implaus[b0:b1 + 1]) and not np.any(iono[b0:b1 + 1]):
                 stat = float(vmax[b0:b1 + 1].max())
                 e = ExcludedSpan(sats, float(t[sel][0]), float(t[sel][-1]),
                                  f"implausible: {100 * stat:.1f} cm > {100 * limit:.1f} cm "
@@ -404,9 +408,14 @@ def screen_series(
                 ratio = roti[b0:b1 + 1] / thr[b0:b1 + 1]
                 j = b0 + int(np.nanargmax(ratio))
                 stat, th = float(roti[j]), float(thr[j])
+                why = (f"ROTI {stat:.2f} TECU/min > {th:.2f}" if stat > th else
+                       f"ROTI up to {stat:.2f} TECU/min over 15 min, improbable under this "
+                       f"series' multipath (false-alarm probability {opt.false_alarm:g})")
+                if np.any(implaus[b0:b1 + 1]):  # a disturbance drives the series off limits too
+                    why += (f"; values up to {100 * float(vmax[b0:b1 + 1].max()):.1f} cm beyond "
+                            f"the {100 * limit:.1f} cm carrier-multipath limit")
                 e = ExcludedSpan(sats, float(t[sel][0]), float(t[sel][-1]),
-                                 f"ionosphere: ROTI {stat:.2f} TECU/min > {th:.2f}",
-                                 "ionosphere", stat, th)  # fmt: skip
+                                 f"ionosphere: {why}", "ionosphere", stat, th)  # fmt: skip
             excluded.append(e)
         # kept pieces; remainders too short for a window are excluded with that reason
         edges = np.flatnonzero(np.diff(np.r_[0, keep.astype(np.int8), 0]))

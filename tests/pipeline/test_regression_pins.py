@@ -75,12 +75,13 @@ import psdbound
 
 PINS = {
     # case: (sigma_gm_m, tau_s, sigma_wn_m, windows)
-    # issue 29: screening against the multipath null (demo: 14 windows, was 15)
-    "demo": (0.004150454122262318, 32.91889365000802, 0.001196895467605489, 14),
+    # issue 29: screening against the multipath null (demo: nothing excluded, 13 windows of
+    # which one forms a shape group of its own: a looser bound, an issue-27 sensitivity)
+    "demo": (0.007362602213552477, 55.488196960447866, 0.0011151014332937187, 13),
     # ESBC: the data do not bound tau above; below the lowest band the bound covers the
     # admitted models up to the prior 900 s (issue 28: was 4.23 mm / 55.8 s, extrapolated)
     "esbc": (0.006697230445236575, 288.6899767834364, 0.0, 119),
-    "nya1": (0.025652082348684387, 854.3368059096172, 0.010760534612166266, 87),
+    "nya1": (0.0236038701309411, 869.183034336445, 0.014731414703623361, 89),
     "upc": (0.0030101759370637104, 80.22364497489161, 0.0006029079248506507, 13),
 }
 
@@ -124,10 +125,13 @@ def test_pinned_bound(case):
         assert scr["excluded_fraction"] < 0.05
     if case == "nya1":  # 78.9 N: disturbed spans listed with their reasons, bands <= 2.5 cm
         kinds = {e["kind"] for e in scr["excluded"]}
-        assert {"ionosphere", "implausible"} <= kinds
+        assert "ionosphere" in kinds
+        # values beyond the carrier-multipath limit inside disturbed spans are named there
+        assert any("carrier-multipath limit" in e["reason"] for e in scr["excluded"])
         for e in scr["excluded"]:
             assert e["sat"] and e["stop_gps_s"] >= e["start_gps_s"] and e["reason"]
-            assert e["statistic"] > e["threshold"] or e["kind"] == "short remainder"
+            assert (e["statistic"] > e["threshold"] or e["kind"] == "short remainder"
+                    or "improbable under" in e["reason"])  # a 15-min run (persistence)
         # the tightest bound over the bands (before the low-frequency prior raised it)
         assert d["bound"]["low_frequency"]["before"]["sigma_gm_m"] <= 0.025
         assert scr["multipath_limit_m"] == pytest.approx(0.0770, abs=2e-4)

@@ -69,3 +69,19 @@ def test_gauss_markov_multipath_rot_at_the_stated_rate():
     hit = roti > null.threshold(elb, 1e-2)
     assert hit.mean() < 3e-2  # stated 1e-2 per block (this multipath trips a fixed 0.15 often)
     assert (roti > 0.15).mean() > 0.3
+
+
+def test_persistence_finds_a_weak_disturbance_the_single_blocks_miss():
+    """A 0.25 TECU/min disturbance over an hour where multipath gives about 0.15 (issue 29)."""
+    rng = np.random.default_rng(11)
+    el = rng.uniform(10.0, 90.0, 3000)
+    null = fit_null(_chi2_roti(rng, el.size, 0.15, 6.0), el)
+    arc_el = np.full(60, 21.0)  # 5 h of one arc at 21 deg
+    quiet = _chi2_roti(rng, arc_el.size, 0.15, 6.0)
+    hit = quiet.copy()
+    hit[20:32] = np.hypot(hit[20:32], 0.25)  # one hour disturbed
+    single = hit > np.maximum(0.15, null.threshold(arc_el, 1e-3))
+    runs = null.persistent(hit, arc_el, floor_tecu_min=0.15)
+    assert single[20:32].mean() < 0.9  # the single-block test misses some of it
+    assert (single | runs)[20:32].mean() > 0.95
+    assert not null.persistent(quiet, arc_el, floor_tecu_min=0.15).any()
