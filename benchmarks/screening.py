@@ -120,7 +120,6 @@ import argparse  # noqa: E402
 import gzip  # noqa: E402
 import json  # noqa: E402
 import math  # noqa: E402
-import subprocess  # noqa: E402
 import sys  # noqa: E402
 import tempfile  # noqa: E402
 import time  # noqa: E402
@@ -129,8 +128,8 @@ from pathlib import Path  # noqa: E402
 from typing import Any  # noqa: E402
 
 import numpy as np  # noqa: E402
+from _simfit import REPO, fmt, run_cli, tail  # noqa: E402
 
-REPO = Path(__file__).resolve().parent.parent
 if str(REPO) not in sys.path:
     sys.path.insert(0, str(REPO))  # the package of this checkout, also when run from elsewhere
 
@@ -217,23 +216,6 @@ def build_cases(quick: bool) -> list[Case]:
 
 
 # ----------------------------------------------------------------- subprocesses
-def _env() -> dict[str, str]:
-    env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join(p for p in (str(REPO), env.get("PYTHONPATH")) if p)
-    return env
-
-
-def run_cli(args: list[str], cwd: Path) -> subprocess.CompletedProcess[str]:
-    """Run ``python -m psdbound ARGS`` with this checkout's package; never raises on exit codes."""
-    return subprocess.run([sys.executable, "-m", "psdbound", *args], cwd=cwd, env=_env(),
-                          capture_output=True, text=True)  # fmt: skip
-
-
-def _tail(proc: subprocess.CompletedProcess[str], n: int = 4) -> str:
-    lines = (proc.stdout + proc.stderr).strip().splitlines()
-    return " | ".join(lines[-n:])
-
-
 def scenario_toml(case: Case, spans: list[tuple[str, float]]) -> str:
     """The ``--scenario`` file: ``[multipath]`` and one ``[[disturbances]]`` per span."""
     a, b, c = MAPPING
@@ -262,7 +244,7 @@ def simulate(case: Case, seed: int, folder: Path, spans: list[tuple[str, float]]
                     f"{DT_S:g}", "--seed", str(seed), "--scenario", str(toml), "--out",
                     str(folder)], folder.parent)  # fmt: skip
     if proc.returncode != 0:
-        raise RuntimeError(f"simulate exit {proc.returncode}: {_tail(proc)}")
+        raise RuntimeError(f"simulate exit {proc.returncode}: {tail(proc)}")
     found = sorted(folder.glob("*_truth.json"))
     if len(found) != 1:
         raise RuntimeError(f"expected one *_truth.json in {folder}, found {len(found)}")
@@ -276,7 +258,7 @@ def fit(truth_json: Path, out: Path) -> tuple[int, str]:
     nav = str(truth_json.parent / files["nav"])
     proc = run_cli(["fit", *obs, "--nav", nav, "--out", str(out), "--no-pdf", "--quiet"],
                    out.parent)  # fmt: skip
-    return proc.returncode, _tail(proc)
+    return proc.returncode, tail(proc)
 
 
 # ----------------------------------------------------------------- truth and placement
@@ -501,12 +483,6 @@ def run_case(case: Case, seed: int, work: Path, ref: dict[str, Any] | None) -> d
 
 
 # ----------------------------------------------------------------- report
-def _f(v: Any, spec: str = ".3f") -> str:
-    if v is None or (isinstance(v, float) and not math.isfinite(v)):
-        return "-"
-    return format(v, spec)
-
-
 def bound_change_pct(rec: dict[str, Any]) -> float:
     """Largest ``|ratio - 1|`` of total variance and sigma_gm, percent (NaN without both)."""
     vals = [rec.get("var_ratio", math.nan), rec.get("sgm_ratio", math.nan)]
@@ -539,25 +515,27 @@ def print_table(recs: list[dict[str, Any]]) -> None:
     for r in recs:
         c = r["case"]
         if "error" in r and "verdict" not in r:
-            print(f"{c.label:<16}{_f(r.get('rc'), 'd'):>3} error: {r['error']}")
+            print(f"{c.label:<16}{fmt(r.get('rc'), 'd'):>3} error: {r['error']}")
             continue
-        print(f"{c.label:<16}{_f(r.get('rc'), 'd'):>3} {str(r.get('verdict')):<12}"
-              f"{_f(r.get('iono_pct'), '.2f'):>7}{_f(r.get('total_pct'), '.2f'):>7}"
-              f"{_f(r.get('n_iono'), 'd'):>7}{_f(r.get('det_pct'), '.1f'):>7}"
-              f"{_f(r.get('det_any_pct'), '.1f'):>7}{_f(r.get('seen_pct'), '.1f'):>7}"
-              f"{_f(r.get('det_seen_pct'), '.1f'):>10}{_f(r.get('leak_pct'), '.1f'):>7}"
-              f"{_f(r.get('extra'), 'd'):>6}"
-              f"{_f(r.get('var_ratio'), '.3f'):>7}{_f(r.get('sgm_ratio'), '.3f'):>7}"
-              f"{_f(1e3 * r['sgm'] if 'sgm' in r else None, '.2f'):>7}"
-              f"{_f(r.get('run_s'), '.0f'):>5}  {judge(r):<10}")  # fmt: skip
-    print("iono%: data excluded as ionosphere (guard included) / screening input; total%: "
-          "screening.excluded_fraction; n_iono: ionosphere spans; det%: disturbed "
-          "satellite-time (above the fit's mask) inside an ionosphere span (any%: a span of "
-          "any kind); seen%: disturbed satellite-time in the screening's input; det|seen%: "
-          "det% of that; leak%: disturbed satellite-time the screening kept (passed to the "
-          "bound); extra: ionosphere spans touching no disturbed span; varR, sgmR: bound "
-          "total variance and sigma_gm over the clean day's (ref); sgm_mm: bound sigma_gm; "
-          "check: mp iono% <= 2, dist 100 - leak% >= 95, |varR - 1| and |sgmR - 1| <= 0.1")
+        print(f"{c.label:<16}{fmt(r.get('rc'), 'd'):>3} {str(r.get('verdict')):<12}"
+              f"{fmt(r.get('iono_pct'), '.2f'):>7}{fmt(r.get('total_pct'), '.2f'):>7}"
+              f"{fmt(r.get('n_iono'), 'd'):>7}{fmt(r.get('det_pct'), '.1f'):>7}"
+              f"{fmt(r.get('det_any_pct'), '.1f'):>7}{fmt(r.get('seen_pct'), '.1f'):>7}"
+              f"{fmt(r.get('det_seen_pct'), '.1f'):>10}{fmt(r.get('leak_pct'), '.1f'):>7}"
+              f"{fmt(r.get('extra'), 'd'):>6}"
+              f"{fmt(r.get('var_ratio'), '.3f'):>7}{fmt(r.get('sgm_ratio'), '.3f'):>7}"
+              f"{fmt(1e3 * r['sgm'] if 'sgm' in r else None, '.2f'):>7}"
+              f"{fmt(r.get('run_s'), '.0f'):>5}  {judge(r):<10}")  # fmt: skip
+    print(
+        "iono%: data excluded as ionosphere (guard included) / screening input; total%: "
+        "screening.excluded_fraction; n_iono: ionosphere spans; det%: disturbed "
+        "satellite-time (above the fit's mask) inside an ionosphere span (any%: a span of "
+        "any kind); seen%: disturbed satellite-time in the screening's input; det|seen%: "
+        "det% of that; leak%: disturbed satellite-time the screening kept (passed to the "
+        "bound); extra: ionosphere spans touching no disturbed span; varR, sgmR: bound "
+        "total variance and sigma_gm over the clean day's (ref); sgm_mm: bound sigma_gm; "
+        "check: mp iono% <= 2, dist 100 - leak% >= 95, |varR - 1| and |sgmR - 1| <= 0.1"
+    )
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -610,10 +588,10 @@ def main(argv: list[str] | None = None) -> int:
                 msg = (f"exit {r['rc']} {r['verdict']}, iono {r['iono_pct']:.2f} %, total "
                        f"{r['total_pct']:.2f} %")  # fmt: skip
                 if c.kind == "dist":
-                    msg += (f", detected {_f(r['det_pct'], '.1f')} %, varR "
-                            f"{_f(r['var_ratio'], '.3f')}")  # fmt: skip
-            print(f"{c.label} (seed {seed}): {msg} [sim {_f(r.get('sim_s'), '.0f')} s, fit "
-                  f"{_f(r.get('fit_s'), '.0f')} s]", flush=True)  # fmt: skip
+                    msg += (f", detected {fmt(r['det_pct'], '.1f')} %, varR "
+                            f"{fmt(r['var_ratio'], '.3f')}")  # fmt: skip
+            print(f"{c.label} (seed {seed}): {msg} [sim {fmt(r.get('sim_s'), '.0f')} s, fit "
+                  f"{fmt(r.get('fit_s'), '.0f')} s]", flush=True)  # fmt: skip
     finally:
         if tmp is not None:
             tmp.cleanup()
@@ -674,27 +652,27 @@ def main(argv: list[str] | None = None) -> int:
               f"bound sigma_gm {1e3 * ref['sgm']:.2f} mm, total variance "
               f"{ref['var']:.3e} m^2")  # fmt: skip
     print(f"target strong multipath excluded as ionosphere <= {MP_MAX_IONO_PCT:g} % in every "
-          f"case: {_pf(mp_ok, mp)} (max {_f(mp_max, '.2f')} %, {n_mp_ok}/{len(mp)})")  # fmt: skip
+          f"case: {_pf(mp_ok, mp)} (max {fmt(mp_max, '.2f')} %, {n_mp_ok}/{len(mp)})")  # fmt: skip
     print(f"target disturbed satellite-time kept out of the bound >= {DIST_MIN_DETECTED_PCT:g} % "
-          f"in every case: {_pf(dist_ok)} (min {_f(det_min, '.1f')} %, {n_det_ok}/{len(dist)}); "
-          f"named as ionosphere by the screening: min {_f(min(named, default=math.nan), '.1f')} "
+          f"in every case: {_pf(dist_ok)} (min {fmt(det_min, '.1f')} %, {n_det_ok}/{len(dist)}); "
+          f"named as ionosphere by the screening: min {fmt(min(named, default=math.nan), '.1f')} "
           f"%, {sum(v >= DIST_MIN_DETECTED_PCT for v in named)}/{len(named)} >= "
           f"{DIST_MIN_DETECTED_PCT:g} %")  # fmt: skip
     print(f"target bound within {BOUND_MAX_CHANGE_PCT:g} % of the clean day's (total variance "
-          f"and sigma_gm): {_pf(bound_ok)} (max change {_f(chg_max, '.1f')} %, "
+          f"and sigma_gm): {_pf(bound_ok)} (max change {fmt(chg_max, '.1f')} %, "
           f"{n_chg_ok}/{len(dist)})")  # fmt: skip
     leak = _vals(dist, lambda r: r["leak_pct"])
     det_seen = [v for v in _vals(dist, lambda r: r["det_seen_pct"]) if math.isfinite(v)]
     print(f"diagnostic (not judged): disturbed satellite-time kept by the screening (leak%) max "
-          f"{_f(max(leak, default=math.nan), '.1f')} %, {sum(v > 0 for v in leak)}/{len(leak)} "
-          f"days leak; det|seen% min {_f(min(det_seen, default=math.nan), '.1f')} %")  # fmt: skip
+          f"{fmt(max(leak, default=math.nan), '.1f')} %, {sum(v > 0 for v in leak)}/{len(leak)} "
+          f"days leak; det|seen% min {fmt(min(det_seen, default=math.nan), '.1f')} %")  # fmt: skip
     print(f"errors: {len(errors)}; time: {elapsed:.0f} s; per day median "
           f"{np.median([r['run_s'] for r in recs]):.1f} s")  # fmt: skip
     print(
-        f"RESULT n_cases={len(judged)} mp_max_iono_excluded_pct={_f(mp_max, '.2f')} "
-        f"mp_pass={str(mp_ok).lower()} dist_min_kept_out_pct={_f(det_min, '.1f')} "
-        f"dist_min_named_pct={_f(min(named, default=math.nan), '.1f')} "
-        f"dist_pass={str(dist_ok).lower()} bound_max_change_pct={_f(chg_max, '.1f')} "
+        f"RESULT n_cases={len(judged)} mp_max_iono_excluded_pct={fmt(mp_max, '.2f')} "
+        f"mp_pass={str(mp_ok).lower()} dist_min_kept_out_pct={fmt(det_min, '.1f')} "
+        f"dist_min_named_pct={fmt(min(named, default=math.nan), '.1f')} "
+        f"dist_pass={str(dist_ok).lower()} bound_max_change_pct={fmt(chg_max, '.1f')} "
         f"bound_pass={str(bound_ok).lower()} all_targets_pass={str(all_ok).lower()} "
         f"elapsed_s={elapsed:.0f}"
     )

@@ -125,7 +125,6 @@ import argparse  # noqa: E402
 import gzip  # noqa: E402
 import json  # noqa: E402
 import math  # noqa: E402
-import subprocess  # noqa: E402
 import sys  # noqa: E402
 import tempfile  # noqa: E402
 import time  # noqa: E402
@@ -134,9 +133,9 @@ from pathlib import Path  # noqa: E402
 from typing import Any  # noqa: E402
 
 import numpy as np  # noqa: E402
+from _simfit import REPO, fmt, run_cli, tail  # noqa: E402
 from scipy.integrate import trapezoid  # noqa: E402
 
-REPO = Path(__file__).resolve().parent.parent
 if str(REPO) not in sys.path:
     sys.path.insert(0, str(REPO))  # the package of this checkout, also when run from elsewhere
 
@@ -220,23 +219,6 @@ def build_cases(hours_1s: float, quick: bool,
 
 
 # ----------------------------------------------------------------- subprocesses
-def _env() -> dict[str, str]:
-    env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join(p for p in (str(REPO), env.get("PYTHONPATH")) if p)
-    return env
-
-
-def run_cli(args: list[str], cwd: Path) -> subprocess.CompletedProcess[str]:
-    """Run ``python -m psdbound ARGS`` with this checkout's package; never raises on exit codes."""
-    return subprocess.run([sys.executable, "-m", "psdbound", *args], cwd=cwd, env=_env(),
-                          capture_output=True, text=True)  # fmt: skip
-
-
-def _tail(proc: subprocess.CompletedProcess[str], n: int = 4) -> str:
-    lines = (proc.stdout + proc.stderr).strip().splitlines()
-    return " | ".join(lines[-n:])
-
-
 def _scenario_toml(case: Case, with_reflector: bool) -> str:
     sg, tau, wn = REFL_GM
     a, b, c = FLAT_MAPPING
@@ -276,7 +258,7 @@ def simulate_case(case: Case, seed: int, folder: Path) -> Path:
     for args, out in runs:
         proc = run_cli(["simulate", *args, "--out", str(out)], out.parent)
         if proc.returncode != 0:
-            raise RuntimeError(f"simulate exit {proc.returncode}: {_tail(proc)}")
+            raise RuntimeError(f"simulate exit {proc.returncode}: {tail(proc)}")
     found = sorted(folder.glob("*_truth.json"))
     if len(found) != 1:
         raise RuntimeError(f"expected one *_truth.json in {folder}, found {len(found)}")
@@ -290,7 +272,7 @@ def fit_case(truth_json: Path, out: Path) -> tuple[int, str]:
     nav = str(truth_json.parent / files["nav"])
     proc = run_cli(["fit", *obs, "--nav", nav, "--out", str(out), "--no-pdf", "--quiet"],
                    out.parent)  # fmt: skip
-    return proc.returncode, _tail(proc)
+    return proc.returncode, tail(proc)
 
 
 # ----------------------------------------------------------------- the exported model
@@ -472,10 +454,15 @@ def kf_check(model: Any, truth: Any, dt_s: float, n_steps: int) -> tuple[float, 
 
     from psdbound.kalman import ErrorProcess
 
-    parts = [ErrorProcess.gauss_markov(c.sigma_m, c.tau_s, dt_s)
-             for c in model.components if c.kind == "gauss-markov" and c.sigma_m > 0]
-    white = math.sqrt(model.variance_m2() - sum(c.variance_m2 for c in model.components
-                                                if c.kind == "gauss-markov"))
+    parts = [
+        ErrorProcess.gauss_markov(c.sigma_m, c.tau_s, dt_s)
+        for c in model.components
+        if c.kind == "gauss-markov" and c.sigma_m > 0
+    ]
+    white = math.sqrt(
+        model.variance_m2()
+        - sum(c.variance_m2 for c in model.components if c.kind == "gauss-markov")
+    )
     design = sum(parts[1:], parts[0]) if parts else None
     rd = np.zeros(n_steps) if design is None else design.acf(n_steps)
     rd[0] += white**2 + R_OTHER_M2
@@ -516,8 +503,12 @@ def run_case(case: Case, seed: int, work: Path) -> dict[str, Any]:
         model = exported_model(result_path)
         gm, wn = model["gauss_markov"], model["white"]
         slow = next((c for c in model.components if c.name == "slow"), None)
-        rec.update(b_sigma_gm_mm=1e3 * gm.sigma_m, b_tau_s=gm.tau_s, b_sigma_wn_mm=1e3 * wn.sigma_m,
-                   slow=(f"{1e3 * slow.sigma_m:.2f}mm/{slow.tau_s:.0f}s" if slow else "-"))
+        rec.update(
+            b_sigma_gm_mm=1e3 * gm.sigma_m,
+            b_tau_s=gm.tau_s,
+            b_sigma_wn_mm=1e3 * wn.sigma_m,
+            slow=(f"{1e3 * slow.sigma_m:.2f}mm/{slow.tau_s:.0f}s" if slow else "-"),
+        )
         dt = case.dt_s
         f = frequency_grid(dt)
         s_model = model.sampled_psd(f)
@@ -558,12 +549,6 @@ def run_case(case: Case, seed: int, work: Path) -> dict[str, Any]:
 
 
 # ----------------------------------------------------------------- report
-def _f(v: Any, spec: str = ".3f") -> str:
-    if v is None or (isinstance(v, float) and not math.isfinite(v)):
-        return "-"
-    return format(v, spec)
-
-
 def judge(rec: dict[str, Any]) -> str:
     """``pass``/``FAIL`` for a bounded case, ``refused``/``refused-unnamed``, or ``error``."""
     if "error" in rec:
@@ -582,15 +567,15 @@ def print_table(recs: list[dict[str, Any]]) -> None:
     for r in recs:
         c = r["case"]
         if "error" in r and "verdict" not in r:
-            print(f"{c.label:<15}{_f(r.get('rc'), 'd'):>3} error: {r['error']}")
+            print(f"{c.label:<15}{fmt(r.get('rc'), 'd'):>3} error: {r['error']}")
             continue
-        print(f"{c.label:<15}{_f(r.get('rc'), 'd'):>3} {str(r.get('verdict')):<12}"
-              f"{_f(r.get('b_sigma_gm_mm'), '.3f'):>7}{_f(r.get('b_tau_s'), '.1f'):>8}"
-              f"{_f(r.get('b_sigma_wn_mm'), '.3f'):>7}{_f(r.get('f_lo_hz'), '.2e'):>9}"
-              f"{_f(r.get('m_min'), '.4f'):>7}{_f(r.get('min_ratio'), '.4f'):>10}"
-              f"{_f(r.get('f_at_min_hz'), '.2e'):>10}{_f(r.get('ratio0'), '.3f'):>8}"
-              f"{_f(r.get('eig'), '.3f'):>8}{str(r.get('eig_at', '-')):>7}"
-              f"{_f(r.get('var_ratio'), '.2f'):>7}{_f(r.get('run_s'), '.0f'):>5}  "
+        print(f"{c.label:<15}{fmt(r.get('rc'), 'd'):>3} {str(r.get('verdict')):<12}"
+              f"{fmt(r.get('b_sigma_gm_mm'), '.3f'):>7}{fmt(r.get('b_tau_s'), '.1f'):>8}"
+              f"{fmt(r.get('b_sigma_wn_mm'), '.3f'):>7}{fmt(r.get('f_lo_hz'), '.2e'):>9}"
+              f"{fmt(r.get('m_min'), '.4f'):>7}{fmt(r.get('min_ratio'), '.4f'):>10}"
+              f"{fmt(r.get('f_at_min_hz'), '.2e'):>10}{fmt(r.get('ratio0'), '.3f'):>8}"
+              f"{fmt(r.get('eig'), '.3f'):>8}{str(r.get('eig_at', '-')):>7}"
+              f"{fmt(r.get('var_ratio'), '.2f'):>7}{fmt(r.get('run_s'), '.0f'):>5}  "
               f"{judge(r):<8}")  # fmt: skip
     print("sgm/tau/swn: exported model (zenith scale); f_lo: lower end of the fit's stated band; "
           "m_min: smallest fitted m(el) over [mask, 90 deg] (GM cases); min_ratio: min over "
@@ -644,7 +629,7 @@ def main(argv: list[str] | None = None) -> int:
                    f"exit {r['rc']} {r['verdict']}, min_ratio {r['min_ratio']:.4f}, "
                    f"eig {r['eig']:.3f}")  # fmt: skip
             print(f"{c.label} ({c.hours:g} h at {c.dt_s:g} s, seed {args.seed + c.index}): "
-                  f"{msg} [sim {_f(r.get('sim_s'), '.0f')} s, fit {_f(r.get('fit_s'), '.0f')} "
+                  f"{msg} [sim {fmt(r.get('sim_s'), '.0f')} s, fit {fmt(r.get('fit_s'), '.0f')} "
                   f"s, total {r['run_s']:.0f} s]", flush=True)  # fmt: skip
     finally:
         if tmp is not None:
@@ -693,9 +678,9 @@ def main(argv: list[str] | None = None) -> int:
     print(
         f"RESULT n_cases={len(recs)} bounded={len(bounded)} not_bounded={len(refused)} "
         f"errors={len(errors)} covered_all_bounded={str(covered).lower()} "
-        f"worst_min_ratio_bounded={_f(worst['min_ratio'] if worst else math.nan, '.4f')} "
+        f"worst_min_ratio_bounded={fmt(worst['min_ratio'] if worst else math.nan, '.4f')} "
         f"worst_case={worst['case'].label if worst else '-'} "
-        f"max_eig_bounded={_f(max_eig, '.4f')} eig_le_1_bounded={str(eig_ok).lower()} "
+        f"max_eig_bounded={fmt(max_eig, '.4f')} eig_le_1_bounded={str(eig_ok).lower()} "
         f"tau_le_120_bounded={str(fast_ok).lower()} refusals_named={str(named).lower()} "
         f"all_targets_pass={str(all_ok).lower()} elapsed_s={elapsed:.0f}"
     )

@@ -1,0 +1,46 @@
+"""Shared scaffolding of the benchmarks that simulate days and fit them through the CLI.
+
+``run_cli`` runs ``python -m psdbound`` with this checkout's package first on
+the path (so a benchmark measures the code beside it, wherever it is run
+from) and never raises on an exit code; ``tail`` keeps the last lines of its
+output for a message; ``fmt`` prints a number or ``-`` for a missing one.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any
+
+__all__ = ["REPO", "fmt", "run_cli", "tail"]
+
+#: The checkout the benchmarks belong to.
+REPO = Path(__file__).resolve().parent.parent
+
+
+def _env() -> dict[str, str]:
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join(p for p in (str(REPO), env.get("PYTHONPATH")) if p)
+    return env
+
+
+def run_cli(args: list[str], cwd: Path) -> subprocess.CompletedProcess[str]:
+    """Run ``python -m psdbound ARGS`` with this checkout's package; never raises on exit codes."""
+    return subprocess.run([sys.executable, "-m", "psdbound", *args], cwd=cwd, env=_env(),
+                          capture_output=True, text=True)  # fmt: skip
+
+
+def tail(proc: subprocess.CompletedProcess[str], n: int = 4) -> str:
+    """Return the last ``n`` lines of a run's output, joined."""
+    lines = (proc.stdout + proc.stderr).strip().splitlines()
+    return " | ".join(lines[-n:])
+
+
+def fmt(v: Any, spec: str = ".3f") -> str:
+    """Format a number, or ``-`` for None or a non-finite value."""
+    if v is None or (isinstance(v, float) and not math.isfinite(v)):
+        return "-"
+    return format(v, spec)
