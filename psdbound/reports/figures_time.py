@@ -194,8 +194,11 @@ def fig_screening(r: dict[str, Any]) -> Figure | None:
         ax = axes[0]
         ax.semilogy(t[~exc], ratio[~exc], ".", ms=2.5, color="tab:blue", label="kept")
         ax.semilogy(t[exc], ratio[exc], ".", ms=2.5, color="tab:orange", label="excluded")
-        ax.axhline(1.0, color="tab:red", lw=1,
-                   label=f"threshold {d['threshold_tecu_min']:g} TECU/min x m(el)")  # fmt: skip
+        scr = r.get("screening", {})
+        what = (f"max({d['threshold_tecu_min']:g} TECU/min, multipath null at p = "
+                f"{scr.get('false_alarm_per_block'):g} per block)"
+                if scr.get("multipath_null") else f"{d['threshold_tecu_min']:g} TECU/min x m(el)")
+        ax.axhline(1.0, color="tab:red", lw=1, label=f"threshold {what}")
         ax.set_ylabel("ROTI / threshold [-]")
         ax.legend(fontsize=7, loc="upper right", ncol=3)
         ax.grid(alpha=0.3, which="both")
