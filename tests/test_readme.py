@@ -16,7 +16,8 @@ def test_readme_snippets_run(tmp_path, monkeypatch):
     for code in blocks:  # in order: the later blocks use what the first wrote
         exec(compile(code, str(README), "exec"), namespace)  # noqa: S102
     assert (tmp_path / "reports" / "demo-lib" / "result.json").is_file()
-    assert 0.0 < namespace["phi"] < 1.0
+    ss = namespace["ss"]  # the error model's state-space export, every correlated component
+    assert ss.states[0] == "gauss_markov" and all(0.0 < p < 1.0 for p in ss.phi.diagonal())
 
 
 def test_readme_starts_with_the_two_commands_and_stays_inside_the_repository():
