@@ -128,7 +128,7 @@ from pathlib import Path  # noqa: E402
 from typing import Any  # noqa: E402
 
 import numpy as np  # noqa: E402
-from _simfit import REPO, fmt, run_cli, tail  # noqa: E402
+from _simfit import REPO, fit_simulated, fmt, run_cli, simulated_truth, tail  # noqa: E402
 
 if str(REPO) not in sys.path:
     sys.path.insert(0, str(REPO))  # the package of this checkout, also when run from elsewhere
@@ -245,20 +245,7 @@ def simulate(case: Case, seed: int, folder: Path, spans: list[tuple[str, float]]
                     str(folder)], folder.parent)  # fmt: skip
     if proc.returncode != 0:
         raise RuntimeError(f"simulate exit {proc.returncode}: {tail(proc)}")
-    found = sorted(folder.glob("*_truth.json"))
-    if len(found) != 1:
-        raise RuntimeError(f"expected one *_truth.json in {folder}, found {len(found)}")
-    return found[0]
-
-
-def fit(truth_json: Path, out: Path) -> tuple[int, str]:
-    """Run ``psdbound fit`` on the simulated files; return (exit code, message tail)."""
-    files = json.loads(truth_json.read_text())["files"]
-    obs = [str(truth_json.parent / f) for f in files["obs"]]
-    nav = str(truth_json.parent / files["nav"])
-    proc = run_cli(["fit", *obs, "--nav", nav, "--out", str(out), "--no-pdf", "--quiet"],
-                   out.parent)  # fmt: skip
-    return proc.returncode, tail(proc)
+    return simulated_truth(folder)
 
 
 # ----------------------------------------------------------------- truth and placement
@@ -423,11 +410,11 @@ def run_case(case: Case, seed: int, work: Path, ref: dict[str, Any] | None) -> d
         truth_json = simulate(case, seed, folder / "sim", spans)
         rec["sim_s"] = time.perf_counter() - t_start
         t1 = time.perf_counter()
-        rc, tail = fit(truth_json, folder / "fit")
+        rc, msg = fit_simulated(truth_json, folder / "fit")
         rec.update(rc=rc, fit_s=time.perf_counter() - t1)
         result_path = folder / "fit" / "result.json"
         if rc not in (0, 3) or not result_path.is_file():
-            raise RuntimeError(f"fit exit {rc}: {tail}")
+            raise RuntimeError(f"fit exit {rc}: {msg}")
         result = json.loads(result_path.read_text())
         scr = result.get("screening", {})
         bnd = result.get("bound") or {}

@@ -133,7 +133,7 @@ from pathlib import Path  # noqa: E402
 from typing import Any  # noqa: E402
 
 import numpy as np  # noqa: E402
-from _simfit import REPO, fmt, run_cli, tail  # noqa: E402
+from _simfit import REPO, fit_simulated, fmt, run_cli, simulated_truth, tail  # noqa: E402
 from scipy.integrate import trapezoid  # noqa: E402
 
 if str(REPO) not in sys.path:
@@ -259,20 +259,7 @@ def simulate_case(case: Case, seed: int, folder: Path) -> Path:
         proc = run_cli(["simulate", *args, "--out", str(out)], out.parent)
         if proc.returncode != 0:
             raise RuntimeError(f"simulate exit {proc.returncode}: {tail(proc)}")
-    found = sorted(folder.glob("*_truth.json"))
-    if len(found) != 1:
-        raise RuntimeError(f"expected one *_truth.json in {folder}, found {len(found)}")
-    return found[0]
-
-
-def fit_case(truth_json: Path, out: Path) -> tuple[int, str]:
-    """Run ``psdbound fit`` on the simulated files; return (exit code, message tail)."""
-    files = json.loads(truth_json.read_text())["files"]
-    obs = [str(truth_json.parent / f) for f in files["obs"]]
-    nav = str(truth_json.parent / files["nav"])
-    proc = run_cli(["fit", *obs, "--nav", nav, "--out", str(out), "--no-pdf", "--quiet"],
-                   out.parent)  # fmt: skip
-    return proc.returncode, tail(proc)
+    return simulated_truth(folder)
 
 
 # ----------------------------------------------------------------- the exported model
@@ -282,9 +269,9 @@ def exported_model(result_json_path: str | os.PathLike[str]) -> Any:
     ``psdbound.load(path).error_model`` (:class:`psdbound.kalman.ErrorModel`):
     every use in this benchmark goes through here. Its ``sampled_psd(f_hz)``
     is the one-sided sampled PSD at the data interval (m^2/Hz, mapped
-    error) of the Gauss-Markov and white parts; a ``slow`` component (a
-    random constant per arc, the multipath the high-pass removed) is a line
-    at 0 Hz that only adds to the model, left out of both checks here.
+    error) of every component: the bound's Gauss-Markov and white parts and
+    the ``slow`` Gauss-Markov component for the multipath the high-pass
+    removed; :func:`kf_check` models all of them too.
 
     Parameters
     ----------
@@ -490,11 +477,11 @@ def run_case(case: Case, seed: int, work: Path) -> dict[str, Any]:
         truth_json = simulate_case(case, seed, folder / "sim")
         rec["sim_s"] = time.perf_counter() - t0
         t1 = time.perf_counter()
-        rc, tail = fit_case(truth_json, folder / "fit")
+        rc, msg = fit_simulated(truth_json, folder / "fit")
         rec.update(rc=rc, fit_s=time.perf_counter() - t1)
         result_path = folder / "fit" / "result.json"
         if rc not in (0, 3) or not result_path.is_file():
-            raise RuntimeError(f"fit exit {rc}: {tail}")
+            raise RuntimeError(f"fit exit {rc}: {msg}")
         result = json.loads(result_path.read_text())
         bnd = result.get("bound", {})
         rec.update(verdict=result.get("verdict"), reasons=list(result.get("verdict_reasons", [])),

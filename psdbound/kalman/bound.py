@@ -445,13 +445,7 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
         InputError
             For a bad interval or mode, or an elevation without a mapping.
         """
-        dt = self.checked_dt_s(dt_s)
-        if dt < self.dt_s * (1.0 - 1e-9):
-            warnings.warn(
-                f"filter step {dt:g} s is shorter than the data interval {self.dt_s:g} s the "
-                f"bound was fitted at: the data say nothing above their Nyquist frequency "
-                f"{self.nyquist_hz:g} Hz, so R ({white_noise!r} white-noise mode) is an "
-                "extrapolation there", stacklevel=2)  # fmt: skip
+        dt = self.filter_dt_s(dt_s, white_noise=white_noise)
         phi = math.exp(-dt / self.tau_s)
         # sigma^2 (1 - phi^2), written without cancellation for dt << tau
         qd = self.sigma_gm_m**2 * -math.expm1(-2.0 * dt / self.tau_s)

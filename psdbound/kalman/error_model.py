@@ -123,8 +123,7 @@ class ErrorStateSpace(NamedTuple):
         White measurement-noise variance per filter sample, m^2.
     p0_m2 : ndarray, shape (n, n)
         Initial state covariance, m^2: each state's stationary variance, the
-        least that bounds it from the first step (and, for the slow state,
-        at every new arc).
+        least that bounds it from the first step.
     """
 
     states: tuple[str, ...]
@@ -371,14 +370,7 @@ class ErrorModel:
                 "a filter; pass allow_not_bounded=True to export it anyway"
             )
         b = self._parts(elevation_deg)[0]
-        dt = b.checked_dt_s(dt_s)
-        if dt < self.dt_s * (1.0 - 1e-9):
-            warnings.warn(
-                f"filter step {dt:g} s is shorter than the data interval {self.dt_s:g} s: the "
-                f"data say nothing above their Nyquist frequency {self.nyquist_hz:g} Hz, so R "
-                f"({white_noise!r} white-noise mode) is an extrapolation there",
-                stacklevel=2,
-            )
+        dt = b.filter_dt_s(dt_s, white_noise=white_noise)
         states = [c for c in self.components if c.kind == "gauss-markov"]
         var = np.array([c.variance_m2 * self.factor(c, elevation_deg) ** 2 for c in states])
         phi = np.array([math.exp(-dt / c.tau_s) for c in states])

@@ -436,25 +436,22 @@ def _slow_component(series: Any, geoms: Sequence[str], site: Any, lams: Sequence
 
 
 def _site(inputs: InputData, series: Any, sats: Sequence[str], pos: Any,
-          options: ValidationOptions, cutoff_hz: float, channels: Any) -> Any:  # fmt: skip
+          options: ValidationOptions, cutoff_hz: float, lam_m: float) -> Any:  # fmt: skip
     """Return the ground height and alpha: from the SNR when the options ask and it can."""
     from psdbound.validation.site import SiteReflection, removed_weight, site_reflection
 
     if not options.snr or not sats:
         return SiteReflection(options.alpha, None, False,
                               note=f"alpha {options.alpha:g} assumed (configuration)")  # fmt: skip
-    lam = wavelength_m(sats[0], series.signals[0], channels)
     weight = removed_weight(series.elevation_deg, series.t_gps_s, series.arc_id,
-                            wavelength_m=lam, cutoff_hz=cutoff_hz)  # fmt: skip
+                            wavelength_m=lam_m, cutoff_hz=cutoff_hz)  # fmt: skip
     return site_reflection(inputs.observations[0], inputs.orbit, phase_signal=series.signals[0],
                            system=sats[0][0], receiver_xyz_m=pos, alpha=options.alpha,
                            weight=weight)  # fmt: skip
 
 
-def _removed_rms(report: Any, signals: Sequence[str], sat: str, alpha: float,
-                 channels: Any = None) -> list[dict]:  # fmt: skip
+def _removed_rms(report: Any, lams: Sequence[float], alpha: float) -> list[dict]:
     """Per geometry: fraction of its power below f_c and the RMS the filter removes, m."""
-    lams = [wavelength_m(sat, s, channels) for s in signals[:2]]
     # small-alpha phase error alpha sin(psi): variance alpha^2/2 rad^2 per carrier;
     # the DF series (e_a - e_b)/sqrt(2) has the mean of the two carriers' variances
     var_m2 = float(np.mean([(lam / (2 * np.pi)) ** 2 * alpha**2 / 2 for lam in lams]))
@@ -522,7 +519,8 @@ def validate(
     pos = inputs.receiver_xyz_m[0]
     pos = inputs.observations[0].header.approx_position_m if pos is None else np.asarray(pos)
     channels = isolated.arcs.glonass_channels if isolated.arcs is not None else None
-    site = _site(inputs, series, sats, pos, options, cutoff.f_c_hz, channels)
+    lams = [wavelength_m(sats[0] if sats else "G01", sg, channels) for sg in series.signals[:2]]
+    site = _site(inputs, series, sats, pos, options, cutoff.f_c_hz, lams[0])
     geoms, note = _resolve_geometries(inputs, options, site.ground_height_m)
     report = validate_cutoff(
         geoms, cutoff_hz=cutoff.f_c_hz, rate=options.rate, alpha=site.alpha,
@@ -530,9 +528,7 @@ def validate(
         receiver_xyz_m=pos, sats=sats, system=sats[0][0] if sats else "G",
         elevation_mask_deg=arcs.elevation_mask_deg,
     )  # fmt: skip
-    removed = _removed_rms(report, series.signals, sats[0] if sats else "G01", site.alpha,
-                           channels)  # fmt: skip
-    lams = [wavelength_m(sats[0] if sats else "G01", sg, channels) for sg in series.signals[:2]]
+    removed = _removed_rms(report, lams, site.alpha)
     slow = _slow_component(series, geoms, site, lams, highpass or HighPass(),
                            cutoff.f_c_hz)  # fmt: skip
     summary = report.to_dict()

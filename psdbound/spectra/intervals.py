@@ -65,7 +65,7 @@ from psdbound.spectra.pooled import PooledLimits
 
 __all__ = ["ModelSet", "model_set"]
 
-#: Time constants searched (log-spaced; the variances are exact linear programs per tau).
+#: Time constants searched (log-spaced; per tau the admitted variances form an exact polygon).
 N_TAU = 96
 #: Largest widening of the band intervals tried before no model set is reported.
 MAX_WIDENING = 100.0
@@ -192,27 +192,6 @@ def _constraints(
     sv, sw = float(np.median(pooled / u)), float(np.median(pooled / e))
     a = np.column_stack([u * sv, e * sw]) / pooled[:, None]
     return (np.vstack([a, -a]), np.concatenate([upper / pooled, -lower / pooled]), sv, sw)
-
-
-def _tau_slice(
-    u: NDArray[np.float64], e: NDArray[np.float64], lower: NDArray[np.float64],
-    upper: NDArray[np.float64], pooled: NDArray[np.float64],
-) -> tuple[float, float, float, float] | None:
-    """For one tau: the range of GM and white variances whose band expectations fit every interval.
-
-    ``v u_b + w e_b`` must lie in ``[lower_b, upper_b]`` for all bands, ``v, w >= 0``: a
-    convex polygon, whose extent in ``v`` and in ``w`` four linear programs give. None when
-    it is empty.
-    """
-    a_ub, b_ub, sv, sw = _constraints(u, e, lower, upper, pooled)
-    ext = []
-    for c in ([1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0]):
-        res = optimize.linprog(c, A_ub=a_ub, b_ub=b_ub, bounds=[(0, None), (0, None)],
-                               method="highs")  # fmt: skip
-        if res.status != 0:
-            return None
-        ext.append(float(res.fun))
-    return ext[0] * sv, -ext[1] * sv, ext[2] * sw, -ext[3] * sw
 
 
 def _corners(u: NDArray, e: NDArray, lower: NDArray, upper: NDArray,
@@ -358,10 +337,15 @@ def model_set(
                       f"{100 * confidence_level:g} % interval, even widened "
                       f"{MAX_WIDENING:g} times")
     lower, upper = lower / widening, upper * widening
-    slices = [_tau_slice(unit[i], white_unit, lower, upper, pooled) for i in range(taus.size)]
-    ok = np.array([sl is not None for sl in slices])
-    ext = np.array([sl for sl in slices if sl is not None])
+    # per tau, the corners of the polygon of admitted (v, w): its extents, and the largest of
+    # any linear function of the PSD over it, lie there
+    corners = [_corners(unit[i], white_unit, lower, upper, pooled) for i in range(taus.size)]
+    ok = np.array([c.size > 0 for c in corners])
     idx = np.flatnonzero(ok)
+    if idx.size == 0:  # the widening's feasibility is a linear program, to its tolerance
+        return None, "no Gauss-Markov + white-noise model lies inside every band's interval"
+    ext = np.array([[c[:, 0].min(), c[:, 0].max(), c[:, 1].min(), c[:, 1].max()]
+                    for c in (corners[i] for i in idx)])  # fmt: skip
     best, misfit = _best(unit, white_unit, pooled, dof, taus, ok)
     widen = float(np.nanmax(limits.window_term_log[0])) / 2.0 if (
         limits.window_term_log is not None) else 0.0  # fmt: skip
@@ -380,8 +364,8 @@ def model_set(
         n_bands=n_b,
         widening=widening,
         slices=np.column_stack([taus[idx], ext]),
-        vertices=np.vstack([np.column_stack([np.full(len(c), taus[i]), c]) for i in idx
-                            for c in [_corners(unit[i], white_unit, lower, upper, pooled)]]),
+        vertices=np.vstack([np.column_stack([np.full(len(corners[i]), taus[i]), corners[i]])
+                            for i in idx]),  # fmt: skip
         window_factor=float(np.exp(2.0 * widen)),
     )
     return out, ""

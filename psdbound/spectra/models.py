@@ -56,6 +56,7 @@ what one sample is:
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -248,6 +249,39 @@ class GaussMarkovWhiteNoise:
             If ``dt_s`` is not a finite number > 0.
         """
         return self.dt_s if dt_s is None else _check_dt(dt_s)
+
+    def filter_dt_s(self, dt_s: float | None = None, *, white_noise: str = "conservative"
+                    ) -> float:  # fmt: skip
+        """Return a checked filter interval, seconds, warning when it is shorter than the data's.
+
+        Below the data interval the data say nothing above their Nyquist
+        frequency, so the white variance ``R`` of a filter sample
+        (:meth:`white_variance_m2`) is an extrapolation there.
+
+        Parameters
+        ----------
+        dt_s : float, optional
+            Filter interval, seconds; default the data interval.
+        white_noise : {"psd", "per_sample", "conservative"}, default "conservative"
+            The white-noise mode the filter uses (named in the warning).
+
+        Returns
+        -------
+        float
+
+        Warns
+        -----
+        UserWarning
+            A filter interval shorter than the data interval.
+        """
+        dt = self.checked_dt_s(dt_s)
+        if dt < self.dt_s * (1.0 - 1e-9):
+            warnings.warn(
+                f"filter step {dt:g} s is shorter than the data interval {self.dt_s:g} s the "
+                f"bound was fitted at: the data say nothing above their Nyquist frequency "
+                f"{self.nyquist_hz:g} Hz, so R ({white_noise!r} white-noise mode) is an "
+                "extrapolation there", stacklevel=3)  # fmt: skip
+        return dt
 
     # ---------------------------------------------------------------- models
     def white_variance_m2(
