@@ -119,7 +119,8 @@ FIELDS = (
     "bound_sigma_gm_mm", "bound_tau_s", "bound_sigma_wn_mm",
     "verdict", "covered", "n_uncovered", "allowed", "min_psd_ratio", "f_at_min_hz",
     "params_in_set",
-    "worst_window", "var_ratio", "f_min_hz", "fmin_T", "n_groups",
+    "worst_window", "var_ratio", "var_ratio_bands", "low_status",
+    "f_min_hz", "fmin_T", "n_groups",
     "confidence_level", "coverage", "run_s", "error",
 )  # fmt: skip
 
@@ -277,6 +278,8 @@ def run_one(cls: str, dt: float, run: int, seed: int, join_nan: bool = False) ->
             covered=n_unc <= allowed, n_uncovered=n_unc, allowed=allowed,
             min_psd_ratio=float(ratios[worst]), f_at_min_hz=float(f[np.argmin(ratio_f)]),
             worst_window=worst, var_ratio=(b.sigma_gm_m**2 + b.sigma_wn_m**2) / ref_var,
+            var_ratio_bands=_bands_only_ratio(res, ref_var),
+            low_status=res.low_frequency.status if res.low_frequency else "",
             f_min_hz=res.f_min_hz, fmin_T=res.f_min_hz * max(ns) * dt,
             n_groups=res.limits.n_groups, confidence_level=res.limits.confidence_level,
             coverage=res.limits.coverage, params_in_set=_in_model_set(res, wins))  # fmt: skip
@@ -284,6 +287,14 @@ def run_one(cls: str, dt: float, run: int, seed: int, join_nan: bool = False) ->
         rec["error"] = f"{type(exc).__name__}: {' '.join(str(exc).split())}"[:300]
     rec["run_s"] = time.perf_counter() - t0
     return rec
+
+
+def _bands_only_ratio(res: Any, ref_var: float) -> float:
+    """Variance ratio of the tightest bound over the bands alone (before the low frequencies)."""
+    before = res.low_frequency.before if res.low_frequency else None
+    if not before:
+        return float("nan")
+    return (before["sigma_gm_m"] ** 2 + before["sigma_wn_m"] ** 2) / ref_var
 
 
 def variant_label(cls: str, dt: float) -> str:

@@ -73,6 +73,7 @@ def band_spectra(
     f_min_hz: float,
     bands_per_decade: int = 10,
     power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]] | None = None,
+    below_resolved: bool = False,
 ) -> BandSpectra:
     """Average every PSD estimate over common log-spaced frequency bands.
 
@@ -94,6 +95,11 @@ def band_spectra(
         its value at ``f``: near the cutoff, where ``|H|^2`` rises steeply,
         the point value over-corrects the estimate. Values below 0.5 are refused
         (``f_min_hz`` should start where the filter passes most power).
+    below_resolved : bool, default False
+        Use the estimates below :func:`resolved_from_hz` too (down to
+        ``f_min_hz``). Their band averages are then not averages of the PSD
+        near the band: only a comparison with the estimator's exact
+        expectation (:mod:`psdbound.spectra.expectation`) may use them.
 
     Returns
     -------
@@ -128,7 +134,7 @@ def band_spectra(
     for k, p in enumerate(psds):
         nu0 = float(np.median(np.atleast_1d(p.dof)))
         n = p.n_samples if p.n_samples > 0 else int(round(2 * p.f_hz.size))
-        use = p.f_hz >= max(resolved_from_hz(p), f_min_hz)
+        use = p.f_hz >= (f_min_hz if below_resolved else max(resolved_from_hz(p), f_min_hz))
         idx = np.searchsorted(edges, p.f_hz[use], side="right") - 1
         inside = (idx >= 0) & (idx < n_bands)
         idx, s = idx[inside], p.psd_m2_hz[use][inside]

@@ -9,6 +9,19 @@ One chain, used by :meth:`psdbound.spectra.BoundModel.fit`,
    models the data admit;
 3. :func:`~psdbound.spectra.lowfreq.bound_below`: the bound raised, where
    needed, above every admitted model below ``f_min``, down to 0 Hz.
+
+The model set is identified on more of the spectrum than the statement
+covers: from each window's lowest Fourier frequency ``1/T`` when the data
+went through no filter (:func:`identification_bands`). Below ``f_min = W +
+1/T`` a multitaper estimate is no average of the PSD near its frequency (it
+smooths over ``f +- W`` and the mean removal empties 0 Hz), so no limit is
+stated there; but its exact expectation under each model is known
+(:mod:`psdbound.spectra.expectation`), and these lowest ordinates are the
+ones that see a Gauss-Markov plateau. Without them a time constant longer
+than ``1 / (2 pi f_min)`` is not identified and the low-frequency rule must
+cover every admitted one up to the prior (``benchmarks/bound_coverage.py``:
+on homogeneous truths the bound's median variance 3.6 times the truth's at
+30 s and 2.6 at 1 s with the statement's bands alone).
 """
 
 from __future__ import annotations
@@ -19,14 +32,14 @@ from typing import Any, NamedTuple
 import numpy as np
 from numpy.typing import NDArray
 
-from psdbound.spectra.bands import BandSpectra
+from psdbound.spectra.bands import BandSpectra, band_spectra
 from psdbound.spectra.bound import BoundFit
 from psdbound.spectra.estimators import PSDEstimate
 from psdbound.spectra.intervals import ModelSet, model_set
 from psdbound.spectra.lowfreq import TAU_MAX_S, LowFrequency, bound_below
 from psdbound.spectra.pooled import PooledLimits, fit_pooled_bound, smoothing_hz
 
-__all__ = ["StatedBound", "fit_stated_bound", "statement"]
+__all__ = ["StatedBound", "fit_stated_bound", "identification_bands", "statement"]
 
 
 class StatedBound(NamedTuple):
@@ -102,13 +115,53 @@ def fit_stated_bound(
         psds, dt_s, f_min_hz=f_min_hz, confidence_level=confidence_level,
         power_response=power_response, objective=objective, n_grid=n_grid, **pool_options,
     )  # fmt: skip
-    ms, why = model_set(bands, limits, dt_s, confidence_level=confidence_level,
+    id_bands = identification_bands(psds, bands, power_response=power_response,
+                                    bands_per_decade=pool_options.get("bands_per_decade", 10))
+    ms, why = model_set(id_bands, limits, dt_s, confidence_level=confidence_level,
                         smoothing_hz=smoothing_hz(psds), tau_max_s=tau_max_s)  # fmt: skip
     fit, low = bound_below(fit, bands, limits, ms, dt_s, tau_max_s=tau_max_s,
                            objective=objective, n_grid=n_grid, reason=why)  # fmt: skip
     if ms is not None:  # the reported set contains the bound it accompanies
         ms = ms.with_model("bound", fit.sigma_gm_m, fit.tau_s, fit.sigma_wn_m)
     return StatedBound(fit, bands, limits, ms, why, low)
+
+
+def identification_bands(
+    psds: Sequence[PSDEstimate],
+    bands: BandSpectra,
+    *,
+    power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]] | None = None,
+    bands_per_decade: int = 10,
+) -> BandSpectra:
+    """Return the bands the model set is identified on.
+
+    Parameters
+    ----------
+    psds : sequence of PSDEstimate
+        One estimate per window.
+    bands : BandSpectra
+        The statement's bands (from ``f_min``).
+    power_response : callable, optional
+        ``|H(f)|^2`` of a filter the data went through: then the statement's
+        bands are returned (below ``f_min`` the filter's response, not the
+        data, would set the estimate).
+    bands_per_decade : int, default 10
+        Bands per decade.
+
+    Returns
+    -------
+    BandSpectra
+        Multitaper estimates without a filter: bands from the lowest Fourier
+        frequency ``1 / T`` of the longest window, every ordinate used;
+        otherwise ``bands``.
+    """
+    if power_response is not None or smoothing_hz(psds) <= 0 or bands.duration_s is None:
+        return bands
+    f_low = 1.0 / float(np.max(bands.duration_s))
+    if f_low >= bands.edges_hz[0]:
+        return bands
+    return band_spectra(psds, f_min_hz=f_low * (1.0 - 1e-9), bands_per_decade=bands_per_decade,
+                        below_resolved=True)
 
 
 def statement(limits: PooledLimits, bands: BandSpectra, low: LowFrequency | None = None) -> str:

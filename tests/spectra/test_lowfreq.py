@@ -58,7 +58,8 @@ def test_tightest_bound_over_the_bands_alone_under_bounds_a_slow_truth():
 
 def test_refuse_policy_and_a_prior_below_the_data():
     rng = np.random.default_rng(4)
-    xs = _windows(rng, 0.003, 600.0, 0.001, 30, 240)
+    # 1200 s in 2 h windows: the data admit time constants above the 900 s prior
+    xs = _windows(rng, 0.003, 1200.0, 0.001, 30, 240)
     res = psdbound.bound_series(xs, DT, low_frequency_policy="refuse")
     assert res.verdict == "not-bounded"
     assert any("policy is 'refuse'" in r for r in res.verdict_reasons)
@@ -109,3 +110,34 @@ def test_reasons_from_the_result_section():
     prior = dict(covered, status="prior")
     assert low_frequency_reasons(prior, "prior") == []
     assert len(low_frequency_reasons(prior, "refuse")) == 1
+
+
+def test_lowest_fourier_frequencies_identify_the_plateau():
+    """Below f_min = W + 1/T the exact expectation still identifies tau (issue 27)."""
+    from psdbound.spectra.intervals import model_set
+    from psdbound.spectra.pooled import smoothing_hz
+
+    rng = np.random.default_rng(4)
+    xs = _windows(rng, 0.003, 600.0, 0.001, 30, 240)  # corner 2.7e-4 Hz < f_min 6.9e-4 Hz
+    res = psdbound.bound_series(xs, DT)
+    low = res.low_frequency
+    assert res.f_min_hz > 1.0 / (2.0 * np.pi * 600.0)
+    assert low.status == "covered" and low.tau_upper_s < 900.0
+    lo, hi = res.model_set.tau_interval_s
+    assert lo <= 600.0 <= hi
+    # the statement's bands alone leave the time constant open above
+    alone, _ = model_set(res.bands, res.limits, DT, smoothing_hz=smoothing_hz(res.psds),
+                         tau_max_s=900.0)  # fmt: skip
+    assert alone.open_ends["tau_s"][1] or alone.tau_interval_s[1] > 900.0
+
+
+def test_identification_bands_stop_at_f_min_after_a_filter():
+    from psdbound.spectra.stated import identification_bands
+
+    rng = np.random.default_rng(6)
+    res = psdbound.bound_series(_windows(rng, 0.003, 60.0, 0.001, 10, 240), DT)
+    same = identification_bands(res.psds, res.bands, power_response=lambda f: np.ones_like(f))
+    assert same is res.bands
+    lower = identification_bands(res.psds, res.bands)
+    assert lower.edges_hz[0] == pytest.approx(1.0 / (240 * DT), rel=1e-6)
+    assert np.isfinite(lower.psd_m2_hz[:, 0]).all()
