@@ -43,7 +43,8 @@ __all__ = [
 
 #: (key, caption, function) of every report figure, in report order.
 FIGURES = (
-    ("windows", "Arcs, screened-out spans and stationary windows per satellite", fig_windows),
+    ("windows", "Arcs, spans screened out (by reason) and stationary windows per satellite",
+     fig_windows),
     ("df_filter", "Dual-frequency difference before and after filtering", fig_df_filter),
     ("screening", "Ionosphere screening (ROTI) and excluded spans", fig_screening),
     ("mapped", "Elevation-mapped residuals", fig_mapped),

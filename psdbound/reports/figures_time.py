@@ -24,6 +24,8 @@ __all__ = ["fig_df_filter", "fig_mapped", "fig_screening", "fig_windows"]
 LANE_IN = 0.112
 
 _GREENS = ("#2ca02c", "#145a14")
+#: Colour of the screened-out spans by why they were excluded (``screening.excluded[].kind``).
+_SCREENED = {"ionosphere": "#ff7f0e", "implausible": "#9467bd", "short remainder": "0.45"}
 
 
 def _spans(items: list[tuple[str, float, float]], lane: dict[str, int], t0: float,
@@ -50,11 +52,14 @@ def fig_windows(r: dict[str, Any]) -> Figure | None:
     """Stationary windows in satellite lanes (pairs for dual-antenna), time in hours.
 
     Per lane: the tracked arcs (light grey: what is left of them is data the
-    isolation dropped, e.g. the filter's edges), the spans screening removed
-    (dark grey), the stationary windows (green, alternating shades so that
-    neighbours stay apart) and the stretches never found stationary (red),
-    each only in its own lane. Collections, not one artist per window: a
-    day with 1,000 windows in 40 lanes draws as fast and stays readable.
+    isolation dropped, e.g. the filter's edges), the spans screening removed,
+    coloured by why (ionosphere orange, beyond the carrier-multipath limit
+    purple, remainders too short for a window dark grey; the legend counts
+    the spans and gives the screen's false-alarm probability), the stationary
+    windows (green, alternating shades so that neighbours stay apart) and the
+    stretches never found stationary (red), each only in its own lane.
+    Collections, not one artist per window: a day with 1,000 windows in 40
+    lanes draws as fast and stays readable.
     """
     figs = r["figures"]
     w = r["windows"]
@@ -66,8 +71,8 @@ def fig_windows(r: dict[str, Any]) -> Figure | None:
     t0 = t0_gps_s(r)
     tracked = [(a["sat"], a["t0"], a["t1"]) for a in arcs]
     used = [(m["sats"], m["t_gps_s"][0], m["t_gps_s"][-1]) for m in mapped if len(m["t_gps_s"])]
-    screened = [(e["sat"], e["start_gps_s"], e["stop_gps_s"])
-                for e in r.get("screening", {}).get("excluded", []) if "sat" in e]  # fmt: skip
+    excl = [e for e in r.get("screening", {}).get("excluded", []) if "sat" in e]
+    screened = [(e["sat"], e["start_gps_s"], e["stop_gps_s"]) for e in excl]
     windows = [(x["sats"], x["t_start_gps_s"], x["t_stop_gps_s"]) for x in wins]
     never = [(str(u[1]), u[2], u[3]) for u in w.get("never_stationary", [])]
     names = {s for group in (tracked, used, screened, windows, never) for s, _, _ in group}
@@ -78,7 +83,7 @@ def fig_windows(r: dict[str, Any]) -> Figure | None:
     ax = fig.add_subplot()
     layers = [
         (tracked, 0.42, "0.85", "tracked arc"),
-        (screened, 0.42, "0.45", "screened out"),
+        *_screened_layers(excl, r.get("screening", {}).get("false_alarm_per_block")),
         (windows, 0.32, _GREENS[0], "stationary window"),
         (never, 0.32, "#d62728", "never stationary"),
     ]
@@ -117,6 +122,20 @@ def fig_windows(r: dict[str, Any]) -> Figure | None:
     fig.legend(handles=handles, fontsize=7, ncol=len(handles), loc="outside upper center",
                frameon=False, handlelength=1.2, columnspacing=1.0)  # fmt: skip
     return finish(fig)
+
+
+def _screened_layers(excl: list[dict[str, Any]],
+                     false_alarm: float | None) -> list[tuple[list, float, str, str]]:  # fmt: skip
+    """One layer of screened-out spans per reason, labelled with its count."""
+    out = []
+    for kind in sorted({e.get("kind", "") for e in excl}):
+        items = [(e["sat"], e["start_gps_s"], e["stop_gps_s"]) for e in excl
+                 if e.get("kind", "") == kind]  # fmt: skip
+        label = f"{kind or 'screened out'} ({len(items)})"
+        if kind == "ionosphere" and false_alarm:
+            label = f"ionosphere ({len(items)}; p = {false_alarm:g} per block)"
+        out.append((items, 0.42, _SCREENED.get(kind, "0.45"), label))
+    return out
 
 
 def fig_df_filter(r: dict[str, Any]) -> Figure | None:

@@ -23,7 +23,9 @@ disturbed move the scale by at most 40 %, ``tests/screening/test_null.py``).
 **Test.** A block is ionosphere when its ROTI exceeds the null's ``1 - p``
 quantile, ``p`` the stated false-alarm probability per block (default
 1e-3), and the ionospheric significance level (0.15 TECU/min by default,
-:mod:`psdbound.screening.screen`). The same ``p`` holds at every
+:mod:`psdbound.screening.screen`). Three tests share ``p`` (a third each,
+Bonferroni): the block alone, the persistence below, and the coherence
+across satellites (:mod:`psdbound.screening.coherence`). The same ``p`` holds at every
 elevation: the local multipath sets the threshold, no mapping is assumed.
 On synthetic nulls the realised rate is 0.3-2.4 times the stated one (the
 far tail rests on the fitted shape).
@@ -31,8 +33,7 @@ far tail rests on the fitted shape).
 **Persistence.** A disturbance lasts longer than a block: the sum of
 ``ROTI^2 / s^2`` over 3 consecutive blocks of an arc (chi-square with ``3 nu``
 degrees of freedom under the null) is tested at the same ``p``
-(:meth:`MultipathNull.persistent`); the two tests share ``p`` (half each,
-Bonferroni). A 0.3 TECU/min disturbance at 21 deg,
+(:meth:`MultipathNull.persistent`). A 0.3 TECU/min disturbance at 21 deg,
 where multipath alone gives about 0.15 TECU/min, escapes the single-block
 test in a quarter of its blocks; over three blocks its excess is about twice
 the threshold.
@@ -59,7 +60,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy import optimize, stats
 
-__all__ = ["FALSE_ALARM", "MIN_BLOCKS", "MultipathNull", "fit_null"]
+__all__ = ["FALSE_ALARM", "MEMBER_TAIL", "MIN_BLOCKS", "MultipathNull", "fit_null"]
 
 #: Default false-alarm probability per 5-min block.
 FALSE_ALARM = 1e-3

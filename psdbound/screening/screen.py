@@ -96,6 +96,7 @@ from numpy.typing import NDArray
 from psdbound.common.options import Boolean, Number, OptionError, check_fields, option
 from psdbound.io.signals import carrier_frequency_hz, wavelength_m
 from psdbound.isolation import MultipathSeries
+from psdbound.screening.coherence import coherent_blocks
 from psdbound.screening.null import FALSE_ALARM, NU_DISTURBED, MultipathNull, fit_null
 from psdbound.screening.plausibility import multipath_limit_m
 from psdbound.screening.rot import (
@@ -105,7 +106,11 @@ from psdbound.screening.rot import (
     roti_blocks,
 )
 
-__all__ = ["ExcludedSpan", "Screening", "ScreeningOptions", "screen_series"]
+__all__ = ["ExcludedSpan", "N_TESTS", "Screening", "ScreeningOptions", "screen_series"]
+
+#: Tests of the multipath null that share the false-alarm probability (Bonferroni): the block
+#: alone, the 15-min persistence and the coherence across satellites.
+N_TESTS = 3
 
 
 @dataclass(frozen=True)
@@ -314,8 +319,7 @@ def _threshold(el_mean: NDArray[np.float64], opt: ScreeningOptions, mapping: Any
             scaled = np.minimum(scaled, opt.roti_cap_tecu_min)
     if null is None:
         return scaled
-    # two tests per block (alone, and in a 15-min run): the false-alarm probability is split
-    thr = np.maximum(base, null.threshold(el_mean, 0.5 * opt.false_alarm))
+    thr = np.maximum(base, null.threshold(el_mean, _share(opt, null)))
     return thr if null.trusted else np.minimum(thr, np.maximum(base, scaled))
 
 
@@ -325,6 +329,42 @@ def _series_null(blocks: list[dict[str, Any]], opt: ScreeningOptions) -> Multipa
         return None
     return fit_null(np.concatenate([b["roti"] for b in blocks]),
                     np.concatenate([b["el"] for b in blocks]))  # fmt: skip
+
+
+def _share(opt: ScreeningOptions, null: MultipathNull) -> float:
+    """False-alarm probability of each test of the null: ``p`` split between those applied.
+
+    A trusted null runs :data:`N_TESTS` tests (block, persistence, coherence); an untrusted
+    one only the block test.
+    """
+    return opt.false_alarm / (N_TESTS if null.trusted else 1)
+
+
+def _coherent(blocks: list[dict[str, Any]], opt: ScreeningOptions,
+              null: MultipathNull | None) -> list[NDArray[np.bool_]]:  # fmt: skip
+    """Blocks flagged by the coherence test across satellites (none without a trusted null)."""
+    if not opt.ionosphere or null is None or not null.trusted:
+        return [np.zeros(b["roti"].size, bool) for b in blocks]
+    return coherent_blocks([0.5 * (b["start"] + b["stop"]) for b in blocks],
+                           [b["roti"] for b in blocks], [b["el"] for b in blocks], null,
+                           false_alarm=_share(opt, null),
+                           floor_tecu_min=opt.roti_threshold_tecu_min)  # fmt: skip
+
+
+def _iono_reason(roti: NDArray, thr: NDArray, persist: NDArray, opt: ScreeningOptions,
+                 b0: int, b1: int) -> tuple[str, float, float]:  # fmt: skip
+    """Why a span of blocks is ionosphere: the test that flagged it, its statistic and limit."""
+    ratio = roti[b0:b1 + 1] / thr[b0:b1 + 1]
+    j = b0 + int(np.nanargmax(ratio))
+    stat, th = float(roti[j]), float(thr[j])
+    if stat > th:
+        return f"ROTI {stat:.2f} TECU/min > {th:.2f}", stat, th
+    if np.any(persist[b0:b1 + 1]):
+        return (f"ROTI up to {stat:.2f} TECU/min over 15 min, improbable under this series' "
+                f"multipath (false-alarm probability {opt.false_alarm:g})"), stat, th
+    return (f"ROTI up to {stat:.2f} TECU/min on several satellites in the same 5 min, "
+            f"improbable under this series' multipath, which is satellite-specific "
+            f"(false-alarm probability {opt.false_alarm:g})"), stat, th
 
 
 def screen_series(
@@ -380,6 +420,7 @@ def screen_series(
                           None if series.unfiltered_m is None else series.unfiltered_m[lo:hi],
                           m_per_tecu) for lo, hi in bounds]  # fmt: skip
     null = _series_null(blocks, opt) if m_per_tecu is not None else None
+    coherent = _coherent(blocks, opt, null)
     for k, (lo, hi) in enumerate(bounds):
         sats = series.arc_sats[k]
         t, v = series.t_gps_s[lo:hi], series.value_m[lo:hi]
@@ -390,9 +431,11 @@ def screen_series(
         start, stop, roti, vmax = bk["start"], bk["stop"], bk["roti"], bk["vmax"]
         thr = _threshold(bk["el"], opt, mapping, null)
         iono = (roti > thr) & ~np.isnan(roti) if opt.ionosphere else np.zeros(roti.size, bool)
+        persist = np.zeros(roti.size, bool)
         if opt.ionosphere and null is not None and null.trusted:
-            iono |= null.persistent(roti, bk["el"], false_alarm=0.5 * opt.false_alarm,
-                                    floor_tecu_min=opt.roti_threshold_tecu_min)  # fmt: skip
+            persist = null.persistent(roti, bk["el"], false_alarm=_share(opt, null),
+                                      floor_tecu_min=opt.roti_threshold_tecu_min)  # fmt: skip
+        iono |= persist | coherent[k]
         implaus = (vmax > limit) if opt.plausibility else np.zeros(roti.size, bool)
         keep = np.ones(t.size, bool)
         for b0, b1 in _spans(iono | implaus, start, stop):
@@ -405,12 +448,7 @@ def screen_series(
                                  f"implausible: {100 * stat:.1f} cm > {100 * limit:.1f} cm "
                                  "carrier-multipath limit", "implausible", stat, limit)  # fmt: skip
             else:
-                ratio = roti[b0:b1 + 1] / thr[b0:b1 + 1]
-                j = b0 + int(np.nanargmax(ratio))
-                stat, th = float(roti[j]), float(thr[j])
-                why = (f"ROTI {stat:.2f} TECU/min > {th:.2f}" if stat > th else
-                       f"ROTI up to {stat:.2f} TECU/min over 15 min, improbable under this "
-                       f"series' multipath (false-alarm probability {opt.false_alarm:g})")
+                why, stat, th = _iono_reason(roti, thr, persist, opt, b0, b1)
                 if np.any(implaus[b0:b1 + 1]):  # a disturbance drives the series off limits too
                     why += (f"; values up to {100 * float(vmax[b0:b1 + 1].max()):.1f} cm beyond "
                             f"the {100 * limit:.1f} cm carrier-multipath limit")

@@ -102,7 +102,7 @@ def _synthetic_windows_doc(n_lanes=40, n_windows=1000, seed=1):
             t += d
         never.append([k, s, t, t + 1800.0])
         excluded.append({"sat": s, "start_gps_s": t + 1800.0, "stop_gps_s": t + 2700.0,
-                         "kind": "ionosphere"})  # fmt: skip
+                         "kind": "ionosphere" if k % 2 else "short remainder"})  # fmt: skip
     return {
         "method": "DF",
         "data_span": {"start_gps_s": t0, "stop_gps_s": t0 + 86400.0, "n_arcs": len(mapped)},
@@ -126,7 +126,7 @@ def test_window_figure_with_1000_windows():
     assert ax.get_xlim()[1] == pytest.approx(24.0)
     # one collection per layer (not one artist per window); the windows' has 1000 bars
     polys = [c for c in ax.collections if isinstance(c, PolyCollection)]
-    assert len(polys) == 4 and max(len(c.get_paths()) for c in polys) == 1000
+    assert len(polys) == 5 and max(len(c.get_paths()) for c in polys) == 1000
     # the never-stationary spans are drawn only in their own lane
     red = [c for c in polys if np.allclose(c.get_facecolor()[0][:3], (0.839, 0.153, 0.157),
                                             atol=0.01)]  # fmt: skip
@@ -137,7 +137,9 @@ def test_window_figure_with_1000_windows():
     title = ax.get_title()
     assert "40 arcs after screening" in title and "1000 stationary windows" in title
     legend = [x.get_text() for x in fig.legends[0].get_texts()]
-    assert {"stationary window", "never stationary", "screened out"} <= set(legend)
+    # the screened-out spans by why they were excluded, counted
+    assert {"stationary window", "never stationary", "ionosphere (20)",
+            "short remainder (20)"} <= set(legend)  # fmt: skip
 
 
 def test_psd_figure_shades_the_band_below_fc(demo_doc):
