@@ -35,7 +35,7 @@ from psdbound.errors import InputError
 from psdbound.io._body_fast import Scan, scan_v3
 from psdbound.io._epochs import YEAR_RANGE, check_dates, date_labels, fmt_date
 from psdbound.io._fields import FIELD_WIDTH, FieldError, pad_lines, parse_fields
-from psdbound.io._header import ObsHeader
+from psdbound.io._header import ObsHeader, missing_systems
 from psdbound.io.timescales import utc_to_gps_s
 
 #: Largest satellite number per system letter (RINEX 3.05 ids; SBAS ids are PRN - 100).
@@ -105,6 +105,7 @@ class _Collector:
         self.sat_of: dict[str, list[str]] = {}
         self.warnings: list[str] = []
         self.sat_key: dict[str, np.ndarray] = {}
+        self.seen: set[str] = set()  # systems of every record, wanted or not
 
     def load(self, scan: Scan) -> None:
         """Take the epochs and records of a vectorised scan (records as character arrays)."""
@@ -116,6 +117,7 @@ class _Collector:
         self.epoch_of = scan.epoch_of  # type: ignore[assignment]
         self.sat_of = scan.sat_of
         self.sat_key = scan.sat_key
+        self.seen = scan.seen
 
     def fail(self, message: str, idx: int) -> InputError:
         return InputError(message, path=self.path, line=_error_line(self.header, idx))
@@ -138,6 +140,7 @@ class _Collector:
 
     def record(self, sys_: str, rec: bytes, j: int, e: int, sat: str) -> None:
         """Keep one satellite record (line ``j``, epoch ``e``) if its system is wanted."""
+        self.seen.add(sys_)
         if self.systems is not None and sys_ not in self.systems:
             return
         if sys_ not in self.records:
@@ -257,6 +260,9 @@ class _Collector:
         if len(self.times) == 0:
             return np.zeros(0), np.zeros(0, np.int8), {}, ()
         labels = self._epochs(offset == 3)
+        absent = set(self.systems or ()) - set(self.records)
+        if absent:
+            raise missing_systems(self.path, absent, self.seen, "its observed satellites")
         t = _to_gps_s(labels, self.header)
         blocks = _build_blocks(self, len(self.flags), codes_wanted, offset)
         return t, np.asarray(self.flags, dtype=np.int8), blocks, tuple(self.warnings)
@@ -564,6 +570,7 @@ def parse_v2(
         for s_idx, sat in enumerate(sats):
             sys_ = sat[0] if sat[0] != " " else default_sys
             j = first_obs + s_idx * per_sat
+            acc.seen.add(sys_)
             if systems is not None and sys_ not in systems:
                 continue
             parts = [lines[j + r] for r in range(per_sat)]
