@@ -6,6 +6,8 @@ import argparse
 from pathlib import Path
 from typing import Any
 
+from psdbound.cli.actions import Once
+
 __all__ = ["add_parser", "run"]
 
 
@@ -35,7 +37,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "--lon-deg", type=float, help="longitude of antenna A, degrees (default: the preset's)"
     )
     p.add_argument("--start", help="start epoch, ISO date-time in GPS time (default: the preset's)")
-    p.add_argument("--nav", help="navigation file for the geometry (default: nominal GPS)")
+    p.add_argument(
+        "--nav", action=Once, help="navigation file for the geometry (default: nominal GPS)"
+    )
     p.add_argument("--single-antenna", action="store_true", help="write antenna A only")
     p.add_argument(
         "--scenario",
