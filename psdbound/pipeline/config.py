@@ -327,7 +327,6 @@ class FitConfig:
         return getattr(self, section)
 
 
-
 def _with(cfg: FitConfig, section: str, value: Any, source: str | None) -> FitConfig:
     try:
         return replace(cfg, **{section: value})
@@ -352,7 +351,6 @@ def _build(section: str, values: dict[str, Any], base: Any, source: str = "optio
     except (TypeError, ValueError) as exc:  # a section class without a schema
         bad = ", ".join(f"{k} = {show_value(v)}" for k, v in values.items())
         raise InputError(f"[{section}] {bad}: {exc}", path=path) from None
-
 
 
 # ----------------------------------------------------------------- rules between options
