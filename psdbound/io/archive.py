@@ -19,8 +19,9 @@ from psdbound.errors import InputError
 
 __all__ = ["zip_members", "extract_zip", "file_kind", "member_label", "relabel"]
 
-#: RINEX file types (column 21 of the first line) of navigation files
-_NAV_TYPES = "NGHLJCIS"
+#: RINEX file types (column 21 of the first line) of navigation files (N; RINEX 2: G GLONASS, H
+#: SBAS, L Galileo)
+_NAV_TYPES = "NGHL"
 
 
 def zip_members(path: str | os.PathLike[str]) -> list[str]:

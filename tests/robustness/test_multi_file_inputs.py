@@ -178,8 +178,24 @@ def test_sp3_files_of_consecutive_periods_are_joined():
 # ------------------------------------------------------------- a station's zip (obs + nav)
 
 
-def test_file_kinds(files):
+def test_file_kinds(files, tmp_path):
+    import bz2
+    import gzip
+
+    import hatanaka
+
     assert [file_kind(files[k]) for k in ("obs", "nav")] == ["obs", "nav"]
+    obs = files["obs"].read_bytes()
+    (tmp_path / "o.gz").write_bytes(gzip.compress(obs))
+    (tmp_path / "o.crx.bz2").write_bytes(bz2.compress(hatanaka.rnx2crx(obs)))
+    (tmp_path / "n.gz").write_bytes(gzip.compress(files["nav"].read_bytes()))
+    (tmp_path / "o.sp3").write_text("#dP2020  6 25  0  0  0.00000000      96 ORBIT IGS20\n")
+    meteo = "     3.04           METEOROLOGICAL DATA                     RINEX VERSION / TYPE"
+    (tmp_path / "m.rnx").write_text(meteo[:20] + "M" + meteo[21:] + "\n")
+    (tmp_path / "bad.gz").write_bytes(b"\x1f\x8b" + b"\x00" * 40)
+    kinds = [file_kind(tmp_path / n) for n in ("o.gz", "o.crx.bz2", "n.gz", "o.sp3", "m.rnx",
+                                               "bad.gz")]  # fmt: skip
+    assert kinds == ["obs", "obs", "nav", "sp3", "", ""]
 
 
 def test_station_zip_of_observations_and_navigation(files):
