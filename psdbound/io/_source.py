@@ -52,8 +52,7 @@ def read_bytes(path: str | os.PathLike[str]) -> bytes:
         raise InputError(f"cannot read the file: {exc.strerror or exc}", path=p) from None
     if not raw:
         raise InputError("file is empty (0 bytes); expected a RINEX or SP3 file", path=p)
-    if raw[:4] == _ZIP_MAGIC:
-        _one_member(p)
+    _one_member(p, raw)
     try:
         if raw[:2] == _GZIP_MAGIC:
             raw = gzip.decompress(raw)
@@ -76,9 +75,9 @@ def read_bytes(path: str | os.PathLike[str]) -> bytes:
     return raw
 
 
-def _one_member(p: Path) -> None:
+def _one_member(p: Path, raw: bytes) -> None:
     """Refuse a zip archive of several files, listing them (the readers take one file)."""
-    names = zip_members(p)
+    names = zip_members(p) if raw[:4] == _ZIP_MAGIC else []
     if len(names) > 1:
         shown = ", ".join(names[:6]) + (f" and {len(names) - 6} more" if len(names) > 6 else "")
         raise InputError(

@@ -297,6 +297,20 @@ def _codes_in_header(code: str, header: ObsHeader, want_sys: set[str] | None) ->
     return out
 
 
+def _check_systems(p: Path, want_sys: set[str], header: ObsHeader) -> None:
+    """Refuse unknown system letters and systems without observation types in the header."""
+    unknown = want_sys - set(_SYSTEM_NAMES)
+    if unknown:
+        raise InputError(
+            f"unknown satellite system {''.join(sorted(unknown))!r}; expected letters "
+            f"from {''.join(_SYSTEM_NAMES)}",
+            path=p,
+        )
+    absent = want_sys - set(header.obs_types)
+    if absent:
+        raise missing_systems(p, absent, header.obs_types, "its header's observation types")
+
+
 def read_obs(
     path: str | os.PathLike[str],
     *,
@@ -363,16 +377,7 @@ def read_obs(
     header, start = _parse_header(text, p)
     want_sys = None if systems is None else set(systems)
     if want_sys is not None:
-        unknown = want_sys - set(_SYSTEM_NAMES)
-        if unknown:
-            raise InputError(
-                f"unknown satellite system {''.join(sorted(unknown))!r}; expected letters "
-                f"from {''.join(_SYSTEM_NAMES)}",
-                path=p,
-            )
-        absent = want_sys - set(header.obs_types)
-        if absent:
-            raise missing_systems(p, absent, header.obs_types, "its header's observation types")
+        _check_systems(p, want_sys, header)
     want_codes = None
     if codes is not None:
         want_codes = set()

@@ -207,18 +207,22 @@ class FitResults:
         return write_report_folder(self.document, out_dir, pdf=pdf)
 
 
+def _names(paths: Sequence[str | os.PathLike[str]] | str | os.PathLike[str] | None
+           ) -> tuple[str, ...]:  # fmt: skip
+    """File names of a path, a sequence of paths or None."""
+    if paths is None:
+        return ()
+    if isinstance(paths, str | os.PathLike):
+        paths = [paths]
+    return tuple(os.fspath(p) for p in paths)
+
+
 def _config_from(obs: Sequence[str | os.PathLike[str]] | str | os.PathLike[str],
                  nav: Sequence[str | os.PathLike[str]] | str | os.PathLike[str] | None,
                  config: FitConfig | None, options: dict[str, Any]) -> FitConfig:  # fmt: skip
     cfg = config if config is not None else FitConfig()
-    if isinstance(obs, str | os.PathLike):
-        obs = [obs]
-    if obs:
-        cfg = cfg.updated("inputs", obs=tuple(os.fspath(p) for p in obs))
-    if isinstance(nav, str | os.PathLike):
-        nav = [nav]
-    if nav:
-        cfg = cfg.updated("inputs", nav=tuple(os.fspath(p) for p in nav))
+    files = {"obs": _names(obs), "nav": _names(nav)}
+    cfg = cfg.updated("inputs", **{k: v for k, v in files.items() if v})
     sections = {f.name for f in fields(FitConfig)}
     owners: dict[str, list[str]] = {}
     for sec in sections:
