@@ -21,6 +21,7 @@ import datetime as dt
 import math
 from typing import Any
 
+from psdbound.cli.actions import Once
 from psdbound.errors import InputError
 
 __all__ = ["add_parser", "run"]
@@ -69,6 +70,7 @@ def add_parser(subparsers: Any) -> None:
     )
     mode.add_argument(
         "--nav",
+        action=Once,
         metavar="FILE",
         help="VPL over time for the orbits of a RINEX navigation or SP3 file (default: none)",
     )

@@ -24,6 +24,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--nav",
         nargs="+",
+        action="extend",
         required=True,
         help="navigation/SP3 files: one, or one per day (matched by day of year; required)",
     )

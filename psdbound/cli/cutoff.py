@@ -28,6 +28,7 @@ import argparse
 import sys
 from typing import Any
 
+from psdbound.cli.actions import Once
 from psdbound.errors import InputError
 
 __all__ = ["add_parser", "run"]
@@ -116,8 +117,12 @@ def add_parser(subparsers: Any) -> None:
         "for the dual-frequency difference (default: L1-L2, what the fit filters; --legacy: L1)",
     )
     orbit = sim.add_mutually_exclusive_group()
-    orbit.add_argument("--nav", help="RINEX navigation file covering the days (default: none)")
-    orbit.add_argument("--sp3", help="SP3 precise orbit file covering the days (default: none)")
+    orbit.add_argument(
+        "--nav", action=Once, help="RINEX navigation file covering the days (default: none)"
+    )
+    orbit.add_argument(
+        "--sp3", action=Once, help="SP3 precise orbit file covering the days (default: none)"
+    )
     orbit.add_argument("--almanac", help="YUMA almanac file (default: none; nominal constellation)")
     sim.add_argument(
         "--sampling-s",

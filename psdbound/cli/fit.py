@@ -157,10 +157,14 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "Exit codes: 0 bounded; 3 ran but no trustworthy bound (verdict not-bounded: reasons "
         "printed, outputs written); 2 bad input (nothing written); 1 internal error.",
     )
+    # fmt: off
     p.add_argument("obs", nargs="*",
                    help="observation file(s) of one station (consecutive files are merged), or "
                    "of the two antennas named by --pair (default: none, the embedded demo)")
-    p.add_argument("--nav", help="navigation (RINEX 2/3) or SP3 file (required with OBS)")
+    p.add_argument("--nav", action="append", metavar="NAV",
+                   help="navigation (RINEX 2/3) or SP3 file, repeatable: several (e.g. of "
+                   "consecutive days, or a zip of them) are joined (required with OBS, unless "
+                   "OBS is a zip archive that also holds the navigation file)")
     p.add_argument("--config", help="TOML configuration file (default: none)")
     p.add_argument("--method", choices=("auto", "df", "da"),
                    help="isolation method: df dual-frequency, da dual-antenna, auto by the inputs")
@@ -240,6 +244,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="elevation bin edges of the code-multipath overbound, deg")
     p.add_argument("--code-overbound", choices=("two_step", "cdf"),
                    help="Gaussian overbound construction of the code multipath")
+    # fmt: on
     add_output_options(p)
     p.set_defaults(func=run)
 
@@ -268,7 +273,8 @@ def _cli_values(args: argparse.Namespace) -> list[tuple[str, dict[str, Any], dic
         min_len = 60.0 * args.min_arc_min
     mapping = _mapping(args.mapping)
     return [
-        ("inputs", dict(obs=tuple(args.obs) or None, nav=args.nav, method=args.method,
+        ("inputs", dict(obs=tuple(args.obs) or None,
+                        nav=tuple(args.nav) if args.nav else None, method=args.method,
                         system=args.system, signals=args.signals, da_signal=args.da_signal,
                         pair=tuple(args.pair) if args.pair else None,
                         position_a_m=tuple(args.position_a) if args.position_a else None,

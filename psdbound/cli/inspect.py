@@ -26,7 +26,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument("obs", nargs="+", help="RINEX observation file(s) (required)")
     p.add_argument(
-        "--nav", help="navigation (RINEX) or SP3 file for elevations (default: none, no elevations)"
+        "--nav",
+        action="append",
+        metavar="NAV",
+        help="navigation (RINEX) or SP3 file for elevations, repeatable: several are joined "
+        "(default: none, no elevations)",
     )
     p.add_argument("--system", default="G", help="satellite system letter (default G)")
     p.add_argument(

@@ -19,6 +19,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from psdbound.cli.actions import Once
 from psdbound.errors import InputError
 
 __all__ = ["add_parser", "run"]
@@ -52,7 +53,9 @@ def add_parser(subparsers: Any) -> None:
         "combination) or pair (C1C,C5Q: ionosphere-free) by carrier levelling, from the "
         "RINEX file SAMPLES (default: none, SAMPLES holds the errors)",
     )
-    p.add_argument("--nav", help="navigation or SP3 file for elevations (required with --code)")
+    p.add_argument(
+        "--nav", action=Once, help="navigation or SP3 file for elevations (required with --code)"
+    )
     p.add_argument("--system", default="G", help="satellite system letter with --code (default: G)")
     p.add_argument(
         "--min-arc-s",

@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
+from typing import Any
+
+from psdbound.cli.actions import Once
 
 __all__ = ["add_parser", "run"]
 
@@ -18,7 +21,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "'--preset demo' regenerates the embedded demo data set in its cache. "
         "Parameters are layered: the preset, then --scenario FILE.toml, then the other flags.",
         epilog="example: psdbound simulate --preset demo --duration-h 6 --single-antenna "
-        "--multipath sigma_gm_m=0.004,tau_s=120,sigma_wn_m=0.002,mapping=1,12,10 --out sim/",
+        "--multipath sigma_gm_m=0.003,tau_s=120,sigma_wn_m=0.001,mapping=1,12,10 --out sim/",
     )
     p.add_argument("--preset", default="demo", help="named scenario: demo, short (default demo)")
     p.add_argument("--out", help="output folder (default: the demo cache for the demo preset)")
@@ -34,7 +37,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "--lon-deg", type=float, help="longitude of antenna A, degrees (default: the preset's)"
     )
     p.add_argument("--start", help="start epoch, ISO date-time in GPS time (default: the preset's)")
-    p.add_argument("--nav", help="navigation file for the geometry (default: nominal GPS)")
+    p.add_argument(
+        "--nav", action=Once, help="navigation file for the geometry (default: nominal GPS)"
+    )
     p.add_argument("--single-antenna", action="store_true", help="write antenna A only")
     p.add_argument(
         "--scenario",
@@ -59,6 +64,22 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 #: Scenario fields set by a flag of their own (error messages name the flag).
 _FLAGS = {"start_gps": "--start", "nav_path": "--nav", "receiver_noise_m": "--receiver-noise-m",
           "duration_s": "--duration-h", "interval_s": "--interval-s", "seed": "--seed"}  # fmt: skip
+
+
+def _warn_beyond_limit(sc: Any, args: argparse.Namespace) -> None:
+    """Warn when the multipath breaks the carrier-multipath limit at the elevation mask."""
+    from psdbound.common.notices import warn
+    from psdbound.simulate.simulator import multipath_limit_problem
+
+    if args.multipath is not None:
+        label = "--multipath"
+    elif args.scenario:
+        label = f"[multipath] of {args.scenario}"
+    else:
+        label = f"the {args.preset} preset's multipath"
+    problem = multipath_limit_problem(sc, label)
+    if problem:
+        warn(problem)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -116,6 +137,7 @@ def run(args: argparse.Namespace) -> int:
             sc = sc.replace(**changes)
         except OptionError as exc:  # a flag's value the scenario's schema refuses
             raise exc.relabel(_FLAGS.get(exc.name, exc.label)) from None
+        _warn_beyond_limit(sc, args)
         out = Path(args.out) if args.out else Path("simulated") / sc.name
         res = simulate(sc, out)
         files = [*res.obs_paths, res.nav_path, res.truth_path, res.truth_json_path]

@@ -15,6 +15,7 @@ import argparse
 import re
 from typing import Any
 
+from psdbound.cli.actions import Once
 from psdbound.errors import InputError
 
 __all__ = ["add_parser", "run"]
@@ -72,7 +73,10 @@ def add_parser(subparsers: Any) -> None:
         help="aircraft modes: attitude oscillation amplitude, deg (default: the mode's, 2)",
     )
     p.add_argument(
-        "--nav", metavar="FILE", help="navigation or SP3 file: simulate real passes (default: none)"
+        "--nav",
+        action=Once,
+        metavar="FILE",
+        help="navigation or SP3 file: simulate real passes (default: none)",
     )
     p.add_argument(
         "--receiver-ecef",

@@ -7,7 +7,8 @@ the line):
   follow (exactly that many lines up to the next epoch), calendar fields in
   range (month 13, day 32, hour 25, non-finite seconds, a year outside
   1980-2099 are refused), not before ``TIME OF FIRST OBS`` nor after
-  ``TIME OF LAST OBS``;
+  ``TIME OF LAST OBS``; the seconds are rounded to the microsecond
+  (``29.9999999`` is 30 s, ``59.9999999`` the next minute: :mod:`._epochs`);
 * epoch order: an epoch earlier than the one before it is refused; an
   epoch repeated with the same records is dropped with a warning, repeated
   with different records refused;
@@ -32,15 +33,14 @@ import numpy as np
 
 from psdbound.errors import InputError
 from psdbound.io._body_fast import Scan, scan_v3
+from psdbound.io._epochs import YEAR_RANGE, check_dates, date_labels, fmt_date
 from psdbound.io._fields import FIELD_WIDTH, FieldError, pad_lines, parse_fields
-from psdbound.io._header import ObsHeader
-from psdbound.io.timescales import calendar_to_gps_s, utc_to_gps_s
+from psdbound.io._header import ObsHeader, missing_systems
+from psdbound.io.timescales import utc_to_gps_s
 
 #: Largest satellite number per system letter (RINEX 3.05 ids; SBAS ids are PRN - 100).
 PRN_RANGE = {"G": (1, 63), "R": (1, 36), "E": (1, 50), "C": (1, 63), "J": (1, 10),
              "S": (20, 59), "I": (1, 14)}  # fmt: skip
-#: Years accepted in epochs (4-digit; RINEX 2 two-digit years map to 1980-2079).
-YEAR_RANGE = (1980, 2099)
 #: Plausible values per observation type (first letter), in RINEX units; outside them a
 #: column is not what the header says it is.
 VALUE_LIMITS = {
@@ -72,29 +72,6 @@ def _error_line(header: ObsHeader, idx: int) -> int:
     return header.n_lines + idx + 1
 
 
-def _fmt_date(d: tuple) -> str:
-    y, mo, dd, h, mi, s = d
-    if 0 <= y < 100:
-        y = y + 2000 if y < 80 else y + 1900
-    return f"{int(y):04d}-{int(mo):02d}-{int(dd):02d} {int(h):02d}:{int(mi):02d}:{float(s):06.3f}"
-
-
-def _check_dates(dates: np.ndarray, header: ObsHeader, version3: bool) -> int | None:
-    """Index of the first epoch with a calendar field out of range (None if all are fine)."""
-    y, mo, d, h, mi, s = dates.T
-    if not version3:
-        y = np.where(y < 80, y + 2000, np.where(y < 100, y + 1900, -1))
-    sec_max = 61.0 if header.time_system in ("UTC", "GLO") else 60.0
-    bad = (y < YEAR_RANGE[0]) | (y > YEAR_RANGE[1]) | (mo < 1) | (mo > 12) | (d < 1)
-    bad |= (h < 0) | (h > 23) | (mi < 0) | (mi > 59) | ~(s >= 0) | ~(s < sec_max)
-    ok_month = ~bad
-    months = ((np.where(ok_month, y, 1970) - 1970) * 12 + np.where(ok_month, mo, 1) - 1)
-    start = months.astype("datetime64[M]")
-    length = ((start + 1).astype("datetime64[D]") - start.astype("datetime64[D]")).astype(int)
-    bad |= d > length
-    return int(np.argmax(bad)) if bad.any() else None
-
-
 def _to_gps_s(labels: np.ndarray, header: ObsHeader) -> np.ndarray:
     ts = header.time_system.upper()
     if ts in ("GPS", "GAL", "QZS", "IRN", ""):
@@ -106,8 +83,12 @@ def _to_gps_s(labels: np.ndarray, header: ObsHeader) -> np.ndarray:
     return utc_to_gps_s(labels)
 
 
+def _bad_date(date: tuple, time_system: str) -> bool:
+    return check_dates(np.asarray([date], float), time_system, True) is not None
+
+
 def _label(date: tuple) -> float:
-    return float(calendar_to_gps_s(*(np.asarray(v) for v in date)))
+    return float(date_labels(np.asarray([date], dtype=np.float64))[0])
 
 
 class _Collector:
@@ -124,6 +105,7 @@ class _Collector:
         self.sat_of: dict[str, list[str]] = {}
         self.warnings: list[str] = []
         self.sat_key: dict[str, np.ndarray] = {}
+        self.seen: set[str] = set()  # systems of every record, wanted or not
 
     def load(self, scan: Scan) -> None:
         """Take the epochs and records of a vectorised scan (records as character arrays)."""
@@ -135,6 +117,7 @@ class _Collector:
         self.epoch_of = scan.epoch_of  # type: ignore[assignment]
         self.sat_of = scan.sat_of
         self.sat_key = scan.sat_key
+        self.seen = scan.seen
 
     def fail(self, message: str, idx: int) -> InputError:
         return InputError(message, path=self.path, line=_error_line(self.header, idx))
@@ -157,6 +140,7 @@ class _Collector:
 
     def record(self, sys_: str, rec: bytes, j: int, e: int, sat: str) -> None:
         """Keep one satellite record (line ``j``, epoch ``e``) if its system is wanted."""
+        self.seen.add(sys_)
         if self.systems is not None and sys_ not in self.systems:
             return
         if sys_ not in self.records:
@@ -173,14 +157,16 @@ class _Collector:
         for s, ep in self._epoch_arrays.items():
             lo, hi = np.searchsorted(ep, [e, e + 1])
             for k in range(lo, hi):
-                out[(s, self.sat_of[s][k])] = self.records[s][k].rstrip()
+                rec = self.records[s][k]  # bytes, or a row of the scan's character array
+                text = rec.tobytes() if isinstance(rec, np.ndarray) else rec
+                out[(s, self.sat_of[s][k])] = text.rstrip()
         return self.flags[e], out
 
     def _epochs(self, version3: bool) -> np.ndarray:
         """Check dates and order, resolve repeated epochs; return the kept labels."""
         h = self.header
         dates = np.asarray(self.times, dtype=np.float64).reshape(-1, 6)
-        k = _check_dates(dates, h, version3)
+        k = check_dates(dates, h.time_system, version3)
         if k is not None:
             raise self.fail(
                 f"impossible epoch date {' '.join(f'{v:g}' for v in dates[k])} (month 1-12, day "
@@ -188,53 +174,64 @@ class _Collector:
                 f"{YEAR_RANGE[0]}-{YEAR_RANGE[1]})",
                 self.lines[k],
             )
-        y = dates[:, 0].astype(np.int64)
-        labels = calendar_to_gps_s(y, *(dates[:, c].astype(np.int64) for c in (1, 2, 3, 4)),
-                                   dates[:, 5])  # fmt: skip
+        labels = date_labels(dates)
         step = np.diff(labels)
         if np.any(step < 0):
             k = int(np.argmax(step < 0)) + 1
             raise self.fail(
-                f"epoch {_fmt_date(dates[k])} is earlier than the epoch before it "
-                f"({_fmt_date(dates[k - 1])}, line {_error_line(h, self.lines[k - 1])}): epochs "
+                f"epoch {fmt_date(dates[k])} is earlier than the epoch before it "
+                f"({fmt_date(dates[k - 1])}, line {_error_line(h, self.lines[k - 1])}): epochs "
                 "must increase (the file is damaged or was concatenated out of order)",
                 self.lines[k],
             )
         self._check_span(labels, dates)
-        keep = np.ones(labels.size, dtype=bool)
-        if np.any(step == 0):
-            self._epoch_arrays = {s: np.asarray(v) for s, v in self.epoch_of.items()}
-            first = None
-            for k in np.flatnonzero(step == 0) + 1:
-                prev = k - 1
-                while not keep[prev]:
-                    prev -= 1
-                if self._records_of(int(prev)) != self._records_of(int(k)):
-                    raise self.fail(
-                        f"epoch {_fmt_date(dates[k])} appears twice with different data "
-                        f"(lines {_error_line(h, self.lines[prev])} and "
-                        f"{_error_line(h, self.lines[k])}); which one is right is unknown",
-                        self.lines[k],
-                    )
-                keep[k] = False
-                first = first or (int(prev), int(k))
-            n = int((~keep).sum())
-            self.warnings.append(
-                f"line {_error_line(h, self.lines[first[1]])}: {n} epoch(s) repeated with "
-                f"identical data (first {_fmt_date(dates[first[1]])}, also on line "
-                f"{_error_line(h, self.lines[first[0]])}); the repeats are ignored"
-            )
-            self._drop_epochs(keep)
+        if not np.any(step == 0):
+            return labels
+        keep = self._repeats(dates, np.flatnonzero(step == 0) + 1)
+        self._drop_epochs(keep)
         return labels[keep]
+
+    def _repeats(self, dates: np.ndarray, repeated: np.ndarray) -> np.ndarray:
+        """Epochs to keep when ``repeated`` ones have the label of the epoch before them.
+
+        A repeat with the same records is dropped with a warning (also when its
+        seconds read differently, ``29.9999999`` and ``30.0000000``); with other
+        records it is refused.
+        """
+        h = self.header
+        self._epoch_arrays = {s: np.asarray(v) for s, v in self.epoch_of.items()}
+        keep = np.ones(dates.shape[0], dtype=bool)
+        for k in repeated:
+            prev = k - 1
+            while not keep[prev]:
+                prev -= 1
+            if self._records_of(int(prev)) != self._records_of(int(k)):
+                raise self.fail(
+                    f"epoch {fmt_date(dates[k])} appears twice with different data "
+                    f"(lines {_error_line(h, self.lines[prev])} and "
+                    f"{_error_line(h, self.lines[k])}); which one is right is unknown",
+                    self.lines[k],
+                )
+            keep[k] = False
+        first = int(repeated[0])
+        self.warnings.append(
+            f"line {_error_line(h, self.lines[first])}: {repeated.size} epoch(s) repeated with "
+            f"identical data (first {fmt_date(dates[first])}, also on line "
+            f"{_error_line(h, self.lines[first - 1])}); the repeats are ignored"
+        )
+        return keep
 
     def _drop_epochs(self, keep: np.ndarray) -> None:
         new = np.cumsum(keep) - 1
         for s, ep in self._epoch_arrays.items():
             m = keep[ep]
             idx = np.flatnonzero(m)
-            self.records[s] = [self.records[s][i] for i in idx]
-            self.line_of[s] = [self.line_of[s][i] for i in idx]
+            recs = self.records[s]
+            self.records[s] = recs[idx] if isinstance(recs, np.ndarray) else [recs[i] for i in idx]
+            self.line_of[s] = np.asarray(self.line_of[s])[idx].tolist()
             self.sat_of[s] = [self.sat_of[s][i] for i in idx]
+            if s in self.sat_key:
+                self.sat_key[s] = self.sat_key[s][idx]
             self.epoch_of[s] = new[ep[m]].tolist()
         self.flags = [f for f, k in zip(self.flags, keep, strict=True) if k]
         self.lines = [f for f, k in zip(self.lines, keep, strict=True) if k]
@@ -243,7 +240,7 @@ class _Collector:
         h = self.header
         for rec, name, sign in ((h.first_obs, "TIME OF FIRST OBS", -1),
                                 (h.last_obs, "TIME OF LAST OBS", 1)):  # fmt: skip
-            if rec is None or _check_dates(np.asarray([rec], float), h, True) is not None:
+            if rec is None or _bad_date(rec, h.time_system):
                 continue
             limit = _label(rec)
             out = sign * (labels - limit) > 1.0
@@ -251,8 +248,8 @@ class _Collector:
                 k = int(np.argmax(out))
                 where = "before" if sign < 0 else "after"
                 raise self.fail(
-                    f"epoch {_fmt_date(dates[k])} is {where} the header's {name} "
-                    f"{_fmt_date(rec)}: a damaged date, or the header does not belong to the data",
+                    f"epoch {fmt_date(dates[k])} is {where} the header's {name} "
+                    f"{fmt_date(rec)}: a damaged date, or the header does not belong to the data",
                     self.lines[k],
                 )
 
@@ -263,6 +260,9 @@ class _Collector:
         if len(self.times) == 0:
             return np.zeros(0), np.zeros(0, np.int8), {}, ()
         labels = self._epochs(offset == 3)
+        absent = set(self.systems or ()) - set(self.records)
+        if absent:
+            raise missing_systems(self.path, absent, self.seen, "its observed satellites")
         t = _to_gps_s(labels, self.header)
         blocks = _build_blocks(self, len(self.flags), codes_wanted, offset)
         return t, np.asarray(self.flags, dtype=np.int8), blocks, tuple(self.warnings)
@@ -570,6 +570,7 @@ def parse_v2(
         for s_idx, sat in enumerate(sats):
             sys_ = sat[0] if sat[0] != " " else default_sys
             j = first_obs + s_idx * per_sat
+            acc.seen.add(sys_)
             if systems is not None and sys_ not in systems:
                 continue
             parts = [lines[j + r] for r in range(per_sat)]

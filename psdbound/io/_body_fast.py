@@ -61,6 +61,8 @@ class Scan:
         Satellite id of every record (blanks in the number read as zeros).
     sat_key : dict of str to ndarray of int64
         The id's three characters as one integer (same order as the ids).
+    seen : set of str
+        Systems of every record, kept or not.
     """
 
     def __init__(self) -> None:
@@ -72,6 +74,7 @@ class Scan:
         self.epoch_of: dict[str, NDArray[np.int64]] = {}
         self.sat_of: dict[str, list[str]] = {}
         self.sat_key: dict[str, NDArray[np.int64]] = {}
+        self.seen: set[str] = set()
 
 
 def _gather(buf: NDArray[np.uint8], starts: NDArray[np.int64], lengths: NDArray[np.int64],
@@ -188,6 +191,7 @@ def scan_v3(body: bytes, systems: Collection[str] | None,
     epoch_idx = np.cumsum(is_epoch)[rec] - 1
     sys_of = first[rec]
     letters, first_rec = np.unique(sys_of, return_index=True)
+    scan.seen = {chr(int(c)) for c in letters}
     for letter in letters[np.argsort(first_rec)]:  # systems in order of appearance
         s = chr(int(letter))
         if systems is not None and s not in systems:

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from psdbound.errors import InputError
+from psdbound.errors import InputError, NoDataError
 
 
 @dataclass(frozen=True)
@@ -91,6 +91,9 @@ _TYPE_NAMES = {
 
 #: Satellite system letters of RINEX 3 (and RINEX 2 observation files).
 SYSTEM_LETTERS = "GRECJSI"
+#: Name of each system letter.
+SYSTEM_NAMES = {"G": "GPS", "E": "Galileo", "R": "GLONASS", "C": "BeiDou", "J": "QZSS",
+                "S": "SBAS", "I": "NavIC"}  # fmt: skip
 #: Time systems an observation file may use.
 TIME_SYSTEMS = ("GPS", "GLO", "GAL", "BDT", "QZS", "IRN", "UTC")
 _V3_CODE = re.compile(r"[CLDSX][1-9][A-Z]")
@@ -379,3 +382,27 @@ def parse_header(text: bytes, path: Path) -> tuple[ObsHeader, int]:
         type_lines=type_lines,
     )
     return header, stop
+
+
+def system_list(systems) -> str:
+    """``GPS (G), Galileo (E)`` for system letters (sorted as RINEX lists them)."""
+    order = sorted(systems, key=lambda s: SYSTEM_LETTERS.find(s) % 99)
+    return ", ".join(f"{SYSTEM_NAMES.get(s, s)} ({s})" for s in order)
+
+
+def missing_systems(path: Path, missing, held, where: str) -> NoDataError:
+    """The error for requested systems a file has no observations of.
+
+    ``held``: the systems the file does hold, ``where``: where they were
+    found (the header's observation types, the observed satellites).
+    """
+    want = system_list(missing)
+    if not held:
+        return NoDataError(f"no {want} observations: the file holds none of any system",
+                           path=path)  # fmt: skip
+    first = sorted(held, key=lambda s: SYSTEM_LETTERS.find(s) % 99)[0]
+    return NoDataError(
+        f"no {want} observations: the file holds {system_list(held)} only ({where}); choose "
+        f"one of those systems (--system {first}) or give a file with {want} observations",
+        path=path,
+    )

@@ -11,6 +11,7 @@ import os
 from pathlib import Path
 
 from psdbound.errors import InputError
+from psdbound.io.archive import zip_members
 
 __all__ = ["read_bytes"]
 
@@ -51,6 +52,7 @@ def read_bytes(path: str | os.PathLike[str]) -> bytes:
         raise InputError(f"cannot read the file: {exc.strerror or exc}", path=p) from None
     if not raw:
         raise InputError("file is empty (0 bytes); expected a RINEX or SP3 file", path=p)
+    _one_member(p, raw)
     try:
         if raw[:2] == _GZIP_MAGIC:
             raw = gzip.decompress(raw)
@@ -71,6 +73,19 @@ def read_bytes(path: str | os.PathLike[str]) -> bytes:
     if b"COMPACT RINEX" in raw[:200]:
         raw = _crx_to_rnx(raw, p)
     return raw
+
+
+def _one_member(p: Path, raw: bytes) -> None:
+    """Refuse a zip archive of several files, listing them (the readers take one file)."""
+    names = zip_members(p) if raw[:4] == _ZIP_MAGIC else []
+    if len(names) > 1:
+        shown = ", ".join(names[:6]) + (f" and {len(names) - 6} more" if len(names) > 6 else "")
+        raise InputError(
+            f"zip archive of {len(names)} files ({shown}): this reader takes one file; unzip "
+            "it and give the files one by one (psdbound fit and --nav also take such an "
+            "archive whole)",
+            path=p,
+        )
 
 
 def _crx_to_rnx(raw: bytes, p: Path) -> bytes:

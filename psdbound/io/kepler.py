@@ -66,6 +66,23 @@ class RecordTable:
         sel = np.asarray(mask)
         return type(self)(**{f.name: getattr(self, f.name)[sel] for f in fields(self)})  # type: ignore[arg-type]
 
+    def concatenate(self, *others: Any) -> Any:
+        """Return these records followed by those of ``others`` (same type), in that order.
+
+        Parameters
+        ----------
+        *others : same type as ``self``
+            Further records (e.g. of the next day's navigation file).
+
+        Returns
+        -------
+        same type as ``self``
+        """
+        tables = (self, *others)
+        return type(self)(  # type: ignore[call-arg]
+            **{f.name: np.concatenate([getattr(t, f.name) for t in tables]) for f in fields(self)}
+        )
+
 
 @dataclass(frozen=True, eq=False)
 class KeplerEphemerides(RecordTable):

@@ -11,8 +11,10 @@ It is what :func:`psdbound.io.nav.read_nav` returns and what
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -27,7 +29,11 @@ from psdbound.io.glonass import (
 )
 from psdbound.io.kepler import KeplerEphemerides, check_sat_id
 
-__all__ = ["Navigation"]
+__all__ = ["Navigation", "merge_navigation"]
+
+# what makes a broadcast record the same record in two files
+_KEPLER_KEY = ("sat", "toe_gps_s", "iode", "data_source")
+_GLONASS_KEY = ("sat", "tb_gps_s")
 
 
 @dataclass(frozen=True, eq=False)
@@ -181,3 +187,48 @@ class Navigation:
         if eph is None:
             return np.full(np.atleast_1d(np.asarray(t_gps_s)).shape, np.nan)
         return kepler_clock_s(eph, sat, t_gps_s)
+
+
+def _unique_records(table: Any, *columns: str) -> Any:
+    """Return the records without repeats (equal in every one of ``columns``), first kept."""
+    keys = list(zip(*(getattr(table, c).tolist() for c in columns), strict=True))
+    first = {k: n for n, k in reversed(list(enumerate(keys)))}
+    return table.select(np.sort(np.fromiter(first.values(), dtype=np.intp, count=len(first))))
+
+
+def merge_navigation(navs: Sequence[Navigation], path: str | Path) -> Navigation:
+    """Join the records of several navigation files (e.g. consecutive days) into one.
+
+    Parameters
+    ----------
+    navs : sequence of Navigation
+        The files read, in the order given.
+    path : str or Path
+        The name of the joined set (for messages), e.g. ``a.rnx + b.rnx``.
+
+    Returns
+    -------
+    Navigation
+        Every system's records of every file, a record repeated in two files
+        (same satellite, time of ephemeris, issue of data) once; the first
+        file's version, the first leap seconds given, the skipped records
+        summed and the warnings of every file.
+    """
+    ephs: dict[str, KeplerEphemerides] = {}
+    for system in sorted({s for n in navs for s in n.ephemerides}):
+        parts = [n.ephemerides[system] for n in navs if system in n.ephemerides]
+        ephs[system] = _unique_records(parts[0].concatenate(*parts[1:]), *_KEPLER_KEY)
+    glo = [n.glonass for n in navs if n.glonass is not None]
+    skipped: dict[str, int] = {}
+    for n in navs:
+        for s, k in n.skipped.items():
+            skipped[s] = skipped.get(s, 0) + k
+    return Navigation(
+        path=Path(path),
+        version=navs[0].version,
+        leap_seconds=next((n.leap_seconds for n in navs if n.leap_seconds is not None), None),
+        ephemerides=ephs,
+        skipped=dict(sorted(skipped.items())),
+        warnings=tuple(w for n in navs for w in n.warnings),
+        glonass=_unique_records(glo[0].concatenate(*glo[1:]), *_GLONASS_KEY) if glo else None,
+    )

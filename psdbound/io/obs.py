@@ -20,7 +20,8 @@ from psdbound.common.notices import warn
 from psdbound.errors import InputError, NoDataError
 from psdbound.io._body import RawBlock, parse_v2, parse_v3
 from psdbound.io._checks import check_phase_rates, range_reference
-from psdbound.io._header import ObsHeader
+from psdbound.io._header import SYSTEM_NAMES as _SYSTEM_NAMES
+from psdbound.io._header import ObsHeader, missing_systems
 from psdbound.io._header import parse_header as _parse_header
 from psdbound.io._source import read_bytes
 from psdbound.io.signals import RINEX2_TO_RINEX3, wavelength_m
@@ -35,15 +36,6 @@ __all__ = [
     "read_obs",
 ]
 
-_SYSTEM_NAMES = {
-    "G": "GPS",
-    "E": "Galileo",
-    "R": "GLONASS",
-    "C": "BeiDou",
-    "J": "QZSS",
-    "S": "SBAS",
-    "I": "NavIC",
-}
 #: Name of each satellite system letter, e.g. ``SYSTEM_NAMES['R'] == 'GLONASS'``.
 SYSTEM_NAMES: Mapping[str, str] = _SYSTEM_NAMES
 
@@ -305,6 +297,20 @@ def _codes_in_header(code: str, header: ObsHeader, want_sys: set[str] | None) ->
     return out
 
 
+def _check_systems(p: Path, want_sys: set[str], header: ObsHeader) -> None:
+    """Refuse unknown system letters and systems without observation types in the header."""
+    unknown = want_sys - set(_SYSTEM_NAMES)
+    if unknown:
+        raise InputError(
+            f"unknown satellite system {''.join(sorted(unknown))!r}; expected letters "
+            f"from {''.join(_SYSTEM_NAMES)}",
+            path=p,
+        )
+    absent = want_sys - set(header.obs_types)
+    if absent:
+        raise missing_systems(p, absent, header.obs_types, "its header's observation types")
+
+
 def read_obs(
     path: str | os.PathLike[str],
     *,
@@ -371,13 +377,7 @@ def read_obs(
     header, start = _parse_header(text, p)
     want_sys = None if systems is None else set(systems)
     if want_sys is not None:
-        unknown = want_sys - set(_SYSTEM_NAMES)
-        if unknown:
-            raise InputError(
-                f"unknown satellite system {''.join(sorted(unknown))!r}; expected letters "
-                f"from {''.join(_SYSTEM_NAMES)}",
-                path=p,
-            )
+        _check_systems(p, want_sys, header)
     want_codes = None
     if codes is not None:
         want_codes = set()

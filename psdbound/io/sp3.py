@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -27,7 +28,7 @@ from psdbound.io._nav_records import PRN_RANGE, valid_calendar
 from psdbound.io._source import read_bytes
 from psdbound.io.timescales import calendar_to_gps_s, utc_to_gps_s
 
-__all__ = ["PreciseOrbit", "read_sp3", "INTERPOLATION_NODES"]
+__all__ = ["PreciseOrbit", "read_sp3", "merge_precise", "INTERPOLATION_NODES"]
 
 #: Number of consecutive epochs used by the Lagrange interpolation.
 INTERPOLATION_NODES = 11
@@ -444,3 +445,50 @@ def _labels_to_gps_s(labels: NDArray[np.float64], time_system: str) -> NDArray[n
     if time_system == "GLO":
         return utc_to_gps_s(labels - 3 * 3600.0)
     return utc_to_gps_s(labels)
+
+
+def merge_precise(orbits: Sequence[PreciseOrbit], path: str | Path) -> PreciseOrbit:
+    """Join SP3 files of consecutive periods (one epoch interval) into one orbit.
+
+    Parameters
+    ----------
+    orbits : sequence of PreciseOrbit
+        The files read.
+    path : str or Path
+        The name of the joined set (for messages).
+
+    Returns
+    -------
+    PreciseOrbit
+        The union of the satellites (in order of appearance) and of the
+        epochs in time order; an epoch in two files is taken from the first
+        given; NaN where a file lacks a satellite.
+
+    Raises
+    ------
+    InputError
+        When the files have different epoch intervals (the interpolation
+        windows need one step).
+    """
+    steps = {round(float(np.median(np.diff(o.t_gps_s))), 3) for o in orbits if o.t_gps_s.size > 1}
+    if len(steps) > 1:
+        names = ", ".join(f"{Path(o.path).name} ({float(np.median(np.diff(o.t_gps_s))):g} s)"
+                          for o in orbits if o.t_gps_s.size > 1)  # fmt: skip
+        raise InputError(f"SP3 files with different epoch intervals: {names}; give files of "
+                         "one interval (one product)", path=path)  # fmt: skip
+    sats = tuple(dict.fromkeys(s for o in orbits for s in o.sats))
+    t_all = np.concatenate([o.t_gps_s for o in orbits])
+    t, first = np.unique(t_all, return_index=True)  # the first file's epoch where repeated
+    xyz = np.full((t.size, len(sats), 3), np.nan)
+    clk = np.full((t.size, len(sats)), np.nan)
+    offset = 0
+    for o in orbits:
+        rows = np.arange(offset, offset + o.t_gps_s.size)
+        keep = np.isin(rows, first)
+        at = np.searchsorted(t, o.t_gps_s[keep])
+        cols = [sats.index(s) for s in o.sats]
+        xyz[at[:, None], cols] = o.xyz_m[keep]
+        clk[at[:, None], cols] = o.clock_s[keep]
+        offset += o.t_gps_s.size
+    return PreciseOrbit(path=Path(path), t_gps_s=t, sats=sats, xyz_m=xyz, clock_s=clk,
+                        time_system=orbits[0].time_system)  # fmt: skip

@@ -55,6 +55,7 @@ from psdbound.common.options import (
 )
 from psdbound.common.tomlfile import read_toml
 from psdbound.errors import InputError
+from psdbound.io.archive import zip_members
 from psdbound.io.options import ArcOptions
 from psdbound.ionosphere.policy import CUTOFF_SOURCES, CutoffOptions
 from psdbound.isolation import HighPass
@@ -110,7 +111,8 @@ class InputsConfig:
 
     ``obs``: one file (dual-frequency) or two (dual-antenna); empty runs the
     demo (a single name is one file). ``nav``: navigation (RINEX 2/3) or SP3
-    file, needed with observation files. ``method``: ``auto`` (DF for one
+    file(s), needed with observation files; several (e.g. of consecutive days,
+    or a zip archive of them) are joined into one orbit. ``method``: ``auto`` (DF for one
     file, DA for two), ``df`` or ``da``. ``system``: satellite system letter.
     ``signals``: DF phase pair (default per system, GPS L1C-L2W);
     ``da_signal``: DA phase code. ``pair``: the two antennas of a
@@ -127,7 +129,10 @@ class InputsConfig:
         (), Tuple(Text(what="a file name", paths=True), max_len=100,
                   what="a list of observation file names"),
     )  # fmt: skip
-    nav: str | None = option(None, Text(what="a file name", paths=True, optional=True))
+    nav: tuple[str, ...] = option(
+        (), Tuple(Text(what="a file name", paths=True), max_len=100,
+                  what="a list of navigation or SP3 file names"),
+    )  # fmt: skip
     method: str = option("auto", Choice(("auto", "df", "da"), noun="isolation method"))
     system: str = option("G", Choice(_SYSTEMS, noun="satellite system"))
     signals: tuple[str, ...] = option(
@@ -322,7 +327,6 @@ class FitConfig:
         return getattr(self, section)
 
 
-
 def _with(cfg: FitConfig, section: str, value: Any, source: str | None) -> FitConfig:
     try:
         return replace(cfg, **{section: value})
@@ -347,7 +351,6 @@ def _build(section: str, values: dict[str, Any], base: Any, source: str = "optio
     except (TypeError, ValueError) as exc:  # a section class without a schema
         bad = ", ".join(f"{k} = {show_value(v)}" for k, v in values.items())
         raise InputError(f"[{section}] {bad}: {exc}", path=path) from None
-
 
 
 # ----------------------------------------------------------------- rules between options
@@ -393,6 +396,21 @@ def _n_files(inp: InputsConfig) -> int:
     return len(inp.obs) + len(extra)
 
 
+def _rule_demo_inputs(inp: InputsConfig, label: Label) -> None:
+    """No observation file (the demo): file options are errors."""
+    if inp.nav:
+        raise InputError(
+            f"{_show(label('inputs', 'nav'), ' '.join(inp.nav))} given without observation "
+            "files: the demo uses its own navigation file; give the observation files too"
+        )
+    for key in ("receiver_xyz_m", "position_a_m", "position_b_m"):
+        if getattr(inp, key):
+            raise InputError(
+                f"{label('inputs', key)} given without observation files "
+                "(the demo knows its positions)"
+            )
+
+
 def _rule_inputs(cfg: FitConfig, label: Label) -> None:
     inp = cfg.inputs
     n = _n_files(inp)
@@ -418,19 +436,9 @@ def _rule_inputs(cfg: FitConfig, label: Label) -> None:
             f"antennas, got {n} file(s)"
         )
     if n == 0:
-        if inp.nav is not None:
-            raise InputError(
-                f"{_show(label('inputs', 'nav'), inp.nav)} given without observation files: "
-                "the demo uses its own navigation file; give the observation files too"
-            )
-        for key in ("receiver_xyz_m", "position_a_m", "position_b_m"):
-            if getattr(inp, key):
-                raise InputError(
-                    f"{label('inputs', key)} given without observation files "
-                    "(the demo knows its positions)"
-                )
+        _rule_demo_inputs(inp, label)
         return
-    if inp.nav is None:
+    if not inp.nav and not any(zip_members(p) for p in inp.obs):  # an archive may hold it
         raise InputError(
             f"a navigation (or SP3) file is needed for elevations with {lab}: give "
             f"{label('inputs', 'nav')}"

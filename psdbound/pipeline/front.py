@@ -207,16 +207,22 @@ class FitResults:
         return write_report_folder(self.document, out_dir, pdf=pdf)
 
 
+def _names(paths: Sequence[str | os.PathLike[str]] | str | os.PathLike[str] | None
+           ) -> tuple[str, ...]:  # fmt: skip
+    """File names of a path, a sequence of paths or None."""
+    if paths is None:
+        return ()
+    if isinstance(paths, str | os.PathLike):
+        paths = [paths]
+    return tuple(os.fspath(p) for p in paths)
+
+
 def _config_from(obs: Sequence[str | os.PathLike[str]] | str | os.PathLike[str],
-                 nav: str | os.PathLike[str] | None, config: FitConfig | None,
-                 options: dict[str, Any]) -> FitConfig:  # fmt: skip
+                 nav: Sequence[str | os.PathLike[str]] | str | os.PathLike[str] | None,
+                 config: FitConfig | None, options: dict[str, Any]) -> FitConfig:  # fmt: skip
     cfg = config if config is not None else FitConfig()
-    if isinstance(obs, str | os.PathLike):
-        obs = [obs]
-    if obs:
-        cfg = cfg.updated("inputs", obs=tuple(os.fspath(p) for p in obs))
-    if nav is not None:
-        cfg = cfg.updated("inputs", nav=os.fspath(nav))
+    files = {"obs": _names(obs), "nav": _names(nav)}
+    cfg = cfg.updated("inputs", **{k: v for k, v in files.items() if v})
     sections = {f.name for f in fields(FitConfig)}
     owners: dict[str, list[str]] = {}
     for sec in sections:
@@ -239,7 +245,7 @@ def _config_from(obs: Sequence[str | os.PathLike[str]] | str | os.PathLike[str],
 
 def fit(
     obs: Sequence[str | os.PathLike[str]] | str | os.PathLike[str] = (),
-    nav: str | os.PathLike[str] | None = None,
+    nav: Sequence[str | os.PathLike[str]] | str | os.PathLike[str] | None = None,
     *,
     config: FitConfig | None = None,
     progress: Progress | None = None,
@@ -252,8 +258,10 @@ def fit(
     obs : path or sequence of paths, optional
         One observation file (dual-frequency) or two (dual-antenna). None or
         empty: the embedded demo (simulated, known truth).
-    nav : path, optional
-        Navigation (RINEX 2/3) or SP3 file.
+    nav : path or sequence of paths, optional
+        Navigation (RINEX 2/3) or SP3 file; several (e.g. of consecutive
+        days) are joined into one orbit. Not needed when ``obs`` is a zip
+        archive that also holds the navigation file.
     config : FitConfig, optional
         Every option; ``obs``, ``nav`` and ``options`` override it.
     progress : callable, optional

@@ -18,7 +18,7 @@ import numpy as np
 from psdbound.common import file_sha256
 from psdbound.errors import InputError
 from psdbound.io import Observations, orbit_coverage, read_obs, read_orbit
-from psdbound.io.archive import extract_zip, zip_members
+from psdbound.io.archive import extract_zip, file_kind, member_label, relabel, zip_members
 from psdbound.io.geometry import ecef_to_geodetic
 from psdbound.io.merge import merge_observations, same_station, station_key
 from psdbound.pipeline.config import InputsConfig
@@ -51,10 +51,63 @@ def _method(inputs: InputsConfig, n_stations: int) -> str:
     return m
 
 
+Source = tuple[Path, str | None]  # a file to read, and its name as an archive member
+
+
+def _unpack(paths: Sequence[Path], tmp: Path) -> tuple[list[Source], list[Path]]:
+    """Extract the zip archives of several files among the observation files.
+
+    Parameters
+    ----------
+    paths : sequence of Path
+        The observation files as given.
+    tmp : Path
+        An empty folder for the members (one sub-folder per archive).
+
+    Returns
+    -------
+    sources : list of (Path, str or None)
+        The files to read as observations: the files given, and the members
+        of each archive that are not navigation or SP3 files (with their
+        ``archive.zip:member`` names).
+    with_orbits : list of Path
+        The archives that also hold navigation or SP3 members (a station's
+        download of observations and navigation together).
+
+    Raises
+    ------
+    InputError
+        An archive that holds no observation file.
+    """
+    sources: list[Source] = []
+    with_orbits: list[Path] = []
+    for k, p in enumerate(paths):
+        if len(zip_members(p)) <= 1:
+            sources.append((p, None))
+            continue
+        folder = tmp / str(k)
+        folder.mkdir()
+        members = extract_zip(p, folder)
+        kinds = [file_kind(m) for m in members]
+        obs = [(m, member_label(p, m)) for m, kind in zip(members, kinds, strict=True)
+               if kind not in ("nav", "sp3")]  # fmt: skip
+        if not obs:
+            raise InputError(
+                f"the archive holds no observation file ({len(members)} navigation/SP3 files: "
+                f"{', '.join(m.name for m in members[:4])}{', ...' if len(members) > 4 else ''})"
+                "; give the observation files, and this archive as --nav",
+                path=p,
+            )
+        if len(obs) < len(members):
+            with_orbits.append(p)
+        sources += obs
+    return sources, with_orbits
+
+
 def _read_observations(
-    paths: Sequence[Path], system: str, codes: Sequence[str] | None = None
+    sources: Sequence[Source], system: str, codes: Sequence[str] | None = None
 ) -> list[Observations]:
-    """Read every observation file; a zip archive of several files gives one per member.
+    """Read every observation file (archive members named ``archive.zip:member``).
 
     ``codes``: the only observation codes kept (a dual-frequency run needs its
     phase pair only: a third of the memory of a typical file), with the first
@@ -64,15 +117,68 @@ def _read_observations(
 
     optional = (snr_signal(codes[0]),) if codes else ()
     out = []
-    for p in paths:
-        if len(zip_members(p)) > 1:
-            with tempfile.TemporaryDirectory(prefix="psdbound-zip-") as tmp:
-                for member in extract_zip(p, tmp):
-                    o = read_obs(member, systems=system, codes=codes, optional_codes=optional)
-                    out.append(replace(o, path=f"{p}:{member.name}"))
-        else:
-            out.append(read_obs(p, systems=system, codes=codes, optional_codes=optional))
+    for path, label in sources:
+        try:
+            o = read_obs(path, systems=system, codes=codes, optional_codes=optional)
+        except InputError as exc:
+            raise (relabel(exc, label) if label else exc) from None
+        out.append(o if label is None else replace(o, path=label))
     return out
+
+
+def _orbit_sources(
+    nav: Sequence[Path], with_orbits: Sequence[Path]
+) -> tuple[list[Path], list[str]]:
+    """Return the orbit files: ``--nav``, else the observation archives that hold them.
+
+    Returns the files and notes (archives whose navigation members are not
+    used because ``--nav`` is given).
+    """
+    if nav:
+        notes = [f"{p.name}: its navigation/SP3 members are not used (--nav given)"
+                 for p in with_orbits]  # fmt: skip
+        return list(nav), notes
+    if with_orbits:
+        return list(with_orbits), []
+    raise InputError("a navigation (or SP3) file is needed for elevations: give --nav")
+
+
+def _refuse_repeats(paths: Sequence[Path]) -> None:
+    """Refuse an observation file given twice (by two names, or two copies of one file).
+
+    Parameters
+    ----------
+    paths : sequence of Path
+        The observation files, as given.
+
+    Raises
+    ------
+    InputError
+        Naming the file and the other name it was given under.
+    """
+    seen: dict[object, Path] = {}
+    sizes: dict[int, list[Path]] = {}
+    for p in paths:
+        key = p.resolve()
+        if key in seen:
+            how = "twice" if str(seen[key]) == str(p) else f"twice (also as {seen[key]})"
+            raise InputError(
+                f"observation file given {how}: give each file once (the files of one "
+                "station are merged in time order)",
+                path=p,
+            )
+        seen[key] = p
+        sizes.setdefault(p.stat().st_size, []).append(p)
+    for same_size in (g for g in sizes.values() if len(g) > 1):
+        digests: dict[str, Path] = {}
+        for p in same_size:
+            other = digests.setdefault(file_sha256(p), p)
+            if other is not p:
+                raise InputError(
+                    f"observation file with the same content as {other}: the same "
+                    "observations given twice; give each file once",
+                    path=p,
+                )
 
 
 def _codes_needed(options: InputsConfig) -> tuple[str, ...] | None:
@@ -113,6 +219,11 @@ def _matches(item: str, obs: Observations) -> bool:
     return item.strip().upper() in (marker, station_key(obs))
 
 
+def _among(o: Observations, group: Sequence[Observations]) -> bool:
+    """Whether ``o`` is one of the objects of ``group`` (identity: == compares arrays)."""
+    return any(o is x for x in group)
+
+
 def _group_stations(
     obs: Sequence[Observations], pair: Sequence[str] = ()
 ) -> list[list[Observations]]:
@@ -129,11 +240,11 @@ def _group_stations(
                     f"inputs (stations: {names}); name a station or give its file"
                 )
             seeds.append(hits)
-        if any(o in seeds[1] for o in seeds[0]):
+        if any(_among(o, seeds[1]) for o in seeds[0]):
             raise InputError(f"--pair {pair[0]!r} {pair[1]!r} names the same files twice")
         groups = [list(seeds[0]), list(seeds[1])]
     for o in obs:
-        if any(o in g for g in groups):
+        if any(_among(o, g) for g in groups):
             continue
         home = [g for g in groups if same_station(g[0], o)]
         if len(home) > 1 and pair:
@@ -168,9 +279,7 @@ def _check_stations(groups: list[list[Observations]], options: InputsConfig) -> 
         if a.upper() == b.upper() or " " in a + b:  # same marker: name the files
             a, b = (str(g[0].path) for g in groups)
         if options.method.lower() == "df":
-            raise InputError(
-                f"--method df needs the files of one station, got two: {names}"
-            )
+            raise InputError(f"--method df needs the files of one station, got two: {names}")
         raise InputError(
             f"observation files of two stations: {names}; fit one station's files, or name "
             f"a dual-antenna pair explicitly: --pair {a} {b} (or [inputs] pair in TOML)"
@@ -217,62 +326,96 @@ def read_inputs(options: InputsConfig, *, progress: Progress = quiet,
         A missing file, files of stations the run would not use (named), a
         pair that names no input, orbits that do not cover the observations.
     """
-    obs_paths = [Path(p) for p in options.obs]
-    for item in options.pair:  # pair members given as files are inputs too
-        if Path(item).is_file() and Path(item).resolve() not in [q.resolve() for q in obs_paths]:
-            obs_paths.append(Path(item))
-    nav_path = Path(options.nav) if options.nav else None
-    demo = None
-    method_options = options
-    if not obs_paths:
-        from psdbound.simulate import demo_data
-
-        progress("demo data (simulated on first use)")
-        data = demo_data()
-        obs_paths, nav_path = [data.obs_paths[0]], data.nav_path
-        demo = data.truth_meta()
-        method_options = InputsConfig(method="df")
-    for p in obs_paths:
-        if not p.is_file():
-            raise InputError("observation file not found", path=p)
-    if nav_path is None:
-        raise InputError("a navigation (or SP3) file is needed for elevations: give --nav")
-    progress(f"reading {len(obs_paths)} observation file(s) and {nav_path.name}")
-    codes = None if extra_codes else _codes_needed(method_options)
-    groups = _group_stations(_read_observations(obs_paths, options.system, codes), options.pair)
+    obs_paths, nav_paths, demo = _given_files(options, progress)
+    method_options = InputsConfig(method="df") if demo is not None else options
+    with tempfile.TemporaryDirectory(prefix="psdbound-zip-") as tmp:
+        sources, with_orbits = _unpack(obs_paths, Path(tmp))
+        orbit_paths, notes = _orbit_sources(nav_paths, with_orbits)
+        progress(f"reading {len(obs_paths)} observation file(s) and "
+                 f"{', '.join(p.name for p in orbit_paths)}")  # fmt: skip
+        codes = None if extra_codes else _codes_needed(method_options)
+        groups = _group_stations(_read_observations(sources, options.system, codes),
+                                 options.pair)  # fmt: skip
     _check_stations(groups, method_options)
     method = _method(method_options, len(groups))
     if method == "df":
-        default = InputsConfig()
-        for key in ("baseline", "baseline_tolerance_m"):
-            if getattr(options, key) != getattr(default, key):
-                raise InputError(
-                    f"{key} = {getattr(options, key)!r} is a dual-antenna option, but the files "
-                    f"are one station ({_label(groups[0])}): name a pair or remove it"
-                )
+        _refuse_pair_options(options, groups)
     obs = tuple(merge_observations(g) for g in groups)
     merged = [f"{station_key(g[0])}: {len(g)} observation files merged in time order into one "
               f"data set ({len(obs[k].t_gps_s)} epochs)"
               for k, g in enumerate(groups) if len(g) > 1]  # fmt: skip
     if merged:
         progress("; ".join(merged))
-    orbit = read_orbit(nav_path)
-    coverage_notes: list[str] = []
-    for o in obs:  # orbits of another day or without the system: one clear error (exit 2)
-        cov = orbit_coverage(orbit, o, options.system)
-        cov.require(options.system)
-        coverage_notes += [f"{nav_path.name}: {w}" for w in cov.warnings(options.system)]
+    orbit, coverage_notes = _orbit_for(orbit_paths, obs, options.system)
     rx = _positions(options, len(obs))
-    pos = obs[0].header.approx_position_m if rx[0] is None else np.asarray(rx[0])
-    lat = lon = None
-    if pos is not None:
-        la, lo, _ = ecef_to_geodetic(np.asarray(pos))
-        lat, lon = float(la), float(lo)
+    lat, lon = _lat_lon(obs[0], rx[0])
     files = tuple(
         {"role": role, "name": p.name, "path": str(p), "sha256": file_sha256(p)}
-        for role, p in [*(("obs", q) for q in obs_paths), ("nav", nav_path)]
+        for role, p in [*(("obs", q) for q in obs_paths), *(("nav", q) for q in orbit_paths)]
     )
     year = int(str(obs[0].times[0])[:4])
-    notes = tuple(str(w) for o in (*obs, orbit) for w in getattr(o, "warnings", ()) or ())
-    notes += tuple(merged) + tuple(coverage_notes)
-    return InputData(method, obs, orbit, files, rx, lat, lon, year, demo, notes)
+    notes += [str(w) for o in (*obs, orbit) for w in getattr(o, "warnings", ()) or ()]
+    notes += merged + coverage_notes
+    return InputData(method, obs, orbit, files, rx, lat, lon, year, demo, tuple(notes))
+
+
+def _given_files(
+    options: InputsConfig, progress: Progress
+) -> tuple[list[Path], list[Path], dict | None]:
+    """Return the observation and orbit files of a run (the demo's when none are given).
+
+    Returns the observation files (with ``pair`` members given as files), the
+    orbit files and the demo's truth metadata (None for real files).
+    """
+    obs_paths = [Path(p) for p in options.obs]
+    for item in options.pair:  # pair members given as files are inputs too
+        if Path(item).is_file() and Path(item).resolve() not in [q.resolve() for q in obs_paths]:
+            obs_paths.append(Path(item))
+    if not obs_paths:
+        from psdbound.simulate import demo_data
+
+        progress("demo data (simulated on first use)")
+        data = demo_data()
+        return [data.obs_paths[0]], [data.nav_path], data.truth_meta()
+    for p in obs_paths:
+        if not p.is_file():
+            raise InputError("observation file not found", path=p)
+    _refuse_repeats(obs_paths)
+    return obs_paths, [Path(p) for p in options.nav], None
+
+
+def _refuse_pair_options(options: InputsConfig, groups: list[list[Observations]]) -> None:
+    """Dual-antenna options with the files of one station are errors."""
+    default = InputsConfig()
+    for key in ("baseline", "baseline_tolerance_m"):
+        if getattr(options, key) != getattr(default, key):
+            raise InputError(
+                f"{key} = {getattr(options, key)!r} is a dual-antenna option, but the files "
+                f"are one station ({_label(groups[0])}): name a pair or remove it"
+            )
+
+
+def _orbit_for(paths: Sequence[Path], obs: Sequence[Observations],
+               system: str) -> tuple[object, list[str]]:  # fmt: skip
+    """Read the orbit files; refuse orbits that do not cover the observations (one clear error).
+
+    Returns the orbit and the coverage warnings.
+    """
+    orbit = read_orbit(paths)
+    name = Path(str(orbit.path)).name
+    notes: list[str] = []
+    for o in obs:  # orbits of another day or without the system: one clear error (exit 2)
+        cov = orbit_coverage(orbit, o, system)
+        cov.require(system)
+        notes += [f"{name}: {w}" for w in cov.warnings(system)]
+    return orbit, notes
+
+
+def _lat_lon(obs: Observations, given: tuple[float, float, float] | None
+             ) -> tuple[float | None, float | None]:  # fmt: skip
+    """Geodetic latitude and longitude of the (first) antenna, deg (None without a position)."""
+    pos = obs.header.approx_position_m if given is None else np.asarray(given)
+    if pos is None:
+        return None, None
+    la, lo, _ = ecef_to_geodetic(np.asarray(pos))
+    return float(la), float(lo)

@@ -47,7 +47,7 @@ __all__ = ["MAX_MULTIPATH_M", "MULTIPATH_SPEC_EXAMPLE", "IonoDisturbance", "Refl
 #: Largest standard deviation of injected carrier error, m: about a quarter wavelength.
 MAX_MULTIPATH_M = 0.05
 #: An example of :meth:`MultipathModel.from_spec` text (used in messages).
-MULTIPATH_SPEC_EXAMPLE = "sigma_gm_m=0.004,tau_s=120,sigma_wn_m=0.002,mapping=1,12,10"
+MULTIPATH_SPEC_EXAMPLE = "sigma_gm_m=0.003,tau_s=120,sigma_wn_m=0.001,mapping=1,12,10"
 _QUARTER_WAVE = "carrier multipath cannot exceed a quarter wavelength, about 5 cm"
 _SIGMAS = ("sigma_gm_m", "sigma_wn_m", "receiver_noise_m")
 

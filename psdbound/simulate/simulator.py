@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import gzip
 import json
+import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
@@ -49,13 +50,14 @@ from psdbound.errors import InputError
 from psdbound.io.geometry import azimuth_elevation, enu_rotation, geodetic_to_ecef, signal_path
 from psdbound.io.nav import Navigation, read_nav
 from psdbound.io.nominal import nominal_navigation
-from psdbound.io.obs import Observations, ObsHeader, SystemBlock
-from psdbound.io.signals import SPEED_OF_LIGHT_M_S, carrier_frequency_hz
+from psdbound.io.obs import SYSTEM_NAMES, Observations, ObsHeader, SystemBlock
+from psdbound.io.signals import SPEED_OF_LIGHT_M_S, carrier_frequency_hz, wavelength_m
 from psdbound.io.write import format_nav_v3, write_obs_v3
-from psdbound.simulate.scenario import Scenario
+from psdbound.screening.plausibility import multipath_limit_m
+from psdbound.simulate.scenario import MultipathModel, Scenario
 from psdbound.version import __version__
 
-__all__ = ["SimulationResult", "simulate", "gauss_markov"]
+__all__ = ["SimulationResult", "simulate", "gauss_markov", "multipath_limit_problem"]
 
 SIGNALS = {"G": ("L1C", "L2W"), "E": ("L1C", "L5Q")}
 CODES = {"G": ("C1C", "C2W"), "E": ("C1C", "C5Q")}
@@ -191,6 +193,56 @@ def _disturbance_tecu(sc: Scenario, t_rel_s: np.ndarray, sats: list[str]) -> np.
             inc = np.where(inside, rng.normal(0.0, step, t_rel_s.size), 0.0)
             out[:, j] += np.cumsum(inc)
     return out
+
+
+def _below(mp: MultipathModel, ratio: float) -> str:
+    """Where the mapping exceeds ``ratio`` (limit / zenith sigma): 'below X deg' or 'at every'."""
+    if ratio <= mp.a:
+        return "at every elevation"
+    if mp.b <= 0 or ratio >= mp.a + mp.b:
+        return ""
+    return f"below {mp.c_deg * math.sqrt(2.0 * math.log(mp.b / (ratio - mp.a))):.1f} deg"
+
+
+def multipath_limit_problem(sc: Scenario, label: str = "multipath") -> str:
+    """Say whether the injected multipath breaks the carrier-multipath limit at low elevation.
+
+    The standard deviation of the injected error of a signal is
+    ``m(el) sqrt(sigma_gm^2 + sigma_wn^2)``; carrier multipath cannot exceed a
+    quarter of the wavelength (:func:`psdbound.screening.multipath_limit_m`).
+    It is checked at the elevation mask, the lowest simulated elevation,
+    against the shortest carrier simulated (L1: 4.76 cm).
+
+    Parameters
+    ----------
+    sc : Scenario
+        The scenario to simulate.
+    label : str, default "multipath"
+        How the message names the option that set the multipath.
+
+    Returns
+    -------
+    str
+        One line naming ``label``, the elevation and the value against the
+        limit, and what to do; ``''`` when the multipath is within the limit.
+    """
+    mp = sc.multipath
+    el = sc.elevation_mask_deg
+    sigma = mp.factor(el) * math.hypot(mp.sigma_gm_m, mp.sigma_wn_m)
+    limit, system, code = min(
+        (multipath_limit_m([wavelength_m(f"{s}01", c)], 1.0), s, c)
+        for s in sc.systems for c in SIGNALS[s]
+    )  # fmt: skip
+    if not sigma > limit:
+        return ""
+    where = _below(mp, limit / math.hypot(mp.sigma_gm_m, mp.sigma_wn_m))
+    return (
+        f"{label}: at {el:g} deg elevation (the elevation mask) the mapped multipath sigma is "
+        f"{100 * sigma:.2f} cm, beyond the carrier-multipath limit {100 * limit:.2f} cm (a "
+        f"quarter of the {SYSTEM_NAMES[system]} {code} wavelength); {where} the simulated "
+        "carrier error is not physical multipath: lower sigma_gm_m/sigma_wn_m or the mapping, "
+        "or raise elevation_mask_deg"
+    )
 
 
 def simulate(scenario: Scenario, out_dir: str | os.PathLike[str]) -> SimulationResult:

@@ -133,7 +133,8 @@ def test_unknown_signal(tmp_path):
 
 def test_requested_system_without_epochs(tmp_path):
     p = write_small(tmp_path / "a.rnx")
-    with pytest.raises(NoDataError, match=r"a\.rnx: no epochs with Galileo \(E\) observations"):
+    with pytest.raises(NoDataError, match=r"a\.rnx: no Galileo \(E\) observations: the file "
+                                          r"holds GPS \(G\) only"):  # fmt: skip
         read_obs(p, systems="GE")
 
 

@@ -388,6 +388,29 @@ def container(data: bytes, kind: str, rng: np.random.Generator | None = None) ->
     raise ValueError(kind)
 
 
+def split_obs(data: bytes, at: bytes) -> tuple[bytes, bytes]:
+    """Two observation files of one station: the epochs before the epoch line ``at``, and from it.
+
+    Both keep the whole header (its ``TIME OF FIRST OBS`` precedes the second
+    file's epochs, which a reader accepts).
+    """
+    end = data.index(b"\n", data.index(b"END OF HEADER")) + 1
+    head, body = data[:end], data[end:]
+    k = body.index(at)
+    return head + body[:k], head + body[k:]
+
+
+def zip_of(members: dict[str, bytes]) -> bytes:
+    """A zip archive (deflated) of named members."""
+    import zipfile
+
+    buf = io.BytesIO()
+    with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as z:
+        for name, data in members.items():
+            z.writestr(name, data)
+    return buf.getvalue()
+
+
 # --------------------------------------------------------------------- running the CLI
 
 

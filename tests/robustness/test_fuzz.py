@@ -6,7 +6,10 @@ in-process: observation files (RINEX 3 and 2, plain, gzip, Hatanaka), the
 navigation files and an SP3 file. Every run must end with exit 0 or 2,
 without a traceback or a numpy warning; a bad input gives exactly one line
 naming the file; a run that succeeds prints a physical interval and span.
-The same is checked for a few ``fit`` runs and for real subprocesses.
+The same is checked for a few ``fit`` runs, for real subprocesses, and for
+``fit`` runs on several files at once (two observation files of one station
+merged, the same file twice, a station's zip of observations and navigation,
+a zip of navigation files, ``--nav`` twice), one of them mutated.
 
 The cases are generated from fixed seeds: a failure names its case, and the
 case can be rebuilt with :func:`make_case`.
@@ -31,7 +34,9 @@ from fuzzlib import (
     container,
     inspect_sane,
     run_cli,
+    split_obs,
     write,
+    zip_of,
 )
 
 pytestmark = pytest.mark.realdata
@@ -169,3 +174,64 @@ def test_fuzz_subprocess(bases, family, kind, index):  # noqa: F811
     if r.returncode == 2:
         lines = r.stderr.strip().splitlines()
         assert len(lines) == 1 and name in lines[0], r.stderr
+
+
+# ------------------------------------------------------------------ several files, in process
+
+MULTI_KINDS = ("two-obs", "station-zip", "nav-zip", "nav-twice")
+MULTI_CASES = [(k, i) for k in MULTI_KINDS for i in range(3)] + [("same-twice", 0)]
+_MULTI_OBS = ("byte_flip", "truncate", "epoch_order", "epoch_date", "interval", "obs_types",
+              "column_shift", "satellite_id")  # fmt: skip
+
+
+def _mutated_half(b, rng) -> tuple[list[bytes], str]:
+    """The two halves of the ESBC base, one of them mutated."""
+    halves = list(split_obs(b.esbc, b"> 2020 06 25 00 15 "))
+    mut = _MULTI_OBS[int(rng.integers(0, len(_MULTI_OBS)))]
+    which = int(rng.integers(0, 2))
+    halves[which], what = OBS_MUTATIONS[mut](halves[which], rng)
+    return halves, f"half {which + 1}: {what}"
+
+
+def make_multi_case(b, kind: str, index: int, folder):
+    """Write the files of a several-file case; return (fit arguments, name stem, description).
+
+    Every file of a case is named ``<stem>-...``, so that an error naming any
+    of them (or the archive member ``<stem>-....zip:member``) names the case.
+    """
+    rng = np.random.default_rng(_seed("multi", kind, index))
+    stem = f"multi-{kind}-{index}"
+    nav = b.esbc_nav_path
+    if kind in ("two-obs", "station-zip", "same-twice"):
+        (h1, h2), what = _mutated_half(b, rng)
+        if kind == "two-obs":
+            return [write(folder / f"{stem}-a.rnx", h1), write(folder / f"{stem}-b.rnx", h2),
+                    "--nav", nav], stem, what  # fmt: skip
+        if kind == "same-twice":
+            obs = write(folder / f"{stem}.rnx", h1)
+            return [obs, obs, "--nav", nav], stem, what
+        blob = zip_of({f"{stem}-obs.rnx": h1, f"{stem}-nav.rnx": b.esbc_nav})
+        return [write(folder / f"{stem}.zip", blob)], stem, what
+    mut = list(NAV_MUTATIONS)[int(rng.integers(0, len(NAV_MUTATIONS)))]
+    bad, what = NAV_MUTATIONS[mut](b.esbc_nav, rng)
+    obs = write(folder / f"{stem}-obs.rnx", split_obs(b.esbc, b"> 2020 06 25 00 15 ")[0])
+    if kind == "nav-zip":
+        blob = zip_of({f"{stem}-a.rnx": bad, f"{stem}-b.rnx": b.esbc_nav})
+        return [obs, "--nav", write(folder / f"{stem}-nav.zip", blob)], stem, what
+    return [obs, "--nav", write(folder / f"{stem}-nav.rnx", bad), "--nav", nav], stem, what
+
+
+@pytest.mark.parametrize(("kind", "index"), MULTI_CASES, ids=[f"{k}-{i}" for k, i in MULTI_CASES])
+def test_fuzz_several_files(bases, tmp_path, kind, index):  # noqa: F811
+    args, stem, what = make_multi_case(bases, kind, index, tmp_path)
+    out = tmp_path / "out"
+    r = run_cli(["fit", *args, "--out", out, "--no-pdf", "--quiet", "--cutoff-hz", "9.55e-4"],
+                timeout_s=120)  # fmt: skip
+    problem = check_run(r, stem)
+    if problem is None and r.code in (0, 3):
+        problem = bound_sane(json.loads((out / "result.json").read_text()))
+    if problem is None and r.code == 2:
+        assert not out.exists(), "a refused fit left an output folder"
+    if kind == "same-twice":
+        assert r.code == 2 and "given twice" in r.err, r.err
+    assert problem is None, f"{stem} ({what}): {problem}"
