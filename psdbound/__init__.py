@@ -1,4 +1,4 @@
-"""psdbound: provable Gauss-Markov + white-noise PSD bounds of GNSS carrier-phase multipath.
+"""psdbound: Gauss-Markov + white-noise PSD bounds of GNSS carrier-phase multipath, with confidence.
 
 The front door (statsmodels-style)::
 

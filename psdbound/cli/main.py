@@ -31,8 +31,8 @@ def build_parser() -> argparse.ArgumentParser:
     """Return the ``psdbound`` argument parser with all subcommands."""
     parser = _Parser(
         prog="psdbound",
-        description="Provable Gauss-Markov + white-noise PSD bounds of GNSS "
-        "carrier-phase multipath.",
+        description="Gauss-Markov + white-noise PSD bounds of GNSS carrier-phase multipath, "
+        "each with a stated confidence and a verdict.",
         epilog="Exit codes: 0 ok (fit: bounded); 3 fit ran but gives no trustworthy bound "
         "(verdict not-bounded, reasons printed, outputs written); 2 bad input (one line, "
         "nothing written); 1 internal error.",

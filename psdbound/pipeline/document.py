@@ -14,9 +14,10 @@ from psdbound.kalman.error_model import Component, error_model_section
 from psdbound.pipeline.config import FitConfig
 from psdbound.pipeline.products import CodeOverbound
 from psdbound.pipeline.stages import InputData, Isolated, Screened, Validated, Windowed
-from psdbound.pipeline.verdict import judge
+from psdbound.pipeline.verdict import verdict_checks
 from psdbound.reports import figure_data
 from psdbound.results import SCHEMA_VERSION, to_jsonable
+from psdbound.results.headline import headline
 from psdbound.spectra import BoundResults, GaussMarkovWhiteNoise
 
 __all__ = ["build_document", "stage_warnings"]
@@ -129,6 +130,7 @@ def _bound_section(res: BoundResults) -> dict[str, Any]:
         "low_frequency": None if res.low_frequency is None else res.low_frequency.as_dict(),
         "gap_db_median": b.gap_db_median,
         "gap_db_p05": b.gap_db_p05,
+        "over_data_db": res.over_data_db(),
         "band_hz": [b.f_min_hz, b.f_max_hz],
         "tau_grid_s": b.tau_grid_s,
         "objective_grid_m2": b.objective_grid,
@@ -420,6 +422,10 @@ def build_document(
             **_demo_truth(meta["scenario"], bounded, inputs.interval_s),
         }
     doc = to_jsonable(doc)
-    verdict, reasons = judge(doc, config.verdict)
-    return {"schema_version": doc.pop("schema_version"), "verdict": verdict,
-            "verdict_reasons": reasons, **doc}  # fmt: skip
+    checks = verdict_checks(doc, config.verdict)
+    reasons = [c.reason for c in checks if not c.passed]
+    out = {"schema_version": doc.pop("schema_version"),
+           "verdict": "not-bounded" if reasons else "bounded", "verdict_reasons": reasons,
+           "verdict_checks": [c.as_dict() for c in checks], **doc}  # fmt: skip
+    out["headline"] = headline(out)
+    return out

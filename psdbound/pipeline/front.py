@@ -29,6 +29,7 @@ from psdbound.pipeline.code_stage import code_overbound
 from psdbound.pipeline.config import FitConfig
 from psdbound.pipeline.document import build_document
 from psdbound.results import read_document, write_document
+from psdbound.results.headline import headline
 from psdbound.stationarity import MappingOptions
 
 __all__ = ["FitResults", "fit", "load"]
@@ -133,24 +134,15 @@ class FitResults:
         d = self.document
         b, c, s, w = d["bound"], d["cutoff"], d["sampling"], d["windows"]
         fc = "n/a" if c["f_c_hz"] is None else f"{c['f_c_hz']:.4g} Hz ({c['source']})"
-        lines = [
-            f"verdict: {d['verdict'].upper()}"
-            + "".join(f"\n  reason: {x}" for x in d["verdict_reasons"]),
+        lines = list(d.get("headline") or headline(d))
+        lines += [
             f"psdbound fit ({d['method']}): sigma_GM = {100 * b['sigma_gm_m']:.3f} cm, "
             f"tau = {b['tau_s']:.1f} s, sigma_WN = {100 * b['sigma_wn_m']:.3f} cm "
-            f"(per sample at {s['interval_s']:g} s)",
+            f"(per sample at {s['interval_s']:g} s); rule {b.get('rule', 'envelope')}",
             f"  cutoff {fc}; Nyquist {s['nyquist_hz']:.4g} Hz; {w['count']} stationary windows "
-            f"({w['total_duration_s'] / 3600:.2f} h); validation: "
-            f"{d['validation'].get('verdict', 'n/a')}",
+            f"({w['total_duration_s'] / 3600:.2f} h); thesis cutoff criterion (reported, not a "
+            f"verdict rule): {d['validation'].get('verdict', 'n/a')}",
         ]
-        if w.get("covered_fraction") is not None:
-            lines.append(
-                f"  data covered by the bound: {w['covered_s'] / 3600:.2f} h of "
-                f"{w['data_s'] / 3600:.2f} h ({100 * w['covered_fraction']:.1f} %); rule "
-                f"{b.get('rule', 'envelope')}"
-                + (f", confidence {100 * b['confidence_level']:g} %"
-                   if b.get("confidence_level") else "")  # fmt: skip
-            )
         cm = d.get("code_multipath")
         if cm:
             bins = (cm.get("overbound") or {}).get("bins", [])

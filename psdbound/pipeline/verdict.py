@@ -37,6 +37,20 @@ data outside the bound
 most data excluded
     Screening excluded more than ``max_excluded_fraction`` (default 50 %) of
     the data: what remains does not represent the station.
+physical limit
+    The bound's standard deviation at zenith, ``sqrt(sigma_GM^2 +
+    sigma_WN^2)``, exceeds the largest value carrier multipath can take in
+    the isolated series (``screening.multipath_limit_m``: the scaled sum of
+    the quarter wavelengths of its phase terms, 7.70 cm for GPS L1/L2 DF).
+    A variable bounded by ``L`` has a standard deviation of at most ``L``:
+    a larger bound describes something that is not multipath (residual
+    ionosphere, slips, a wrong baseline), and a protection level built on
+    it would be both loose and meaningless. (A real 1.6 m pair with a
+    forced baseline gave 19.7 cm "bounded" before this rule.)
+
+Every rule is a :class:`VerdictCheck` (:func:`verdict_checks`) with the
+measured value and its limit, so every output shows the same lines
+(``verdict_checks`` of result.json; :mod:`psdbound.results.headline`).
 cutoff validation (no longer a rule)
     The multipath the high-pass removes below the cutoff is part of the
     exported error model (``error_model`` component ``slow``: the
@@ -61,13 +75,16 @@ low frequencies
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
+
+import numpy as np
 
 from psdbound.common.options import Choice, Number, check_fields, option
 from psdbound.spectra.lowfreq import POLICIES, low_frequency_reasons
 
-__all__ = ["VerdictOptions", "judge"]
+__all__ = ["VerdictCheck", "VerdictOptions", "judge", "verdict_checks"]
 
 
 @dataclass(frozen=True)
@@ -127,6 +144,163 @@ def _covered_s(per_window: list[dict[str, Any]], interval_s: float) -> float:
     return total
 
 
+@dataclass(frozen=True)
+class VerdictCheck:
+    """One verdict rule applied to one result: what it measured against what it allows.
+
+    Attributes
+    ----------
+    rule : str
+        Short name (``"physical limit"``).
+    passed : bool
+        Whether the rule holds.
+    measured : str
+        The measured value, with its unit.
+    limit : str
+        What the rule allows (``"<= 7.70 cm"``).
+    reason : str
+        Why the bound is refused (empty when ``passed``).
+    """
+
+    rule: str
+    passed: bool
+    measured: str
+    limit: str
+    reason: str = ""
+
+    def line(self) -> str:
+        """Return ``rule: measured (limit) pass|FAIL``, the line every output prints."""
+        return f"{self.rule}: {self.measured} ({self.limit}) {'pass' if self.passed else 'FAIL'}"
+
+    def as_dict(self) -> dict[str, Any]:
+        """JSON-ready form (an entry of ``verdict_checks`` in result.json)."""
+        return {"rule": self.rule, "passed": self.passed, "measured": self.measured,
+                "limit": self.limit, "reason": self.reason}  # fmt: skip
+
+
+def _check(rule: str, passed: bool, measured: str, limit: str, reason: str) -> VerdictCheck:
+    return VerdictCheck(rule, bool(passed), measured, limit, "" if passed else reason)
+
+
+def _degenerate(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
+    b = d["bound"]
+    grid = b.get("tau_grid_s") or [b["tau_s"]]
+    lo, hi = min(grid), max(grid)
+    inside = lo * (1 + 1e-6) < b["tau_s"] < hi * (1 - 1e-6)
+    return [
+        _check("time correlation", b["sigma_gm_m"] > 0.0,
+               f"sigma_GM {100 * b['sigma_gm_m']:.3f} cm", "> 0",
+               "degenerate bound: sigma_GM = 0, only white noise; no time correlation is "
+               "resolved in the band fitted"),
+        _check("tau inside its search", inside, f"tau {b['tau_s']:.3g} s",
+               f"inside [{lo:.3g}, {hi:.3g}] s", f"degenerate bound: tau = {b['tau_s']:.3g} s "
+               f"sits at the end of its search grid [{lo:.3g}, {hi:.3g}] s"),
+    ]  # fmt: skip
+
+
+def _data_for_tau(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
+    b = d["bound"]
+    covered = _covered_s(d["windows"]["per_window"], d["sampling"]["interval_s"])
+    need = opt.min_tau_multiple * b["tau_s"]
+    ok = b["sigma_gm_m"] <= 0 or covered >= need
+    return [_check("data for tau", ok, f"{covered / 3600:.2f} h in windows",
+                   f">= {opt.min_tau_multiple:g} tau = {need / 3600:.2f} h",
+                   f"too little stationary data: {covered / 60:.1f} min covered by windows < "
+                   f"{opt.min_tau_multiple:g} tau = {need / 60:.1f} min (variance uncertainty "
+                   "above 20 %)")]  # fmt: skip
+
+
+def _filter(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
+    out = []
+    safety = d.get("isolation", {}).get("safety")
+    if safety and safety.get("removed_above_fc_median") is not None:
+        loss = safety["removed_above_fc_median"]
+        out.append(_check("filter loss", loss <= opt.max_filter_loss, f"{100 * loss:.1f} %",
+                          f"<= {100 * opt.max_filter_loss:g} %",
+                          f"filter loss: the high-pass removed a median {100 * loss:.1f} % of "
+                          f"the power above f_c (limit {100 * opt.max_filter_loss:g} %); arcs "
+                          "are too short for the cutoff"))  # fmt: skip
+    f_c, s = d["cutoff"].get("f_c_hz"), d["sampling"]
+    if f_c:
+        ratio = s["nyquist_hz"] / f_c
+        out.append(_check("band", ratio >= opt.min_band_ratio, f"Nyquist / f_c {ratio:.3g}",
+                          f">= {opt.min_band_ratio:g}",
+                          f"band: cutoff {f_c:.3g} Hz leaves only a factor {ratio:.2f} below "
+                          f"the Nyquist frequency {s['nyquist_hz']:.3g} Hz (need "
+                          f"{opt.min_band_ratio:g})"))  # fmt: skip
+    return out
+
+
+def _data_use(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
+    out = []
+    w = d["windows"]
+    rejected = w.get("rejected_s")
+    if rejected is not None and w["data_s"] > 0:
+        frac = rejected / w["data_s"]
+        lim = opt.max_never_stationary_fraction
+        out.append(_check("data outside the bound", frac <= lim, f"{100 * frac:.1f} %",
+                          f"<= {100 * lim:g} %",
+                          f"data outside the bound: {100 * frac:.1f} % of the screened data "
+                          f"({rejected / 3600:.2f} h) failed every stationarity test (limit "
+                          f"{100 * lim:g} %)"))  # fmt: skip
+    scr = d.get("screening")
+    if scr and scr.get("excluded_fraction") is not None:
+        frac, lim = scr["excluded_fraction"], opt.max_excluded_fraction
+        out.append(_check("data excluded", frac <= lim, f"{100 * frac:.1f} %",
+                          f"<= {100 * lim:g} %",
+                          f"most data excluded: screening removed {100 * frac:.1f} % of the "
+                          f"data (limit {100 * lim:g} %)"))  # fmt: skip
+    return out
+
+
+def _low_frequency(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
+    low = d["bound"].get("low_frequency")
+    reasons = low_frequency_reasons(low, opt.low_frequency)
+    status = (low or {}).get("status", "unchecked")
+    return [VerdictCheck("low frequencies", not reasons, f"status {status}",
+                         f"policy {opt.low_frequency}", "; ".join(reasons))]  # fmt: skip
+
+
+def _physical(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
+    lim = (d.get("screening") or {}).get("multipath_limit_m")
+    if not lim:
+        return []
+    b = d["bound"]
+    sigma = float(np.hypot(b["sigma_gm_m"], b["sigma_wn_m"]))
+    return [_check("physical limit", sigma <= lim, f"sigma {100 * sigma:.2f} cm at zenith",
+                   f"<= {100 * lim:.2f} cm carrier-multipath limit",
+                   f"physical limit: the bound's standard deviation {100 * sigma:.2f} cm exceeds "
+                   f"the {100 * lim:.2f} cm that carrier multipath of this series can reach at "
+                   "all (a quarter wavelength per carrier): what it bounds is not multipath "
+                   "(residual ionosphere, cycle slips, a wrong baseline)")]  # fmt: skip
+
+
+#: The rules in the order every output lists them.
+RULES: tuple[Callable[[dict[str, Any], VerdictOptions], list[VerdictCheck]], ...] = (
+    _degenerate, _data_for_tau, _filter, _data_use, _low_frequency, _physical,
+)  # fmt: skip
+
+
+def verdict_checks(document: dict[str, Any],
+                   options: VerdictOptions | None = None) -> list[VerdictCheck]:  # fmt: skip
+    """Apply every verdict rule to a result document.
+
+    Parameters
+    ----------
+    document : dict
+        The result document (bound, windows, sampling, cutoff, isolation,
+        screening sections).
+    options : VerdictOptions, optional
+
+    Returns
+    -------
+    list of VerdictCheck
+        One per rule that applies, in :data:`RULES` order.
+    """
+    opt = options or VerdictOptions()
+    return [c for rule in RULES for c in rule(document, opt)]
+
+
 def judge(document: dict[str, Any], options: VerdictOptions | None = None) -> tuple[str, list[str]]:
     """Apply the verdict rules to a result document.
 
@@ -143,57 +317,5 @@ def judge(document: dict[str, Any], options: VerdictOptions | None = None) -> tu
     reasons : list of str
         One sentence per rule that fired (empty when bounded).
     """
-    opt = options or VerdictOptions()
-    b, s = document["bound"], document["sampling"]
-    reasons: list[str] = []
-    grid = b.get("tau_grid_s") or [b["tau_s"]]
-    if b["sigma_gm_m"] <= 0.0:
-        reasons.append(
-            "degenerate bound: sigma_GM = 0, only white noise; no time correlation is "
-            "resolved in the band fitted"
-        )
-    if b["tau_s"] <= min(grid) * (1 + 1e-6) or b["tau_s"] >= max(grid) * (1 - 1e-6):
-        reasons.append(
-            f"degenerate bound: tau = {b['tau_s']:.3g} s sits at the end of its search grid "
-            f"[{min(grid):.3g}, {max(grid):.3g}] s"
-        )
-    covered = _covered_s(document["windows"]["per_window"], s["interval_s"])
-    if b["sigma_gm_m"] > 0 and covered < opt.min_tau_multiple * b["tau_s"]:
-        reasons.append(
-            f"too little stationary data: {covered / 60:.1f} min covered by windows < "
-            f"{opt.min_tau_multiple:g} tau = {opt.min_tau_multiple * b['tau_s'] / 60:.1f} min "
-            "(variance uncertainty above 20 %)"
-        )
-    safety = document.get("isolation", {}).get("safety")
-    if safety and safety.get("removed_above_fc_median") is not None:
-        loss = safety["removed_above_fc_median"]
-        if loss > opt.max_filter_loss:
-            reasons.append(
-                f"filter loss: the high-pass removed a median {100 * loss:.1f} % of the power "
-                f"above f_c (limit {100 * opt.max_filter_loss:g} %); arcs are too short for "
-                "the cutoff"
-            )
-    f_c = document["cutoff"].get("f_c_hz")
-    if f_c and s["nyquist_hz"] / f_c < opt.min_band_ratio:
-        reasons.append(
-            f"band: cutoff {f_c:.3g} Hz leaves only a factor {s['nyquist_hz'] / f_c:.2f} below "
-            f"the Nyquist frequency {s['nyquist_hz']:.3g} Hz (need {opt.min_band_ratio:g})"
-        )
-    w = document["windows"]
-    rejected = w.get("rejected_s")
-    if rejected is not None and w["data_s"] > 0:
-        frac = rejected / w["data_s"]
-        if frac > opt.max_never_stationary_fraction:
-            reasons.append(
-                f"data outside the bound: {100 * frac:.1f} % of the screened data "
-                f"({rejected / 3600:.2f} h) failed every stationarity test (limit "
-                f"{100 * opt.max_never_stationary_fraction:g} %)"
-            )
-    reasons += low_frequency_reasons(b.get("low_frequency"), opt.low_frequency)
-    scr = document.get("screening")
-    if scr and scr.get("excluded_fraction", 0.0) > opt.max_excluded_fraction:
-        reasons.append(
-            f"most data excluded: screening removed {100 * scr['excluded_fraction']:.1f} % of "
-            f"the data (limit {100 * opt.max_excluded_fraction:g} %)"
-        )
+    reasons = [c.reason for c in verdict_checks(document, options) if not c.passed]
     return ("not-bounded" if reasons else "bounded"), reasons

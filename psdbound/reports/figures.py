@@ -48,7 +48,9 @@ FIGURES = (
     ("df_filter", "Dual-frequency difference before and after filtering", fig_df_filter),
     ("screening", "Ionosphere screening (ROTI) and excluded spans", fig_screening),
     ("mapped", "Elevation-mapped residuals", fig_mapped),
-    ("psds", "Every window PSD under the bound", fig_psds_bound),
+    ("psds", "Window PSD estimates, their pooled upper limits and the bound (estimates "
+     "scatter above their true PSD; the bound covers the true PSDs at the stated confidence)",
+     fig_psds_bound),
     ("tau", "Tightness search over tau", fig_tau_search),
     ("cutoff", "Cutoff criterion and f_c", fig_cutoff_envelope),
     ("jacobi_anger", "Jacobi-Anger cutoff check", fig_jacobi_anger),

@@ -29,7 +29,7 @@ def _passband_start_hz(r: dict[str, Any]) -> float | None:
 
 
 def fig_psds_bound(r: dict[str, Any]) -> Figure | None:
-    """Every window's PSD under the fitted bound, with Nyquist and the cutoff.
+    """Every window's PSD estimate, the pooled limits and the bound, with Nyquist and the cutoff.
 
     With a high-pass (dual-frequency), the band below the filter's passband
     is shaded: below f_c the filter removes the signal, between f_c and the

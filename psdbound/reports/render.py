@@ -58,6 +58,7 @@ from PIL import Image  # noqa: E402
 from psdbound.common.outputs import output_folder  # noqa: E402
 from psdbound.reports.figures import FIGURES  # noqa: E402
 from psdbound.results import write_document  # noqa: E402
+from psdbound.results.headline import DO_NOT_USE, headline  # noqa: E402
 
 __all__ = ["DPI", "RenderedFigure", "pack_pages", "rasterize", "render_html", "render_pdf",
            "rendered_figures", "write_report_folder"]  # fmt: skip
@@ -161,6 +162,11 @@ def _validation_note(r: dict[str, Any]) -> str:
     return str(v.get("reason", ""))
 
 
+def _headline(r: dict[str, Any]) -> list[str]:
+    """Page-1 lines of the document (computed for documents written before they were kept)."""
+    return list(r.get("headline") or headline(r))
+
+
 def _title(r: dict[str, Any]) -> str:
     names = [i["name"] for i in r["provenance"]["inputs"] if i["role"] == "obs"]
     return ", ".join(names) or "result"
@@ -201,17 +207,8 @@ def render_html(document: dict[str, Any], *, figures: list[tuple[str, Any]] | No
         figures=figs,
         demo=r.get("demo"),
         validation_note=_validation_note(r),
-        coverage=_coverage_text(r["windows"]),
+        headline=_headline(r),
     )
-
-
-def _coverage_text(w: dict[str, Any]) -> str:
-    """Hours and percent of the screened data inside the bound's windows."""
-    if w.get("covered_fraction") is None:
-        return f"{w['total_duration_s'] / 3600:.2f} h of windows"
-    return (f"{w['covered_s'] / 3600:.2f} h of {w['data_s'] / 3600:.2f} h "
-            f"({100 * w['covered_fraction']:.1f} %); never stationary "
-            f"{w['never_stationary_s'] / 3600:.2f} h")
 
 
 def _error_model_text(em: dict[str, Any] | None) -> str:
@@ -224,32 +221,36 @@ def _error_model_text(em: dict[str, Any] | None) -> str:
     return "; ".join(parts) + " (result.json error_model)"
 
 
+def _error_model_rows(r: dict[str, Any]) -> list[tuple[str, str]]:
+    """Return the error model and its integrity note rows (a not-bounded result has none)."""
+    if r["verdict"] != "bounded":
+        return [("error model", f"none: not bounded ({DO_NOT_USE})")]
+    em = r.get("error_model")
+    return [("error model", _error_model_text(em)),
+            ("for a protection level", (em or {}).get("integrity_note", "n/a"))]  # fmt: skip
+
+
 def _summary_pages(r: dict[str, Any]) -> list[Figure]:
     """Draw the summary, caveats and inputs (vector text; a second page if long)."""
     b, s, c, w = r["bound"], r["sampling"], r["cutoff"], r["windows"]
     fc = "n/a" if c["f_c_hz"] is None else f"{c['f_c_hz']:.4g} Hz ({c['tau_c_min']:.1f} min)"
     rows = [
-        ("VERDICT", r["verdict"] + "".join(f"; {x}" for x in r["verdict_reasons"])),
         ("screening excluded", f"{r['screening']['excluded_s'] / 3600:.2f} h "
                                f"({100 * r['screening']['excluded_fraction']:.1f} %)"),
         ("sigma_GM", f"{100 * b['sigma_gm_m']:.3f} cm"),
         ("tau_GM", f"{b['tau_s']:.1f} s"),
         ("sigma_WN (per sample)", f"{100 * b['sigma_wn_m']:.3f} cm at {s['interval_s']:g} s"),
-        ("N_WN (two-sided)", f"{b['n_wn_two_sided_m2_hz']:.4g} m^2/Hz"),
-        ("data covered by the bound", _coverage_text(w)),
-        ("confidence", b.get("covers") or "n/a"),
-        ("error model", _error_model_text(r.get("error_model"))),
-        ("for a protection level", (r.get("error_model") or {}).get("integrity_note", "n/a")),
+        *_error_model_rows(r),
         ("total variance", f"{b['total_variance_m2']:.4g} m^2 ({b['objective']}, "
-                           f"{b.get('rule', 'envelope')} rule)"),
-        ("PSD estimator", b["estimator"]),
+                           f"{b.get('rule', 'envelope')} rule, {b['estimator']} PSDs)"),
         ("cutoff f_c", f"{fc}; source: {c['source']}"),
         ("sampling / Nyquist", f"{s['interval_s']:g} s / {s['nyquist_hz']:.4g} Hz"),
         ("windows", f"{w['count']} ({w['total_duration_s'] / 3600:.2f} h), never stationary "
                     f"{w['never_stationary_s'] / 60:.1f} min"),
         ("mapping", f"{r['mapping']['source']}: a={r['mapping']['a']:.3g}, "
                     f"b={r['mapping']['b']:.3g}, c={r['mapping']['c_deg']:.3g} deg"),
-        ("cutoff validation", str(r["validation"].get("verdict"))),
+        ("thesis cutoff criterion", f"{r['validation'].get('verdict')} (reported, not a "
+                                    "verdict rule)"),
     ]  # fmt: skip
     cm = r.get("code_multipath")
     if cm:
@@ -271,7 +272,15 @@ def _summary_pages(r: dict[str, Any]) -> list[Figure]:
         y -= dy
 
     text(0.08, 0.025, f"psdbound report: {_title(r)}", fontsize=14, weight="bold")
-    text(0.08, 0.045, _METHOD.get(r["method"], r["method"]), fontsize=10)
+    text(0.08, 0.035, _METHOD.get(r["method"], r["method"]), fontsize=10)
+    for k, line in enumerate(_headline(r)):  # page 1 as in every output
+        bad = line.endswith(" FAIL") or line.startswith(("VERDICT: NOT", "reason: "))
+        wrapped = textwrap.wrap(line.strip(), 72 if k == 0 else 118) or [""]
+        for part in wrapped:
+            text(0.1 if line.startswith("  ") else 0.08, 0.018 if k == 0 else 0.0112, part,
+                 fontsize=11 if k == 0 else 7, weight="bold" if k == 0 else "normal",
+                 color="#b00020" if bad else ("#176d2a" if k == 0 else "black"))  # fmt: skip
+    y -= 0.012
     for k, v in rows:
         long = len(v) > 3 * 55  # long statements in a smaller face, so page 1 holds them
         lines = textwrap.wrap(v, 68 if long else 55) or [""]

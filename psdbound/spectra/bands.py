@@ -19,7 +19,7 @@ from scipy import special
 from psdbound.errors import InputError
 from psdbound.spectra.estimators import PSDEstimate
 
-__all__ = ["BandSpectra", "band_spectra", "merge_bands", "resolved_from_hz",
+__all__ = ["BandSpectra", "band_spectra", "merge_bands", "over_data_db", "resolved_from_hz",
            "smoothed_response"]
 
 
@@ -270,3 +270,48 @@ def smoothed_response(
     offsets = np.linspace(-half_width_hz, half_width_hz, _SMOOTH_POINTS)
     grid = np.abs(f[:, None] + offsets[None, :])
     return np.asarray(power_response(grid.ravel()), dtype=float).reshape(grid.shape).mean(axis=1)
+
+
+def over_data_db(
+    psd: Callable[[NDArray[np.float64]], NDArray[np.float64]], bands: BandSpectra
+) -> dict[str, float]:
+    """How far a PSD lies above the pooled data, band by band, dB (the bound's looseness).
+
+    The pooled data of a band is the degrees-of-freedom weighted mean of every
+    window's band average; the PSD's band value its mean over 16 log-spaced
+    frequencies of the band.
+
+    Parameters
+    ----------
+    psd : callable
+        The PSD (e.g. the bound's ``psd``), m^2/Hz at frequencies in Hz.
+    bands : BandSpectra
+        The windows' band averages.
+
+    Returns
+    -------
+    dict
+        ``median_db`` and ``max_db`` over the bands with data, ``f_max_hz``
+        (centre of the band where it is largest), ``over_highest_median_db``
+        (the median over the bands of the PSD over the highest window's band
+        average: what covering every window costs, apart from the spread of
+        the windows) and ``n_bands``; NaN and 0 without data.
+    """
+    s, nu = bands.psd_m2_hz, bands.dof
+    ok = np.isfinite(s) & (nu > 0)
+    w = np.where(ok, nu, 0.0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        pooled = (np.where(ok, s, 0.0) * w).sum(axis=0) / w.sum(axis=0)
+    have = np.isfinite(pooled) & (pooled > 0)
+    if not have.any():
+        return {"median_db": float("nan"), "max_db": float("nan"), "f_max_hz": float("nan"),
+                "over_highest_median_db": float("nan"), "n_bands": 0}  # fmt: skip
+    lo, hi = bands.edges_hz[:-1][have], bands.edges_hz[1:][have]
+    model = np.array([np.mean(psd(np.geomspace(a, b, 16))) for a, b in zip(lo, hi, strict=True)])
+    db = 10.0 * np.log10(model / pooled[have])
+    highest = np.nanmax(np.where(ok, s, np.nan)[:, have], axis=0)
+    k = int(np.argmax(db))
+    return {"median_db": float(np.median(db)), "max_db": float(db[k]),
+            "f_max_hz": float(bands.centres_hz[have][k]),
+            "over_highest_median_db": float(np.median(10.0 * np.log10(model / highest))),
+            "n_bands": int(have.sum())}  # fmt: skip

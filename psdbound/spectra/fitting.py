@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from psdbound.errors import InputError, NoDataError
-from psdbound.spectra.bands import BandSpectra, resolved_from_hz
+from psdbound.spectra.bands import BandSpectra, over_data_db, resolved_from_hz
 from psdbound.spectra.bound import RULES, BoundFit, fit_bound
 from psdbound.spectra.dependence import overlap_correlation, reference_clusters
 from psdbound.spectra.estimators import PSDEstimate, estimate_psd
@@ -109,6 +109,14 @@ class BoundResults:
     def params(self) -> dict[str, float]:
         """Bound parameters with units in their names."""
         return self.bound.params()
+
+    def over_data_db(self) -> dict[str, float] | None:
+        """How far the bound lies above the pooled data per band, dB (None: no bands).
+
+        See :func:`psdbound.spectra.bands.over_data_db` (``median_db``, ``max_db``,
+        ``f_max_hz``, ``n_bands``).
+        """
+        return None if self.bands is None else over_data_db(self.bound.psd, self.bands)
 
     def summary(self) -> str:
         """Return a text summary: bound table, windows, estimator, mapping."""

@@ -11,7 +11,8 @@ from conftest import ESBC_NAV, ESBC_OBS, GRAS_OBS, NYA1_NAV, NYA1_OBS, UPC1_OBS,
 from samples import esbc_hours
 
 import psdbound
-from psdbound.pipeline.verdict import VerdictOptions, judge
+from psdbound.pipeline.verdict import VerdictOptions, judge, verdict_checks
+from psdbound.results.headline import DO_NOT_USE, headline
 
 GOOD = {
     "bound": {"sigma_gm_m": 0.006, "tau_s": 58.0, "sigma_wn_m": 0.0,
@@ -19,7 +20,7 @@ GOOD = {
     "sampling": {"interval_s": 30.0, "nyquist_hz": 1 / 60},
     "cutoff": {"f_c_hz": 9.55e-4},
     "isolation": {"safety": {"removed_above_fc_median": 0.18}},
-    "screening": {"excluded_fraction": 0.02},
+    "screening": {"excluded_fraction": 0.02, "multipath_limit_m": 0.0770},
     "validation": {"max_removed_rms_m": 0.0025, "geometries_used": ["ground:h=0.216"]},
     "windows": {"per_window": [
         {"arc": 0, "t_start_gps_s": 0.0, "t_stop_gps_s": 3570.0},
@@ -56,6 +57,8 @@ def test_good_document_is_bounded():
         ("screening.excluded_fraction", 0.62, "most data excluded", 1),
         ("bound.low_frequency", {"status": "prior", "tau_max_s": 900.0,
                                  "envelope_at_0_m2_hz": None}, "only time constants above", 1),
+        # 19.7 cm "bounded" on a real 1.6 m pair with a forced baseline (issue 30)
+        ("bound.sigma_gm_m", 0.197, "physical limit", 1),
     ],
 )
 def test_each_rule_fires(path, value, words, n):
@@ -216,3 +219,32 @@ def test_an_unresolved_plateau_is_said_not_silently_extrapolated():
     assert any("prior 900 s" in n and "raised" in n for n in notes)
     assert any("do not bound the time constant above" in n for n in notes)
     assert any("widened 1.3 times" in n for n in notes)
+
+
+def test_every_rule_reports_its_two_numbers_and_the_verdict_follows_them():
+    checks = verdict_checks(GOOD)
+    names = [c.rule for c in checks]
+    assert names == ["time correlation", "tau inside its search", "data for tau", "filter loss",
+                     "band", "data excluded", "low frequencies", "physical limit"]
+    assert all(c.passed and c.measured and c.limit and not c.reason for c in checks)
+    bad = verdict_checks(_with("bound.sigma_wn_m", 0.08))  # white noise alone above 7.7 cm
+    fired = [c for c in bad if not c.passed]
+    assert [c.rule for c in fired] == ["physical limit"]
+    assert "8.02 cm" in fired[0].measured and "7.70 cm" in fired[0].limit
+    assert fired[0].line().endswith("FAIL")
+    assert judge(_with("bound.sigma_wn_m", 0.08))[1] == [fired[0].reason]
+
+
+def test_headline_says_do_not_use_and_states_nothing_when_not_bounded():
+    d = _with("bound.sigma_gm_m", 0.197)
+    d["verdict"], d["verdict_reasons"] = judge(d)
+    d["verdict_checks"] = [c.as_dict() for c in verdict_checks(d)]
+    d["bound"]["covers"] = "with 95 % confidence ..."
+    lines = headline(d)
+    assert lines[0] == f"VERDICT: NOT-BOUNDED - {DO_NOT_USE}"
+    assert lines[1] == "rules: 7 of 8 passed"
+    assert sum(x.startswith("reason: physical limit") for x in lines) == 1
+    assert any(x.startswith("  physical limit:") and x.endswith("FAIL") for x in lines)
+    assert lines[-1].startswith("statement: none") and "95 %" not in " ".join(lines)
+    d["verdict"] = "bounded"
+    assert headline(d)[-1] == "statement: with 95 % confidence ..."

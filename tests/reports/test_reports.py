@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import copy
+import html as htmllib
 import math
 import re
 import time
@@ -238,3 +239,44 @@ def test_figure_counts_agree_with_the_tables(demo_doc):
     assert fig_psds_bound(doc).axes[0].get_title().startswith(f"{doc['windows']['count']} window")
     html = render.render_html(doc)
     assert f"{doc['data_span']['n_arcs']} arcs" in html
+
+
+def _page_one_texts(doc):
+    """Every text of the PDF's first page, in order, whitespace-normalised."""
+    page = render._summary_pages(doc)[0]
+    return " ".join(" ".join(t.get_text() for t in page.texts).split())
+
+
+@pytest.mark.parametrize("verdict", ["bounded", "not-bounded"])
+def test_page_one_is_the_same_in_console_html_pdf_and_json(demo_doc, verdict):
+    """Issue 30: the verdict, each rule with its numbers, coverage, looseness, the statement."""
+    from psdbound.pipeline.verdict import verdict_checks
+    from psdbound.results.headline import headline
+
+    doc = copy.deepcopy(demo_doc)
+    if verdict == "not-bounded":  # the physical limit fires (a 19.7 cm "bound")
+        doc["bound"]["sigma_gm_m"] = 0.197
+        checks = verdict_checks(doc)
+        doc["verdict"] = "not-bounded"
+        doc["verdict_reasons"] = [c.reason for c in checks if not c.passed]
+        doc["verdict_checks"] = [c.as_dict() for c in checks]
+        doc["headline"] = headline(doc)
+    lines = doc["headline"]
+    assert lines == headline(doc)  # the JSON keeps what the document says
+    assert len([x for x in lines if x.startswith("  ")]) == len(doc["verdict_checks"]) >= 8
+    html = render.render_html(doc, figures=[])
+    html_text = htmllib.unescape(html)
+    pdf_text = _page_one_texts(doc)
+    console = psdbound.FitResults(doc).summary()
+    for line in lines:
+        assert line.strip() in html_text, line
+        assert " ".join(line.split()) in pdf_text, line
+        assert line in console
+    if verdict == "not-bounded":
+        assert lines[0].startswith("VERDICT: NOT-BOUNDED - do not use")
+        assert "95 % confidence" not in pdf_text
+    else:
+        assert any(x.startswith("bound above the pooled data: median") for x in lines)
+    # the thesis's criterion is not on page 1: it is labelled as the thesis's, not a rule
+    assert "cutoff validation" not in " ".join(lines)
+    assert "thesis cutoff criterion" in html
