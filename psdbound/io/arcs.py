@@ -149,6 +149,12 @@ class ArcSet:
         Number of (satellite, epoch) samples with a phase on each signal.
     coverage : OrbitCoverage or None
         The orbit's coverage of the observations (None without an orbit).
+    samples : dict of str to int
+        (Satellite, epoch) samples with both phases (``"both_signals"``), of
+        them without an orbit position (``"without_orbit"``) and below the
+        elevation mask (``"below_mask"``): what the data offered before arcs
+        were formed (:func:`psdbound.pipeline.verdict` counts the losses
+        from there).
     glonass_channels : dict of str to int
         GLONASS FDMA frequency numbers used for the phases (observation
         header, completed from the orbit's GLONASS records); pass them to
@@ -171,6 +177,7 @@ class ArcSet:
     phase_counts: tuple[int, int] | None = None
     coverage: OrbitCoverage | None = None
     glonass_channels: dict[str, int] = field(default_factory=dict)
+    samples: dict[str, int] = field(default_factory=dict)
 
     def __len__(self) -> int:
         return len(self.arcs)
@@ -389,6 +396,7 @@ def find_arcs(
     tracked: list[str] = []
     below: list[str] = []
     counts = [0, 0]
+    samples = {"both_signals": 0, "without_orbit": 0, "below_mask": 0}
     for sat in sats:
         i = block.sats.index(sat)
         la = obs.phase_m(sat, code_a)
@@ -400,6 +408,7 @@ def find_arcs(
         if idx.size < 2:
             continue
         tracked.append(sat)
+        samples["both_signals"] += int(idx.size)
         t = t_all[idx]
         reason = np.full(idx.size, "", dtype=object)
         reason[0] = "first epoch"
@@ -412,6 +421,8 @@ def find_arcs(
         if orbit is not None:
             az, el = satellite_azel(orbit, sat, t, np.asarray(receiver_xyz_m, dtype=float))
             low = ~(el >= elevation_mask_deg)  # NaN (no orbit) counts as below the mask
+            samples["without_orbit"] += int(np.isnan(el).sum())
+            samples["below_mask"] += int((el < elevation_mask_deg).sum())
         else:
             low = np.zeros(idx.size, dtype=bool)
         # assign reasons in increasing priority; a later assignment wins
@@ -478,6 +489,7 @@ def find_arcs(
         phase_counts=(counts[0], counts[1]),
         coverage=coverage,
         glonass_channels=dict(obs.header.glonass_channels) if system == "R" else {},
+        samples=samples,
     )
     return result
 

@@ -87,6 +87,20 @@ def _xyz(rx: tuple[float, float, float] | None) -> np.ndarray | None:
     return None if rx is None else np.asarray(rx, dtype=float)
 
 
+def _offered(arcs: Any, interval_s: float) -> dict[str, float] | None:
+    """Return what the data offered before arcs were formed (both phases, above the mask).
+
+    Samples without an orbit position count as offered (and lost): a navigation
+    file that covers part of the day loses the rest.
+    """
+    n = getattr(arcs, "samples", None)
+    if not n:
+        return None
+    offered = n["both_signals"] - n["below_mask"]
+    return {"samples_both_signals": n["both_signals"], "samples_without_orbit": n["without_orbit"],
+            "samples_below_mask": n["below_mask"], "offered_s": offered * interval_s}  # fmt: skip
+
+
 def _isolate_df(inputs: InputData, cutoff: CutoffChoice, arcs_opt: ArcOptions,
                 highpass: HighPass, signals: tuple[str, ...], system: str,
                 progress: Progress) -> Isolated:  # fmt: skip
@@ -111,6 +125,7 @@ def _isolate_df(inputs: InputData, cutoff: CutoffChoice, arcs_opt: ArcOptions,
         "short_stretches_dropped": n_dropped,
         "short_stretches_dropped_s": arcs.dropped_s,
         "arcs_dropped_after_trim": series.meta["arcs_dropped_after_trim"],
+        "offered": _offered(arcs, inputs.interval_s),
         "safety": {
             "removed_below_fc_median": float(np.nanmedian(safety.removed_below)),
             "removed_below_fc_min": float(np.nanmin(safety.removed_below)),

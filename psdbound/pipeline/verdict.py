@@ -37,6 +37,16 @@ data outside the bound
 most data excluded
     Screening excluded more than ``max_excluded_fraction`` (default 50 %) of
     the data: what remains does not represent the station.
+data used
+    Less than ``min_used_fraction`` (default 50 %) of the data the file
+    offered (samples with both phases above the elevation mask, counted with
+    or without an orbit position) lies in the bound's windows: every loss
+    counted together (no orbit, short stretches and slips, the filter's edge
+    trims, screening, stationarity). Each stage's own rule can pass while
+    together they leave a bound fitted to a small, selected part of the
+    day (a navigation file covering 17 % of it was "bounded" before this
+    rule). Dual-frequency series only (the dual-antenna chain does not
+    count its input yet).
 physical limit
     The bound's standard deviation at zenith, ``sqrt(sigma_GM^2 +
     sigma_WN^2)``, exceeds the largest value carrier multipath can take in
@@ -104,6 +114,10 @@ class VerdictOptions:
     max_never_stationary_fraction : float, default 0.2
         Largest fraction of the screened data left outside every stationary
         window.
+    min_used_fraction : float, default 0.5
+        Smallest fraction of the data offered (both phases above the
+        elevation mask, with or without an orbit) that must lie in the
+        bound's windows, all losses counted together.
     low_frequency : {"prior", "refuse"}, default "prior"
         Whether a bound whose statement below its lowest band rests on the
         prior ``tau <= tau_max_s`` (the data do not bound tau above) is
@@ -121,6 +135,7 @@ class VerdictOptions:
     min_band_ratio: float = option(4.0, Number(lo=1.0, hi=1e6))
     max_excluded_fraction: float = option(0.5, Number(lo=0.0, hi=1.0))
     max_never_stationary_fraction: float = option(0.2, Number(lo=0.0, hi=1.0))
+    min_used_fraction: float = option(0.5, Number(lo=0.0, hi=1.0))
     low_frequency: str = option("prior", Choice(POLICIES, noun="low-frequency policy"))
 
     def __post_init__(self) -> None:
@@ -253,6 +268,20 @@ def _data_use(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
     return out
 
 
+def _data_used(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
+    offered = ((d.get("isolation") or {}).get("offered") or {}).get("offered_s")
+    if not offered:
+        return []
+    used = _covered_s(d["windows"]["per_window"], d["sampling"]["interval_s"]) / offered
+    lim = opt.min_used_fraction
+    return [_check("data used", used >= lim, f"{100 * used:.1f} % of {offered / 3600:.1f} h",
+                   f">= {100 * lim:g} %",
+                   f"data used: only {100 * used:.1f} % of the {offered / 3600:.1f} h of data the "
+                   f"file offered above the elevation mask lie in the bound's windows (limit "
+                   f"{100 * lim:g} %; every loss counted: no orbit, short arcs, filter edges, "
+                   "screening, stationarity)")]  # fmt: skip
+
+
 def _low_frequency(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
     low = d["bound"].get("low_frequency")
     reasons = low_frequency_reasons(low, opt.low_frequency)
@@ -277,7 +306,7 @@ def _physical(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
 
 #: The rules in the order every output lists them.
 RULES: tuple[Callable[[dict[str, Any], VerdictOptions], list[VerdictCheck]], ...] = (
-    _degenerate, _data_for_tau, _filter, _data_use, _low_frequency, _physical,
+    _degenerate, _data_for_tau, _filter, _data_use, _data_used, _low_frequency, _physical,
 )  # fmt: skip
 
 

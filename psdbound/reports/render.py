@@ -284,16 +284,16 @@ def _summary_pages(r: dict[str, Any]) -> list[Figure]:
     for k, v in rows:
         long = len(v) > 3 * 55  # long statements in a smaller face, so page 1 holds them
         lines = textwrap.wrap(v, 68 if long else 55) or [""]
-        pages[-1].text(0.08, y, k, fontsize=10)
+        pages[-1].text(0.08, y, k, fontsize=9)
         for j, line in enumerate(lines):
-            step = (0.012 if long else 0.0155) if j < len(lines) - 1 else 0.019
-            text(0.42, step, line, fontsize=8 if long else 10)
-    y -= 0.015
-    text(0.08, 0.028, "Caveats", fontsize=12, weight="bold")
+            step = (0.0115 if long else 0.014) if j < len(lines) - 1 else 0.0165
+            text(0.42, step, line, fontsize=7.5 if long else 9)
+    y -= 0.012
+    text(0.08, 0.025, "Caveats", fontsize=12, weight="bold")
     for wtext in r["warnings"] or ["None."]:
-        for line in textwrap.wrap(wtext, 105):
-            text(0.08, 0.015, line, fontsize=8)
-        y -= 0.004
+        for line in textwrap.wrap(wtext, 118):
+            text(0.08, 0.0125, line, fontsize=7)
+        y -= 0.003
     y -= 0.015
     text(0.08, 0.026, "Inputs (SHA-256)", fontsize=12, weight="bold")
     for i in r["provenance"]["inputs"]:

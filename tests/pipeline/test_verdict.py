@@ -19,7 +19,8 @@ GOOD = {
               "tau_grid_s": [15.0, 60.0, 2.0e5]},
     "sampling": {"interval_s": 30.0, "nyquist_hz": 1 / 60},
     "cutoff": {"f_c_hz": 9.55e-4},
-    "isolation": {"safety": {"removed_above_fc_median": 0.18}},
+    "isolation": {"safety": {"removed_above_fc_median": 0.18},
+                  "offered": {"offered_s": 7200.0}},
     "screening": {"excluded_fraction": 0.02, "multipath_limit_m": 0.0770},
     "validation": {"max_removed_rms_m": 0.0025, "geometries_used": ["ground:h=0.216"]},
     "windows": {"per_window": [
@@ -57,6 +58,8 @@ def test_good_document_is_bounded():
         ("screening.excluded_fraction", 0.62, "most data excluded", 1),
         ("bound.low_frequency", {"status": "prior", "tau_max_s": 900.0,
                                  "envelope_at_0_m2_hz": None}, "only time constants above", 1),
+        # 2 h in windows of 24 h offered (e.g. an orbit file covering 17 % of the day)
+        ("isolation.offered", {"offered_s": 86400.0}, "data used", 1),
         # 19.7 cm "bounded" on a real 1.6 m pair with a forced baseline (issue 30)
         ("bound.sigma_gm_m", 0.197, "physical limit", 1),
     ],
@@ -225,7 +228,7 @@ def test_every_rule_reports_its_two_numbers_and_the_verdict_follows_them():
     checks = verdict_checks(GOOD)
     names = [c.rule for c in checks]
     assert names == ["time correlation", "tau inside its search", "data for tau", "filter loss",
-                     "band", "data excluded", "low frequencies", "physical limit"]
+                     "band", "data excluded", "data used", "low frequencies", "physical limit"]
     assert all(c.passed and c.measured and c.limit and not c.reason for c in checks)
     bad = verdict_checks(_with("bound.sigma_wn_m", 0.08))  # white noise alone above 7.7 cm
     fired = [c for c in bad if not c.passed]
@@ -242,7 +245,7 @@ def test_headline_says_do_not_use_and_states_nothing_when_not_bounded():
     d["bound"]["covers"] = "with 95 % confidence ..."
     lines = headline(d)
     assert lines[0] == f"VERDICT: NOT-BOUNDED - {DO_NOT_USE}"
-    assert lines[1] == "rules: 7 of 8 passed"
+    assert lines[1] == "rules: 8 of 9 passed"
     assert sum(x.startswith("reason: physical limit") for x in lines) == 1
     assert any(x.startswith("  physical limit:") and x.endswith("FAIL") for x in lines)
     assert lines[-1].startswith("statement: none") and "95 %" not in " ".join(lines)
