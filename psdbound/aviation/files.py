@@ -65,7 +65,12 @@ def read_samples(path: str | Path) -> tuple[NDArray[np.float64], NDArray[np.floa
         delim = "," if "," in text.splitlines()[0] else None
         data = np.genfromtxt(io.StringIO(text), delimiter=delim, names=True, dtype=float)
     except (OSError, ValueError, IndexError) as exc:
-        raise InputError(f"cannot read samples ({exc})", path=p) from None
+        raise InputError(
+            f"cannot read samples ({' '.join(str(exc).split())[:160]}); expected a header line "
+            f"naming an error column ({', '.join(_ERROR_NAMES)}) and optionally an elevation "
+            f"column ({', '.join(_EL_NAMES)}), then one row of numbers per sample, comma- or "
+            "whitespace-separated, or a .npy array", path=p,
+        ) from None  # fmt: skip
     names = [n.lower() for n in (data.dtype.names or ())]
     err = next((n for n in names if n in _ERROR_NAMES), None)
     if err is None:

@@ -52,6 +52,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.stats import norm
 
+from psdbound.common.notices import warn
 from psdbound.errors import InputError
 
 __all__ = [
@@ -70,11 +71,36 @@ DEFAULT_EDGES_DEG = (5.0, 15.0, 30.0, 45.0, 60.0, 90.0)
 DEFAULT_MIN_ABS_Z = 0.25
 
 
+#: Largest magnitude of a sample: beyond it its square overflows (no error sample is that large).
+MAX_ABS_SAMPLE = 1e150
+
+
+def _check_elevations(el: NDArray[np.float64]) -> None:
+    """Elevations must be numbers between -90 and 90 degrees."""
+    if np.isnan(el).any():
+        raise InputError(f"{int(np.isnan(el).sum())} elevation(s) are NaN")
+    bad = ~((el >= -90.0) & (el <= 90.0))
+    if bad.any():
+        raise InputError(f"{int(bad.sum())} elevation(s) outside [-90, 90] deg (e.g. "
+                         f"{float(el[bad][0]):g}): not an elevation in degrees")  # fmt: skip
+
+
+def _note_outside(el: NDArray[np.float64], edges: NDArray[np.float64], binned: bool) -> None:
+    """Say how many samples lie outside the elevation bins (they are left out)."""
+    out = ~((el >= edges[0]) & (el <= edges[-1]))
+    if binned and out.any():
+        warn(f"{int(out.sum())} of {el.size} sample(s) lie outside the elevation bins "
+             f"[{edges[0]:g}, {edges[-1]:g}] deg and are left out", stacklevel=3)  # fmt: skip
+
+
 def _clean(samples: ArrayLike, where: str, min_samples: int) -> NDArray[np.float64]:
     x = np.asarray(samples, dtype=float).reshape(-1)
     if np.isnan(x).any() or not np.isfinite(x).all():
         bad = int(np.count_nonzero(~np.isfinite(x)))
         raise InputError(f"{where}: {bad} sample(s) are NaN or infinite; remove them first")
+    if np.abs(x).max(initial=0.0) > MAX_ABS_SAMPLE:
+        raise InputError(f"{where}: sample(s) up to {np.abs(x).max():.3g} in magnitude, beyond "
+                         f"{MAX_ABS_SAMPLE:g}: not error samples")  # fmt: skip
     if x.size < min_samples:
         raise InputError(
             f"{where}: {x.size} sample(s), need at least {min_samples} "
@@ -385,7 +411,8 @@ def overbound_by_elevation(
     elevation_deg : array_like, shape (n,), optional
         Elevation of each sample, degrees. ``None``: one bin for all samples.
     edges_deg : sequence of float, default (5, 15, 30, 45, 60, 90)
-        Increasing bin edges, degrees. Samples outside are ignored; empty
+        Increasing bin edges, degrees. Samples outside are left out (a
+        :class:`~psdbound.common.notices.PsdboundWarning` counts them); empty
         bins are skipped.
     method : {"two_step", "cdf"}, default "two_step"
         See the module docstring.
@@ -420,10 +447,10 @@ def overbound_by_elevation(
         edges = np.asarray(edges_deg, dtype=float)
         if el.size != x.size:
             raise InputError(f"{x.size} samples but {el.size} elevations")
-        if np.isnan(el).any():
-            raise InputError(f"{int(np.isnan(el).sum())} elevation(s) are NaN")
+        _check_elevations(el)
     if edges.size < 2 or not (np.diff(edges) > 0).all():
         raise InputError(f"edges_deg must increase, at least 2 values: {list(edges_deg)}")
+    _note_outside(el, edges, elevation_deg is not None)
     out: list[BinOverbound] = []
     kept: dict[str, NDArray[np.float64]] = {}
     for lo, hi, sel in _bins(el, edges):
