@@ -129,6 +129,52 @@ class FitResults:
         """Input files with SHA-256, versions, configuration, time, platform."""
         return self.document["provenance"]
 
+    # ------------------------------------------------------------- figures
+    def plot(self, name: str) -> Any:
+        """Return one report figure as a matplotlib Figure (None when the result has no data).
+
+        Parameters
+        ----------
+        name : str
+            A key of :data:`psdbound.reports.figures.FIGURES`: ``"windows"``,
+            ``"df_filter"``, ``"screening"``, ``"sky"``, ``"mapped"``,
+            ``"psds"``, ``"tau"``, ``"cutoff"``, ``"jacobi_anger"``,
+            ``"code_qq"``.
+
+        Returns
+        -------
+        matplotlib.figure.Figure or None
+            Not registered with pyplot (a notebook shows it when it is the
+            cell's value; ``fig.savefig(path)`` writes it).
+
+        Raises
+        ------
+        InputError
+            An unknown name (the known ones are listed).
+        """
+        from psdbound.reports.figures import FIGURES
+
+        funcs = {key: func for key, _, func in FIGURES}
+        if name not in funcs:
+            raise InputError(f"unknown figure {name!r}; choose from {', '.join(funcs)}")
+        return funcs[name](self.document)
+
+    def plot_psd(self) -> Any:
+        """Return the figure of the window PSDs, their pooled limits and the bound."""
+        return self.plot("psds")
+
+    def plot_windows(self) -> Any:
+        """Return the figure of the arcs, screened spans and stationary windows per satellite."""
+        return self.plot("windows")
+
+    def plot_sky(self) -> Any:
+        """Return the sky view: multipath RMS by azimuth and elevation (None without azimuths)."""
+        return self.plot("sky")
+
+    def plot_screening(self) -> Any:
+        """Return the screening figure: ROTI against its threshold, largest values."""
+        return self.plot("screening")
+
     def summary(self) -> str:
         """Return the console summary (bound, cutoff, sampling, windows, warnings)."""
         d = self.document

@@ -14,13 +14,16 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["MAX_POINTS", "MAX_PSD_POINTS", "cutoff_figure", "figure_data", "psd_outline"]
+__all__ = ["MAX_POINTS", "MAX_PSD_POINTS", "SKY_CELL_DEG", "cutoff_figure", "figure_data",
+           "psd_outline", "sky_cells"]
 
 MAX_POINTS = 1500
 #: Points of all arcs of the mapped-series figure together, and the least per arc.
 MAX_TOTAL_POINTS = 30000
 MIN_ARC_POINTS = 200
 MAX_PSD_POINTS = 300
+#: Sky cells: azimuth and elevation widths, degrees.
+SKY_CELL_DEG = (10.0, 5.0)
 
 
 def _decimate(n: int, limit: int = MAX_POINTS) -> slice:
@@ -193,6 +196,65 @@ def _jacobi_anger(expansion: Iterable[Any]) -> dict[str, Any]:
     return {"cases": list(cases.values())}
 
 
+def _azimuths(sat: str, t: NDArray[np.float64], arcs: Any, interval_s: float
+               ) -> NDArray[np.float64]:  # fmt: skip
+    """Azimuth of ``sat`` at the series times ``t`` from its tracking arcs (NaN where none)."""
+    az = np.full(t.size, np.nan)
+    for a in arcs:
+        if a.sat != sat or a.azimuth_deg is None:
+            continue
+        j = np.clip(np.searchsorted(a.t_gps_s, t), 0, a.t_gps_s.size - 1)
+        hit = np.abs(a.t_gps_s[j] - t) < 0.5 * interval_s
+        az[hit] = a.azimuth_deg[j[hit]]
+    return az
+
+
+def sky_cells(series: Any, arcs: Any, interval_s: float,
+              cell_deg: tuple[float, float] = SKY_CELL_DEG) -> dict[str, Any] | None:  # fmt: skip
+    """RMS of the isolated multipath in azimuth-elevation cells (the sky view).
+
+    Parameters
+    ----------
+    series : MultipathSeries
+        The screened isolated multipath (one satellite per arc).
+    arcs : ArcSet or None
+        Tracking arcs with azimuths (dual-frequency); None: no sky view.
+    interval_s : float
+        Sampling interval, s.
+    cell_deg : (float, float), default (10, 5)
+        Cell width in azimuth and elevation, degrees.
+
+    Returns
+    -------
+    dict or None
+        ``az_edges_deg``, ``el_edges_deg``, ``rms_m`` (elevation x azimuth,
+        None where empty), ``count`` (samples per cell) and ``n_samples``;
+        None without azimuths.
+    """
+    if arcs is None or series.n_arcs == 0:
+        return None
+    d_az, d_el = cell_deg
+    az_e, el_e = np.arange(0.0, 360.0 + d_az / 2, d_az), np.arange(0.0, 90.0 + d_el / 2, d_el)
+    ss = np.zeros((el_e.size - 1, az_e.size - 1))
+    n = np.zeros_like(ss)
+    for k, (lo, hi) in enumerate(series.arc_bounds()):
+        az = _azimuths(series.arc_sats[k], series.t_gps_s[lo:hi], arcs, interval_s)
+        el, v = series.elevation_deg[lo:hi], series.value_m[lo:hi]
+        ok = np.isfinite(az) & np.isfinite(el) & np.isfinite(v)
+        i = np.clip((el[ok] // d_el).astype(int), 0, el_e.size - 2)
+        j = np.clip((np.mod(az[ok], 360.0) // d_az).astype(int), 0, az_e.size - 2)
+        np.add.at(ss, (i, j), v[ok] ** 2)
+        np.add.at(n, (i, j), 1.0)
+    if not n.any():
+        return None
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rms = np.sqrt(ss / n)
+    return {"az_edges_deg": az_e, "el_edges_deg": el_e,
+            "rms_m": [[None if c == 0 else float(x) for x, c in zip(r, cr, strict=True)]
+                      for r, cr in zip(rms, n, strict=True)],
+            "count": n.astype(int), "n_samples": int(n.sum())}  # fmt: skip
+
+
 def figure_data(
     *,
     series: Any,
@@ -239,6 +301,9 @@ def figure_data(
     if df is not None:
         figures["df_filter"] = df
     figures["mapped"] = _mapped(series, windows)
+    sky = sky_cells(series, arcs, interval_s)
+    if sky is not None:
+        figures["sky"] = sky
     psd_fig = []
     for p in bound_results.psds:
         ff, ss = psd_outline(np.asarray(p.f_hz), np.asarray(p.psd_m2_hz))

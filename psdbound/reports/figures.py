@@ -8,7 +8,8 @@ so that the PDF places it unscaled, two to a page where they fit; every axis
 label carries its unit in brackets.
 
 The functions live in :mod:`psdbound.reports.figures_time` (against time),
-:mod:`psdbound.reports.figures_spectra` (against frequency) and
+:mod:`psdbound.reports.figures_spectra` (against frequency),
+:mod:`psdbound.reports.figures_sky` (on the sky) and
 :mod:`psdbound.reports.figures_aviation` (the optional code multipath);
 :data:`FIGURES` lists them in report order.
 """
@@ -17,6 +18,7 @@ from __future__ import annotations
 
 from psdbound.reports.figures_aviation import fig_code_qq
 from psdbound.reports.figures_base import t0_gps_s
+from psdbound.reports.figures_sky import fig_sky
 from psdbound.reports.figures_spectra import (
     cutoff_curves,
     fig_cutoff_envelope,
@@ -36,6 +38,7 @@ __all__ = [
     "fig_mapped",
     "fig_psds_bound",
     "fig_screening",
+    "fig_sky",
     "fig_tau_search",
     "fig_windows",
     "t0_gps_s",
@@ -47,6 +50,7 @@ FIGURES = (
      fig_windows),
     ("df_filter", "Dual-frequency difference before and after filtering", fig_df_filter),
     ("screening", "Ionosphere screening (ROTI) and excluded spans", fig_screening),
+    ("sky", "Sky view: multipath RMS by azimuth and elevation", fig_sky),
     ("mapped", "Elevation-mapped residuals", fig_mapped),
     ("psds", "Window PSD estimates, their pooled upper limits and the bound (estimates "
      "scatter above their true PSD; the bound covers the true PSDs at the stated confidence)",

@@ -280,3 +280,33 @@ def test_page_one_is_the_same_in_console_html_pdf_and_json(demo_doc, verdict):
     # the thesis's criterion is not on page 1: it is labelled as the thesis's, not a rule
     assert "cutoff validation" not in " ".join(lines)
     assert "thesis cutoff criterion" in html
+
+
+def test_sky_cells_put_each_sample_in_its_azimuth_elevation_cell():
+    from types import SimpleNamespace
+
+    from psdbound.reports.figure_data import sky_cells
+
+    t = np.arange(0.0, 600.0, 30.0)
+    arc = SimpleNamespace(sat="G05", t_gps_s=t, azimuth_deg=np.full(t.size, 47.0),
+                          elevation_deg=np.full(t.size, 32.0))  # fmt: skip
+    v = np.where(np.arange(t.size) % 2, 0.002, -0.002)  # RMS 2 mm
+    series = SimpleNamespace(n_arcs=1, arc_sats=("G05",), t_gps_s=t, value_m=v,
+                             elevation_deg=np.full(t.size, 32.0),
+                             arc_bounds=lambda: [(0, t.size)])  # fmt: skip
+    d = sky_cells(series, [arc], 30.0)
+    assert d["n_samples"] == t.size and d["count"][6, 4] == t.size  # el 30-35, az 40-50
+    assert d["rms_m"][6][4] == pytest.approx(0.002)
+    assert sum(x is not None for row in d["rms_m"] for x in row) == 1
+    assert sky_cells(series, None, 30.0) is None  # no azimuths (dual-antenna): no sky view
+
+
+def test_results_return_their_figures(demo_doc):
+    res = psdbound.FitResults(demo_doc)
+    sky = res.plot_sky()
+    assert sky is not None and sky.axes[0].name == "polar"
+    assert "bound sigma at zenith" in sky.axes[0].get_title()
+    assert res.plot_psd().axes[0].get_xscale() == "log"
+    assert res.plot_windows() is not None and res.plot_screening() is not None
+    with pytest.raises(psdbound.InputError, match="choose from"):
+        res.plot("skyline")
