@@ -188,6 +188,34 @@ class ArcSet:
     def __getitem__(self, i: int) -> Arc:
         return self.arcs[i]
 
+    def azimuth_at(self, sat: str, t_gps_s: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Return the azimuth of ``sat`` at the epochs ``t_gps_s`` from its arcs, degrees.
+
+        Parameters
+        ----------
+        sat : str
+            Satellite (``"G05"``).
+        t_gps_s : ndarray
+            Epochs, GPS seconds.
+
+        Returns
+        -------
+        ndarray
+            The arc's azimuth at the epoch nearest each time within half an
+            interval; NaN where no arc of ``sat`` holds one (or no orbit).
+        """
+        t = np.asarray(t_gps_s, dtype=float)
+        az = np.full(t.size, np.nan)
+        for a in self.arcs:
+            if a.sat != sat or a.azimuth_deg is None:
+                continue
+            j = np.clip(np.searchsorted(a.t_gps_s, t), 0, a.t_gps_s.size - 1)
+            j = np.where(np.abs(a.t_gps_s[np.maximum(j - 1, 0)] - t) < np.abs(a.t_gps_s[j] - t),
+                         np.maximum(j - 1, 0), j)  # fmt: skip
+            hit = np.abs(a.t_gps_s[j] - t) < 0.5 * self.interval_s
+            az[hit] = a.azimuth_deg[j[hit]]
+        return az
+
     @property
     def total_duration_s(self) -> float:
         """Sum of the kept arcs' durations, seconds."""

@@ -129,6 +129,39 @@ class FitResults:
         """Input files with SHA-256, versions, configuration, time, platform."""
         return self.document["provenance"]
 
+    # ------------------------------------------------------------- the series as data
+    def series_table(self) -> dict[str, Any]:
+        """Return every isolated sample with its direction, screening and window.
+
+        Returns
+        -------
+        dict of str to ndarray
+            Columns ``t_gps_s``, ``sat``, ``azimuth_deg``, ``elevation_deg``,
+            ``value_m``, ``screened`` (why a sample was screened out, empty
+            when kept) and ``window`` (its stationary window, -1: outside the
+            bound); see :mod:`psdbound.results.series_table`.
+
+        Raises
+        ------
+        InputError
+            A result read from ``result.json`` (the file holds no per-epoch
+            series: fit again).
+        """
+        from psdbound.results.series_table import series_table
+
+        if self.isolated is None:
+            raise InputError("this result was read from a file, which holds no per-epoch "
+                             "series: fit again (psdbound.fit(...).series_table())")  # fmt: skip
+        d = self.document
+        return series_table(self.isolated.series, self.isolated.arcs,
+                            d["screening"]["excluded"], d["windows"]["per_window"])  # fmt: skip
+
+    def write_series(self, path: str | os.PathLike[str]) -> Path:
+        """Write :meth:`series_table` as CSV (gzip when the name ends in ``.gz``), atomically."""
+        from psdbound.results.series_table import write_series_csv
+
+        return write_series_csv(self.series_table(), path)
+
     # ------------------------------------------------------------- figures
     def plot(self, name: str) -> Any:
         """Return one report figure as a matplotlib Figure (None when the result has no data).

@@ -196,20 +196,7 @@ def _jacobi_anger(expansion: Iterable[Any]) -> dict[str, Any]:
     return {"cases": list(cases.values())}
 
 
-def _azimuths(sat: str, t: NDArray[np.float64], arcs: Any, interval_s: float
-               ) -> NDArray[np.float64]:  # fmt: skip
-    """Azimuth of ``sat`` at the series times ``t`` from its tracking arcs (NaN where none)."""
-    az = np.full(t.size, np.nan)
-    for a in arcs:
-        if a.sat != sat or a.azimuth_deg is None:
-            continue
-        j = np.clip(np.searchsorted(a.t_gps_s, t), 0, a.t_gps_s.size - 1)
-        hit = np.abs(a.t_gps_s[j] - t) < 0.5 * interval_s
-        az[hit] = a.azimuth_deg[j[hit]]
-    return az
-
-
-def sky_cells(series: Any, arcs: Any, interval_s: float,
+def sky_cells(series: Any, arcs: Any,
               cell_deg: tuple[float, float] = SKY_CELL_DEG) -> dict[str, Any] | None:  # fmt: skip
     """RMS of the isolated multipath in azimuth-elevation cells (the sky view).
 
@@ -219,8 +206,6 @@ def sky_cells(series: Any, arcs: Any, interval_s: float,
         The screened isolated multipath (one satellite per arc).
     arcs : ArcSet or None
         Tracking arcs with azimuths (dual-frequency); None: no sky view.
-    interval_s : float
-        Sampling interval, s.
     cell_deg : (float, float), default (10, 5)
         Cell width in azimuth and elevation, degrees.
 
@@ -238,7 +223,7 @@ def sky_cells(series: Any, arcs: Any, interval_s: float,
     ss = np.zeros((el_e.size - 1, az_e.size - 1))
     n = np.zeros_like(ss)
     for k, (lo, hi) in enumerate(series.arc_bounds()):
-        az = _azimuths(series.arc_sats[k], series.t_gps_s[lo:hi], arcs, interval_s)
+        az = arcs.azimuth_at(series.arc_sats[k], series.t_gps_s[lo:hi])
         el, v = series.elevation_deg[lo:hi], series.value_m[lo:hi]
         ok = np.isfinite(az) & np.isfinite(el) & np.isfinite(v)
         i = np.clip((el[ok] // d_el).astype(int), 0, el_e.size - 2)
@@ -301,7 +286,7 @@ def figure_data(
     if df is not None:
         figures["df_filter"] = df
     figures["mapped"] = _mapped(series, windows)
-    sky = sky_cells(series, arcs, interval_s)
+    sky = sky_cells(series, arcs)
     if sky is not None:
         figures["sky"] = sky
     psd_fig = []

@@ -288,17 +288,16 @@ def test_sky_cells_put_each_sample_in_its_azimuth_elevation_cell():
     from psdbound.reports.figure_data import sky_cells
 
     t = np.arange(0.0, 600.0, 30.0)
-    arc = SimpleNamespace(sat="G05", t_gps_s=t, azimuth_deg=np.full(t.size, 47.0),
-                          elevation_deg=np.full(t.size, 32.0))  # fmt: skip
+    arcs = SimpleNamespace(azimuth_at=lambda sat, tt: np.full(np.size(tt), 47.0))
     v = np.where(np.arange(t.size) % 2, 0.002, -0.002)  # RMS 2 mm
     series = SimpleNamespace(n_arcs=1, arc_sats=("G05",), t_gps_s=t, value_m=v,
                              elevation_deg=np.full(t.size, 32.0),
                              arc_bounds=lambda: [(0, t.size)])  # fmt: skip
-    d = sky_cells(series, [arc], 30.0)
+    d = sky_cells(series, arcs)
     assert d["n_samples"] == t.size and d["count"][6, 4] == t.size  # el 30-35, az 40-50
     assert d["rms_m"][6][4] == pytest.approx(0.002)
     assert sum(x is not None for row in d["rms_m"] for x in row) == 1
-    assert sky_cells(series, None, 30.0) is None  # no azimuths (dual-antenna): no sky view
+    assert sky_cells(series, None) is None  # no azimuths (dual-antenna): no sky view
 
 
 def test_results_return_their_figures(demo_doc):
