@@ -307,9 +307,11 @@ def write_vpl_series(series: VplSeries, out: str | Path, *,
                      val_m: float | None = None) -> list[Path]:  # fmt: skip
     """Write ``vpl.json`` and ``vpl.png`` into the folder ``out`` (created), each atomically.
 
-    The figure: VPL_H0, VPL_eph and VPL (m) against time (h), the satellites
-    above the mask (count) on a second axis, and ``val_m``, an optional
-    vertical alert limit in metres (also adds the availability to the JSON).
+    The figure: VPL_H0, VPL_eph and VPL (m) against time (h) with ``val_m``,
+    an optional vertical alert limit in metres (also adds the availability to
+    the JSON), and below it, in a panel of its own, the satellites above the
+    mask (count): on a second axis of the same panel a count reads as a
+    protection level.
     Returns the two paths.
     """
     import matplotlib
@@ -318,24 +320,24 @@ def write_vpl_series(series: VplSeries, out: str | Path, *,
     import matplotlib.pyplot as plt
 
     h, o = (series.t_gps_s - series.t_gps_s[0]) / 3600.0, series.options
-    fig, ax = plt.subplots(figsize=(8.0, 4.5))
+    fig, (ax, ax2) = plt.subplots(2, 1, figsize=(8.0, 5.2), sharex=True,
+                                  gridspec_kw={"height_ratios": [3, 1]})  # fmt: skip
     ax.plot(h, series.vpl_m, "-", lw=3.0, color="0.75", label="VPL = max")
     ax.plot(h, series.vpl_h0_m, "-", lw=0.9, label="VPL_H0")
     ax.plot(h, series.vpl_eph_m, "--", lw=0.9, label="VPL_eph")
     if val_m is not None:
         ax.axhline(val_m, color="r", ls=":", label=f"VAL {val_m:g} m")
     top = 1.35 * max(np.nanmax(series.vpl_m, initial=1.0), val_m or 0.0)
-    ax.set(xlabel=f"time since {_label(series.t_gps_s[0])} GPS (h)", ylim=(0, top),
-           ylabel="vertical protection level (m)")  # fmt: skip
+    ax.set(ylim=(0, top), ylabel="vertical protection level (m)")
     ax.set_title(f"{o['process']} {o['base_frequency']}, tau {o['tau_gnd_s']:g}/"
                  f"{o['tau_air_s']:g} s, x_air {o['x_air_m'] / 1000:g} km", fontsize=9)  # fmt: skip
     ax.grid(alpha=0.3)
-    ax2 = ax.twinx()
-    ax2.step(h, series.n_sats, where="post", color="0.55", lw=0.8, label="satellites")
-    ax2.set(ylabel=f"satellites above {series.elevation_mask_deg:g} deg (count)",
-            ylim=(0, 1.6 * max(int(series.n_sats.max()), 4)))  # fmt: skip
-    (h1, l1), (h2, l2) = ax.get_legend_handles_labels(), ax2.get_legend_handles_labels()
-    ax.legend(h1 + h2, l1 + l2, fontsize=7, loc="upper center", ncols=5)
+    ax.legend(fontsize=7, loc="upper center", ncols=4)
+    ax2.step(h, series.n_sats, where="post", color="0.35", lw=0.9)
+    ax2.set(ylabel=f"satellites > {series.elevation_mask_deg:g} deg (count)",
+            ylim=(0, 1.15 * max(int(series.n_sats.max()), 4)),
+            xlabel=f"time since {_label(series.t_gps_s[0])} GPS (h)")  # fmt: skip
+    ax2.grid(alpha=0.3)
     fig.tight_layout()
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=120)

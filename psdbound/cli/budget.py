@@ -45,10 +45,14 @@ def add_parser(subparsers: Any) -> None:
     p = subparsers.add_parser(
         "budget",
         help="LADGNSS error budget and vertical protection level for a geometry",
-        description="Seed 004 error budget (GAD ground, AAD-A airborne, ionosphere, "
-        "troposphere) vs elevation and smoothing time, and VPL_H0 / VPL_eph: of one "
-        "geometry (--sat), or over time for the nominal constellations (--nominal) or a "
-        "navigation/SP3 file (--nav) seen from --position.",
+        description="Error budget of a local-area differential GNSS user (ground "
+        "reference receivers of accuracy class GAD, an airborne receiver of class AAD-A, "
+        "residual ionosphere and troposphere) against elevation and carrier-smoothing time, "
+        "and the vertical protection levels under no fault (VPL_H0) and an ephemeris fault "
+        "(VPL_eph): for one geometry (--sat), or over time for the nominal constellations "
+        "(--nominal) or the satellites of a navigation/SP3 file (--nav) seen from --position. "
+        "The models follow the GBAS standards as summarised in the project's source document "
+        "004 (docs: method/aviation).",
         epilog="examples: psdbound budget --sat 10,12 --sat 80,25 --sat 150,38 "
         "--sat 200,47 --sat 260,60 --tau-gnd 30 --tau-air 30; "
         "psdbound budget --nominal GE --position 55.49,8.46,59 --val-m 10 --out vpl/",

@@ -25,10 +25,10 @@ turns into exit code 2.
 from __future__ import annotations
 
 import argparse
-import sys
 from typing import Any
 
 from psdbound.cli.actions import Once
+from psdbound.common.progress import counter
 from psdbound.errors import InputError
 
 __all__ = ["add_parser", "run"]
@@ -187,12 +187,6 @@ def add_parser(subparsers: Any) -> None:
     p.set_defaults(func=run)
 
 
-def _progress(done: int, total: int) -> None:
-    print(f"\r  {done}/{total} station-days computed", end="", file=sys.stderr, flush=True)
-    if done == total:
-        print(file=sys.stderr)
-
-
 def run(args: argparse.Namespace) -> int:
     """Run the ``cutoff`` subcommand; return the exit code (0).
 
@@ -230,7 +224,7 @@ def run(args: argparse.Namespace) -> int:
         "scheduler": args.scheduler,
         "cache_dir": args.cache_dir,
         "use_cache": not args.no_cache,
-        "progress": _progress,
+        "progress": counter("station-days computed"),
     }
     if args.map:
         from psdbound.ionosphere.workflow import run_world_map
