@@ -57,6 +57,15 @@ low frequencies
     with ``low_frequency = "refuse"`` (default ``"prior"``) such a bound is
     not bounded; when the data admit only time constants above the prior,
     it is never bounded.
+
+Pooled bounds (campaigns)
+-------------------------
+A campaign judges every station-day with :func:`judge` (the day's ``fit``)
+and pools only the bounded days. The pooled bound of a station is judged by
+:func:`judge_pooled`: not bounded when no bounded day is left, when it is
+degenerate, when the pooled windows cover less than ``min_tau_multiple``
+tau, or by the low-frequency rule. The other rules concern one day's data
+and have already kept those days out of the pool.
 """
 
 from __future__ import annotations
@@ -67,7 +76,13 @@ from typing import Any
 from psdbound.common.options import Choice, Number, check_fields, option
 from psdbound.spectra.lowfreq import POLICIES, low_frequency_reasons
 
-__all__ = ["VerdictOptions", "judge"]
+__all__ = [
+    "VerdictOptions",
+    "degenerate_reasons",
+    "judge",
+    "judge_pooled",
+    "short_data_reasons",
+]
 
 
 @dataclass(frozen=True)
@@ -127,6 +142,62 @@ def _covered_s(per_window: list[dict[str, Any]], interval_s: float) -> float:
     return total
 
 
+def degenerate_reasons(bound: dict[str, Any]) -> list[str]:
+    """Apply the "degenerate bound" rule: ``sigma_GM = 0``, or tau at an end of its grid.
+
+    Parameters
+    ----------
+    bound : dict
+        ``sigma_gm_m`` (m), ``tau_s`` (s) and optionally ``tau_grid_s`` (s).
+
+    Returns
+    -------
+    list of str
+        One sentence per degeneracy found (empty when none).
+    """
+    reasons = []
+    grid = bound.get("tau_grid_s") or [bound["tau_s"]]
+    if bound["sigma_gm_m"] <= 0.0:
+        reasons.append(
+            "degenerate bound: sigma_GM = 0, only white noise; no time correlation is "
+            "resolved in the band fitted"
+        )
+    if bound["tau_s"] <= min(grid) * (1 + 1e-6) or bound["tau_s"] >= max(grid) * (1 - 1e-6):
+        reasons.append(
+            f"degenerate bound: tau = {bound['tau_s']:.3g} s sits at the end of its search grid "
+            f"[{min(grid):.3g}, {max(grid):.3g}] s"
+        )
+    return reasons
+
+
+def short_data_reasons(bound: dict[str, Any], covered_s: float,
+                       options: VerdictOptions | None = None) -> list[str]:  # fmt: skip
+    """Apply the "too little data for tau" rule: windows shorter than ``min_tau_multiple`` tau.
+
+    Parameters
+    ----------
+    bound : dict
+        ``sigma_gm_m`` (m) and ``tau_s`` (s).
+    covered_s : float
+        Time covered by the stationary windows the bound was fitted to, s.
+    options : VerdictOptions, optional
+
+    Returns
+    -------
+    list of str
+        The rule's sentence, or empty.
+    """
+    opt = options or VerdictOptions()
+    need_s = opt.min_tau_multiple * bound["tau_s"]
+    if bound["sigma_gm_m"] <= 0 or covered_s >= need_s:
+        return []
+    return [
+        f"too little stationary data: {covered_s / 60:.1f} min covered by windows < "
+        f"{opt.min_tau_multiple:g} tau = {need_s / 60:.1f} min "
+        "(variance uncertainty above 20 %)"
+    ]
+
+
 def judge(document: dict[str, Any], options: VerdictOptions | None = None) -> tuple[str, list[str]]:
     """Apply the verdict rules to a result document.
 
@@ -145,25 +216,8 @@ def judge(document: dict[str, Any], options: VerdictOptions | None = None) -> tu
     """
     opt = options or VerdictOptions()
     b, s = document["bound"], document["sampling"]
-    reasons: list[str] = []
-    grid = b.get("tau_grid_s") or [b["tau_s"]]
-    if b["sigma_gm_m"] <= 0.0:
-        reasons.append(
-            "degenerate bound: sigma_GM = 0, only white noise; no time correlation is "
-            "resolved in the band fitted"
-        )
-    if b["tau_s"] <= min(grid) * (1 + 1e-6) or b["tau_s"] >= max(grid) * (1 - 1e-6):
-        reasons.append(
-            f"degenerate bound: tau = {b['tau_s']:.3g} s sits at the end of its search grid "
-            f"[{min(grid):.3g}, {max(grid):.3g}] s"
-        )
     covered = _covered_s(document["windows"]["per_window"], s["interval_s"])
-    if b["sigma_gm_m"] > 0 and covered < opt.min_tau_multiple * b["tau_s"]:
-        reasons.append(
-            f"too little stationary data: {covered / 60:.1f} min covered by windows < "
-            f"{opt.min_tau_multiple:g} tau = {opt.min_tau_multiple * b['tau_s'] / 60:.1f} min "
-            "(variance uncertainty above 20 %)"
-        )
+    reasons = degenerate_reasons(b) + short_data_reasons(b, covered, opt)
     safety = document.get("isolation", {}).get("safety")
     if safety and safety.get("removed_above_fc_median") is not None:
         loss = safety["removed_above_fc_median"]
@@ -196,4 +250,45 @@ def judge(document: dict[str, Any], options: VerdictOptions | None = None) -> tu
             f"most data excluded: screening removed {100 * scr['excluded_fraction']:.1f} % of "
             f"the data (limit {100 * opt.max_excluded_fraction:g} %)"
         )
+    return ("not-bounded" if reasons else "bounded"), reasons
+
+
+def judge_pooled(bound: dict[str, Any] | None, *, covered_s: float, n_days: int,
+                 options: VerdictOptions | None = None) -> tuple[str, list[str]]:  # fmt: skip
+    """Apply the verdict rules that make sense for a campaign station's pooled bound.
+
+    The pool holds only the station's bounded days (each judged by
+    :func:`judge`), so the rules on one day's data (filter loss, band, data
+    outside the bound, most data excluded) have already kept the bad days
+    out. On the pooled bound itself apply: **no bounded day left**,
+    **degenerate bound** (:func:`degenerate_reasons`), **too little data for
+    tau** over the pooled windows (:func:`short_data_reasons`) and **low
+    frequencies** (:func:`psdbound.spectra.lowfreq.low_frequency_reasons`
+    with the same policy).
+
+    Parameters
+    ----------
+    bound : dict or None
+        ``sigma_gm_m`` (m), ``tau_s`` (s), ``tau_grid_s`` (s) and
+        ``low_frequency`` of the pooled bound; None when nothing was pooled.
+    covered_s : float
+        Time covered by the pooled days' stationary windows, s.
+    n_days : int
+        Bounded days in the pool.
+    options : VerdictOptions, optional
+
+    Returns
+    -------
+    verdict : {"bounded", "not-bounded"}
+    reasons : list of str
+        One sentence per rule that fired (empty when bounded).
+    """
+    opt = options or VerdictOptions()
+    if bound is None or n_days == 0:
+        return "not-bounded", [
+            "no bounded day left: every day of the station is not-bounded or failed, so there "
+            "is nothing to pool"
+        ]
+    reasons = degenerate_reasons(bound) + short_data_reasons(bound, covered_s, opt)
+    reasons += low_frequency_reasons(bound.get("low_frequency"), opt.low_frequency)
     return ("not-bounded" if reasons else "bounded"), reasons
