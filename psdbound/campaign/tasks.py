@@ -122,6 +122,11 @@ def psds_from_result(result: dict[str, Any]) -> list[Any]:
     ]
 
 
+def _unit_response(f_hz: np.ndarray) -> np.ndarray:
+    """Return a power response of 1 at every frequency (the response already divided out)."""
+    return np.ones_like(np.asarray(f_hz, dtype=float))
+
+
 def pooled_days_bound(days: list[dict[str, Any]], *, f_min_hz: float) -> Any:
     """Pool the windows of several days of one station; a sidereal repeat is not independent.
 
@@ -129,7 +134,10 @@ def pooled_days_bound(days: list[dict[str, Any]], *, f_min_hz: float) -> Any:
     the same multipath (:func:`psdbound.spectra.dependence.repeat_clusters`):
     they form one cluster with intra-cluster correlation 1, i.e. count as
     one window in the pooled degrees of freedom (conservative: the repeat is
-    close, not exact).
+    close, not exact). When the days were high-pass filtered, the model set
+    and the low-frequency statement are identified on the statement's bands
+    (from ``f_min_hz``), as in ``fit``: below them the filter, not the data,
+    set the spectra.
 
     Parameters
     ----------
@@ -155,5 +163,11 @@ def pooled_days_bound(days: list[dict[str, Any]], *, f_min_hz: float) -> Any:
         t0 = np.concatenate([np.asarray(r["win_t_start_gps_s"], dtype=float) for r in days])
         dur = np.array([p.n_samples * dt for p in psds])
         clusters = repeat_clusters(sats, t0, dur)
+    # the days' spectra are already divided by their own high-pass's response (each day has
+    # its own cutoff); a unit response tells the model set that a filter shaped everything
+    # below f_min, so it is identified on the statement's bands, as fit does (without it the
+    # filtered lowest frequencies looked like data with no low-frequency power)
+    filtered = any(r.get("f_c_hz") for r in days)
     return fit_stated_bound(psds, dt, f_min_hz=f_min_hz, clusters=clusters,
+                            power_response=_unit_response if filtered else None,
                             cluster_correlation=1.0 if clusters is not None else 0.0)
