@@ -1,6 +1,6 @@
 """Held-out days: each station-day tested against the bound of the station's other days.
 
-For a station with at least two good days, for each day ``d``:
+For a station with at least two bounded days (those in its pool), for each day ``d``:
 
 * the **held-out bound** is the pooled bound of every window of the station's
   other days at the same sampling interval
@@ -107,13 +107,16 @@ def _covered(bands: Any, bound: Any) -> NDArray[np.bool_]:
     return ~above.any(axis=1)
 
 
-def held_out(results: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
+def held_out(results: Sequence[dict[str, Any]], *, options: Any = None) -> list[dict[str, Any]]:
     """Test every station-day against the bound of the station's other days.
 
     Parameters
     ----------
     results : sequence of dict
-        Station-day results of :func:`~psdbound.campaign.tasks.station_day_task`.
+        Station-day results of :func:`~psdbound.campaign.tasks.station_day_task`
+        that entered their station's pool (bounded days).
+    options : BoundOptions, optional
+        The pooled rule's options (as :func:`~psdbound.campaign.tasks.pooled_days_bound`).
 
     Returns
     -------
@@ -123,12 +126,12 @@ def held_out(results: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
         ``windows_covered_fraction``, ``worst_excess_db``,
         ``kf_max_generalized_eigenvalue``, ``kf_windows_bounded_fraction``,
         ``band_hz``. Stations with one
-        good day get no row.
+        day get no row.
     """
     from psdbound.spectra.bands import band_spectra
 
     rows = []
-    good = [r for r in results if r.get("ok")]
+    good = [r for r in results if r.get("fitted")]
     for station in sorted({r["station"] for r in good}):
         days = sorted((r for r in good if r["station"] == station), key=lambda r: r["day"])
         for d in days:
@@ -137,7 +140,7 @@ def held_out(results: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
                 continue
             dt = float(d["dt_s"])
             f_min = max(float(r["f_min_hz"]) for r in [*others, d])
-            bound = pooled_days_bound(others, f_min_hz=f_min).fit
+            bound = pooled_days_bound(others, f_min_hz=f_min, options=options).fit
             own = band_spectra(psds_from_result(d), f_min_hz=f_min)
             ok = np.isfinite(own.psd_m2_hz)
             has = ok.any(axis=1)

@@ -13,24 +13,22 @@ from typing import Any
 from psdbound.campaign.run import CampaignResult
 from psdbound.errors import InputError
 
-__all__ = ["CAMPAIGN_FILES", "write_campaign"]
+__all__ = ["CAMPAIGN_FILES", "station_lines", "write_campaign"]
 
 CAMPAIGN_FILES = ("campaign.json", "campaign.html", "campaign.pdf")
 
 
-def _figure(doc: dict[str, Any]):
+def _figure(doc: dict[str, Any]) -> Any:
+    """Return the held-out figure, or None when no day was held out (nothing to draw)."""
+    rows = doc["held_out"]
+    if not rows:
+        return None
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    rows = doc["held_out"]
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    if not rows:
-        for ax in axes:
-            ax.text(0.5, 0.5, "no station with two good days: nothing held out", ha="center")
-            ax.set_axis_off()
-        return fig
     labels = [f"{r['station']}\n{r['day']}" for r in rows]
     x = range(len(rows))
     axes[0].bar(x, [100 * r["windows_covered_fraction"] for r in rows], color="C0")
@@ -48,31 +46,134 @@ def _figure(doc: dict[str, Any]):
     return fig
 
 
-def _table(doc: dict[str, Any]) -> str:
+def _mm(row: dict[str, Any]) -> str:
+    """``sigma_GM / tau / sigma_WN`` of a bound row in mm and s."""
+    return (f"{1e3 * row['sigma_gm_m']:.2f} mm / {row['tau_s']:.1f} s / "
+            f"{1e3 * row['sigma_wn_m']:.2f} mm")  # fmt: skip
+
+
+def station_lines(st: dict[str, Any]) -> list[str]:
+    """Return the text of one station: verdict, pooled bound, excluded days, what is missing.
+
+    Parameters
+    ----------
+    st : dict
+        A ``stations`` row of ``campaign.json``.
+
+    Returns
+    -------
+    list of str
+        Lines without markup (the HTML escapes them, the PDF prints them).
+    """
+    lines = [f"{st['station']}: {st['verdict']}"]
+    if st["n_pooled"]:
+        lines.append(f"pooled bound over {st['n_pooled']} of {st['n_days']} day(s) "
+                     f"({', '.join(st['pooled_days'])}): sigma_GM / tau / sigma_WN "
+                     f"{_mm(st)}")  # fmt: skip
+    lines += [f"reason: {r}" for r in st["verdict_reasons"]]
+    for d in st["excluded_days"]:
+        lines.append(f"not pooled: {d['day']} ({d['verdict']}): " + "; ".join(d["reasons"]))
+    if st.get("comparison_note"):
+        lines.append(st["comparison_note"])
+    lines.append("rules applied to the pooled bound:")
+    lines += [f"  {c['rule']}: {c['measured']} ({c['limit']}) {'pass' if c['passed'] else 'FAIL'}"
+              for c in st["verdict_checks"]]  # fmt: skip
+    return lines
+
+
+def _station_html(doc: dict[str, Any]) -> str:
+    items = []
+    for st in doc["stations"]:
+        head, *rest = station_lines(st)
+        items.append(f"<li><b>{html.escape(head)}</b><ul>"
+                     + "".join(f"<li>{html.escape(x)}</li>" for x in rest) + "</ul></li>")
+    return f"<h2>Stations: pooled bounds and verdicts</h2><ul>{''.join(items)}</ul>"
+
+
+def _own(d: dict[str, Any]) -> str:
+    return f"{_mm(d)}, {d['n_windows']} windows" if d["fitted"] else "none"
+
+
+def _days_html(doc: dict[str, Any]) -> str:
+    rows = "".join(
+        f"<tr><td>{html.escape(d['station'])}</td><td>{d['day']}</td>"
+        f"<td>{html.escape(d['verdict'])}</td><td>{'yes' if d['in_pool'] else 'no'}</td>"
+        f"<td>{_own(d)}</td>"
+        f"<td>{html.escape(d['nav'])}</td>"
+        f"<td>{'<br>'.join(html.escape(r) for r in d['verdict_reasons'])}</td></tr>"
+        for d in doc["days"]
+    )
+    return ("<h2>Station-days: the verdict of <code>psdbound fit</code> for each day</h2>"
+            "<table><tr><th>station</th><th>day</th><th>verdict</th><th>in pool</th>"
+            "<th>own bound sigma_GM / tau / sigma_WN</th><th>navigation file</th>"
+            f"<th>reasons</th></tr>{rows}</table>")  # fmt: skip
+
+
+def _held_out_html(doc: dict[str, Any], img: str | None) -> str:
+    notes = "".join(f"<li>{html.escape(st['station'])}: {html.escape(st['comparison_note'])}</li>"
+                    for st in doc["stations"] if st.get("comparison_note"))  # fmt: skip
+    out = "<h2>Held-out days</h2>" + (f"<ul>{notes}</ul>" if notes else "")
+    if not doc["held_out"]:
+        return out
     head = ("<tr><th>station</th><th>day</th><th>other days</th><th>held-out bound "
             "sigma_GM / tau / sigma_WN</th><th>windows covered</th><th>worst excess</th>"
             "<th>KF max gen. eigenvalue (windows bounded)</th></tr>")  # fmt: skip
     body = "".join(
         f"<tr><td>{html.escape(r['station'])}</td><td>{r['day']}</td><td>{r['n_other_days']}</td>"
-        f"<td>{1e3 * r['bound']['sigma_gm_m']:.2f} mm / {r['bound']['tau_s']:.1f} s / "
-        f"{1e3 * r['bound']['sigma_wn_m']:.2f} mm</td>"
-        f"<td>{100 * r['windows_covered_fraction']:.0f} %</td>"
+        f"<td>{_mm(r['bound'])}</td><td>{100 * r['windows_covered_fraction']:.0f} %</td>"
         f"<td>{r['worst_excess_db']:.1f} dB</td><td>{r['kf_max_generalized_eigenvalue']:.2f} "
-        f"({100 * r.get('kf_windows_bounded_fraction', float('nan')):.0f} %)</td>"
-        "</tr>"
+        f"({100 * r.get('kf_windows_bounded_fraction', float('nan')):.0f} %)</td></tr>"
         for r in doc["held_out"]
     )
-    days = "".join(
-        f"<tr><td>{html.escape(d['station'])}</td><td>{d['day']}</td><td>"
-        + (f"{1e3 * d['sigma_gm_m']:.2f} mm / {d['tau_s']:.1f} s / {1e3 * d['sigma_wn_m']:.2f} mm"
-           f", {d['n_windows']} windows, {100 * d['covered_fraction']:.0f} % covered"
-           if d["ok"] else "no bound: " + html.escape(d["error"]))
-        + "</td></tr>"
-        for d in doc["days"]
-    )  # fmt: skip
-    return (f"<h2>Held-out days</h2><table>{head}{body}</table>"
-            f"<h2>Station-days</h2><table><tr><th>station</th><th>day</th><th>own bound</th>"
-            f"</tr>{days}</table>")  # fmt: skip
+    return (out + f"<img alt='held-out coverage and KF eigenvalues' "
+            f"src='data:image/png;base64,{img}'><table>{head}{body}</table>"
+            "<p>Held out: each pooled station-day's windows tested against the pooled bound of "
+            "the station's other pooled days (covered: not significantly above it, one-sided "
+            "5 %); KF: a 6-satellite static filter designed with that bound against each of the "
+            "day's windows as the truth.</p>")  # fmt: skip
+
+
+def _page(doc: dict[str, Any], summary: str, img: str | None) -> str:
+    return (
+        "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>psdbound campaign"
+        "</title><style>body{font-family:sans-serif;max-width:1000px;margin:2em auto}"
+        "td,th{border:1px solid #ccc;padding:3px 6px;font-size:0.9em;vertical-align:top}"
+        "table{border-collapse:collapse}</style></head><body><h1>psdbound campaign: "
+        f"{html.escape(doc['verdict'])}</h1>"
+        f"{_station_html(doc)}{_held_out_html(doc, img)}{_days_html(doc)}"
+        f"<h2>Summary</h2><pre>{html.escape(summary)}</pre></body></html>"
+    )
+
+
+def _text_pages(doc: dict[str, Any]) -> list[Any]:
+    """Return the PDF's text pages: the verdict, every station and every day, wrapped."""
+    import textwrap
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    lines = [f"psdbound campaign: {doc['verdict']}", ""]
+    for st in doc["stations"]:
+        lines += [*station_lines(st), ""]
+    lines.append("station-days (verdict of psdbound fit for each day):")
+    for d in doc["days"]:
+        lines.append(f"{d['station']} {d['day']}: {d['verdict']}"
+                     f"{'' if d['in_pool'] else ' (not pooled)'}; navigation {d['nav']}")
+        lines += [f"  reason: {r}" for r in d["verdict_reasons"]]
+    wrapped = [w for line in lines for w in (textwrap.wrap(line, 110, subsequent_indent="    ")
+                                             or [""])]  # fmt: skip
+    pages = []
+    for start in range(0, len(wrapped), _LINES_PER_PAGE):
+        fig = plt.figure(figsize=(8.27, 11.69))
+        fig.text(0.05, 0.97, "\n".join(wrapped[start:start + _LINES_PER_PAGE]), va="top",
+                 family="monospace", fontsize=7)  # fmt: skip
+        pages.append(fig)
+    return pages
+
+
+_LINES_PER_PAGE = 95
 
 
 def write_campaign(
@@ -112,29 +213,23 @@ def write_campaign(
             )
     doc = to_jsonable(result.to_dict())
     fig = _figure(doc)
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=110)
-    img = base64.b64encode(buf.getvalue()).decode()
-    page = (
-        "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>psdbound campaign"
-        "</title><style>body{font-family:sans-serif;max-width:1000px;margin:2em auto}"
-        "td,th{border:1px solid #ccc;padding:3px 6px;font-size:0.9em}table{border-collapse:"
-        "collapse}</style></head><body><h1>psdbound campaign</h1>"
-        f"<pre>{html.escape(result.summary())}</pre>"
-        f"<img alt='held-out coverage and KF eigenvalues' src='data:image/png;base64,{img}'>"
-        f"{_table(doc)}<p>Held out: each station-day's windows tested against the pooled bound"
-        " of the station's other days (covered: not significantly above it, one-sided 5 %);"
-        " KF: a 6-satellite static filter designed with that bound against the day's own "
-        "pooled bound as truth.</p></body></html>"
-    )
+    img = None
+    if fig is not None:
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=110)
+        img = base64.b64encode(buf.getvalue()).decode()
+    pages = [*_text_pages(doc), *([fig] if fig is not None else [])] if pdf else []
     with atomic_folder(out, replace=True) as tmp:
         (tmp / "campaign.json").write_text(json.dumps(doc, indent=1, allow_nan=True))
-        (tmp / "campaign.html").write_text(page)
+        (tmp / "campaign.html").write_text(_page(doc, result.summary(), img))
         if pdf:
             with PdfPages(tmp / "campaign.pdf") as pp:
-                pp.savefig(fig)
+                for page in pages:
+                    pp.savefig(page)
     import matplotlib.pyplot as plt
 
-    plt.close(fig)
+    for f in [*pages, fig]:
+        if f is not None:
+            plt.close(f)
     names = [n for n in CAMPAIGN_FILES if pdf or n != "campaign.pdf"]
     return {n.split(".")[1]: out / n for n in names}

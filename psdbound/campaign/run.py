@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import datetime as _dt
 import os
-import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,10 +20,10 @@ from typing import Any
 import numpy as np
 
 from psdbound.campaign.heldout import held_out
-from psdbound.campaign.tasks import pooled_days_bound, station_day_task
+from psdbound.campaign.tasks import station_day_task
 from psdbound.errors import InputError
 
-__all__ = ["CampaignResult", "StationDay", "plan_campaign", "run_campaign"]
+__all__ = ["SCHEMA", "CampaignResult", "StationDay", "plan_campaign", "run_campaign"]
 
 _GPS_EPOCH = _dt.datetime(1980, 1, 6)
 
@@ -43,43 +42,30 @@ def _day_of(t_gps_s: float) -> _dt.date:
     return (_GPS_EPOCH + _dt.timedelta(seconds=float(t_gps_s))).date()
 
 
-def _name_day(name: str) -> tuple[int, str] | None:
-    """Return (year, day of year) from a RINEX file name, or None."""
-    m = re.search(r"_(\d{4})(\d{3})\d{4}_", name)
-    if m:
-        return int(m.group(1)), m.group(2)
-    m = re.search(r"^\w{4}(\d{3})\w\.(\d{2})[a-z]", name, re.I)
-    if m:
-        yy = int(m.group(2))
-        return (2000 + yy if yy < 80 else 1900 + yy), m.group(1)
-    return None
+_Files = dict[tuple[str, str], list[tuple[str, float, float]]]
 
 
-def _nav_for(day: _dt.date, navs: Sequence[str]) -> str:
-    """Return the navigation file of a day.
+def _read_days(obs: Sequence[str], system: str) -> _Files:
+    """Group observation files by (station, GPS day of the first epoch): (path, first, last)."""
+    from psdbound.io import read_obs
+    from psdbound.io.merge import station_key
 
-    A file whose name carries a date (RINEX 3 ``..._YYYYDDDHHMM_...``, RINEX 2
-    ``ssssDDD0.YYn``) serves that day only; a file without one serves every
-    day when it is the only undated file.
-    """
-    doy = f"{day.timetuple().tm_yday:03d}"
-    dated = {n: _name_day(Path(n).name) for n in navs}
-    hits = [n for n, d in dated.items() if d == (day.year, doy)]
-    undated = [n for n, d in dated.items() if d is None]
-    if len(hits) == 1:
-        return hits[0]
-    if not hits and len(undated) == 1:
-        return undated[0]
-    raise InputError(
-        f"no single navigation file for {day.isoformat()} (day of year {doy}): "
-        + (f"{len(hits)} match ({', '.join(Path(h).name for h in hits)})" if hits
-           else f"none of {', '.join(Path(n).name for n in navs)} is named for that day")
-        + "; give one navigation file per observation day (RINEX names hold the day of year)"
-    )  # fmt: skip
+    groups: _Files = {}
+    for p in obs:
+        o = read_obs(p, systems=system)
+        if o.t_gps_s.size == 0:
+            raise InputError("observation file holds no epoch", path=p)
+        t0, t1 = float(o.t_gps_s[0]), float(o.t_gps_s[-1])
+        groups.setdefault((station_key(o), _day_of(t0).isoformat()), []).append((p, t0, t1))
+    return groups
 
 
-def plan_campaign(obs: Sequence[str | os.PathLike[str]],
-                  nav: Sequence[str | os.PathLike[str]]) -> list[StationDay]:  # fmt: skip
+def plan_campaign(
+    obs: Sequence[str | os.PathLike[str]],
+    nav: Sequence[str | os.PathLike[str]],
+    *,
+    system: str = "G",
+) -> list[StationDay]:
     """Group observation files by station and day and match each day's navigation file.
 
     Parameters
@@ -87,8 +73,12 @@ def plan_campaign(obs: Sequence[str | os.PathLike[str]],
     obs : sequence of path
         Observation files (any stations, days and order).
     nav : sequence of path
-        Navigation (or SP3) files: one, or one per day (matched by the day
-        of year in their names).
+        Navigation (or SP3) files, any names: each is read and matched to
+        the observation day whose span it covers for ``system``
+        (:func:`~psdbound.campaign.navmatch.match_nav`).
+    system : str, default "G"
+        Satellite system letter fitted (the observation files must hold it,
+        the navigation file must cover it).
 
     Returns
     -------
@@ -98,42 +88,44 @@ def plan_campaign(obs: Sequence[str | os.PathLike[str]],
     Raises
     ------
     InputError
-        No file, a missing file, or a day without a navigation file.
+        No file, a missing file, or a day that no navigation file (or more
+        than one) covers.
     """
-    from psdbound.io import read_obs
-    from psdbound.io.merge import station_key
+    from psdbound.campaign.navmatch import match_nav, orbit_span
 
     if not obs:
         raise InputError("a campaign needs observation files")
     if not nav:
         raise InputError("a campaign needs navigation (or SP3) files: give --nav")
-    navs = [os.fspath(n) for n in nav]
-    for p in [*map(os.fspath, obs), *navs]:
+    navs = list(dict.fromkeys(os.fspath(n) for n in nav))
+    obs_paths = [os.fspath(p) for p in obs]
+    for p in [*obs_paths, *navs]:
         if not Path(p).is_file():
             raise InputError("file not found", path=p)
-    groups: dict[tuple[str, str], list[str]] = {}
-    for p in map(os.fspath, obs):
-        o = read_obs(p, systems="G")
-        if o.t_gps_s.size == 0:
-            raise InputError("observation file holds no epoch", path=p)
-        day = _day_of(o.t_gps_s[0])
-        groups.setdefault((station_key(o), day.isoformat()), []).append(p)
-    return [StationDay(st, d, tuple(files), _nav_for(_dt.date.fromisoformat(d), navs))
-            for (st, d), files in sorted(groups.items())]  # fmt: skip
+    spans = [orbit_span(n) for n in navs]
+    plan = []
+    for (st, d), files in sorted(_read_days(obs_paths, system).items()):
+        paths = tuple(f[0] for f in files)
+        span = (min(f[1] for f in files), max(f[2] for f in files))
+        plan.append(StationDay(st, d, paths, match_nav(paths, span, system, spans)))
+    return plan
 
 
 @dataclass
 class CampaignResult:
-    """Per-day results, pooled bounds per station and held-out tests.
+    """Per-day results and verdicts, pooled bounds and verdicts per station, held-out tests.
 
     Attributes
     ----------
     days : list of dict
-        One per station-day (bound or ``error``), without the PSD arrays.
+        One per station-day, without the PSD arrays: ``verdict`` and
+        ``verdict_reasons`` (those of ``psdbound fit`` for the day),
+        ``in_pool``, the files (``obs``, ``nav``), the bound or ``error``.
     stations : list of dict
-        Per station: the pooled bound of all its good days.
+        Per station: the pooled bound of its bounded days and its verdict
+        (:func:`~psdbound.campaign.pool.pool_station`).
     held_out : list of dict
-        Per station-day: the bound of the station's other days tested on it.
+        Per pooled station-day: the bound of the station's other pooled days tested on it.
     n_computed, n_cached : int
         Station-days computed by this run and read from the cache.
     """
@@ -145,23 +137,28 @@ class CampaignResult:
     n_cached: int = 0
     meta: dict[str, Any] = field(default_factory=dict)
 
+    @property
+    def verdict(self) -> str:
+        """``"bounded"`` when every station's pooled bound is bounded, else ``"not-bounded"``."""
+        ok = self.stations and all(s["verdict"] == "bounded" for s in self.stations)
+        return "bounded" if ok else "not-bounded"
+
     def to_dict(self) -> dict[str, Any]:
-        """Return the ``campaign.json`` content."""
-        return {"schema": "psdbound-campaign/1", "days": self.days, "stations": self.stations,
-                "held_out": self.held_out, "n_computed": self.n_computed,
+        """Return the ``campaign.json`` content (schema ``psdbound-campaign/2``)."""
+        return {"schema": SCHEMA, "verdict": self.verdict, "stations": self.stations,
+                "days": self.days, "held_out": self.held_out, "n_computed": self.n_computed,
                 "n_cached": self.n_cached, **self.meta}  # fmt: skip
 
     def summary(self) -> str:
-        """Return a text table of the held-out tests."""
-        lines = [f"{len(self.days)} station-days ({self.n_computed} computed, {self.n_cached} "
+        """Return a text summary: verdicts of the stations and days, and the held-out tests."""
+        lines = [f"campaign verdict: {self.verdict.upper()}",
+                 f"{len(self.days)} station-days ({self.n_computed} computed, {self.n_cached} "
                  f"from the cache); {len(self.stations)} station(s)"]  # fmt: skip
-        for s in self.stations:
-            lines.append(f"  {s['station']}: pooled over {s['n_days']} day(s): sigma_GM "
-                         f"{1e3 * s['sigma_gm_m']:.2f} mm, tau {s['tau_s']:.1f} s, sigma_WN "
-                         f"{1e3 * s['sigma_wn_m']:.2f} mm")  # fmt: skip
+        lines += [line for s in self.stations for line in _station_lines(s)]
         for d in self.days:
-            if not d["ok"]:
-                lines.append(f"  {d['station']} {d['day']}: no bound: {d['error']}")
+            lines.append(f"  {d['station']} {d['day']}: {d['verdict']}"
+                         + ("" if d["in_pool"] else " (not pooled)"))  # fmt: skip
+            lines += [f"    reason: {x}" for x in d["verdict_reasons"]]
         for h in self.held_out:
             lines.append(
                 f"  held out {h['station']} {h['day']}: windows covered "
@@ -173,26 +170,46 @@ class CampaignResult:
         return "\n".join(lines)
 
 
-def _public(result: dict[str, Any]) -> dict[str, Any]:
-    return {k: (v.tolist() if isinstance(v, np.ndarray) else v)
-            for k, v in result.items() if not k.startswith("psd_")}  # fmt: skip
+#: Schema name of ``campaign.json``.
+SCHEMA = "psdbound-campaign/2"
 
 
-def _station_bounds(results: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    out = []
-    good = [r for r in results if r.get("ok")]
-    for st in sorted({r["station"] for r in good}):
-        days = [r for r in good if r["station"] == st]
-        dt = float(days[0]["dt_s"])
-        days = [r for r in days if np.isclose(r["dt_s"], dt)]
-        sb = pooled_days_bound(days, f_min_hz=max(float(r["f_min_hz"]) for r in days))
-        b = sb.fit
-        out.append({"station": st, "n_days": len(days), "sigma_gm_m": b.sigma_gm_m,
-                    "tau_s": b.tau_s, "sigma_wn_m": b.sigma_wn_m, "dt_s": dt,
-                    "band_hz": [b.f_min_hz, b.f_max_hz], "confidence_level": b.level,
-                    "n_groups": sb.limits.n_groups,
-                    "low_frequency": sb.low_frequency.as_dict()})  # fmt: skip
+def _station_lines(s: dict[str, Any]) -> list[str]:
+    """Summary lines of one station: pooled bound, verdict and reasons, what is missing."""
+    head = f"  {s['station']}: {s['verdict']}"
+    if s["n_pooled"]:
+        head += (f"; pooled over {s['n_pooled']} of {s['n_days']} day(s): sigma_GM "
+                 f"{1e3 * s['sigma_gm_m']:.2f} mm, tau {s['tau_s']:.1f} s, sigma_WN "
+                 f"{1e3 * s['sigma_wn_m']:.2f} mm")  # fmt: skip
+    lines = [head] + [f"    reason: {x}" for x in s["verdict_reasons"]]
+    if s["comparison_note"]:
+        lines.append(f"    {s['comparison_note']}")
+    return lines
+
+
+def _public(result: dict[str, Any], item: dict[str, Any], in_pool: bool) -> dict[str, Any]:
+    """Return a day's entry in ``campaign.json``: no PSD arrays; its files; whether pooled."""
+    out = {k: (v.tolist() if isinstance(v, np.ndarray) else v)
+           for k, v in result.items() if not k.startswith("psd_")}  # fmt: skip
+    out.update(obs=[Path(p).name for p in item["obs"]], nav=Path(item["nav"]).name,
+               in_pool=in_pool)  # fmt: skip
     return out
+
+
+def _day_options(options: dict[str, dict[str, Any]] | None) -> Any:
+    """Return the FitConfig of the day options; refuse what a campaign cannot use."""
+    from psdbound.pipeline.config import FitConfig
+
+    options = options or {}
+    if options.get("code_multipath", {}).get("codes"):
+        raise InputError("[code_multipath] is a fit option: a campaign pools the carrier-phase "
+                         "bounds only; run `psdbound fit --code-multipath` per day, or remove it")
+    cfg = FitConfig.from_dict(options, source="campaign options")
+    if cfg.bound.rule != "pooled":
+        raise InputError(f"bound rule {cfg.bound.rule!r}: a campaign pools the days' window "
+                         "spectra with the pooled rule; remove the envelope rule "
+                         "(--rule pooled, the default)")  # fmt: skip
+    return cfg
 
 
 def run_campaign(
@@ -205,7 +222,7 @@ def run_campaign(
     options: dict[str, dict[str, Any]] | None = None,
     progress: Callable[[int, int], None] | None = None,
 ) -> CampaignResult:
-    """Fit every station-day on Dask, pool each station, test every day held out.
+    """Fit every station-day on Dask, judge it, pool each station's bounded days, test held out.
 
     Parameters
     ----------
@@ -220,42 +237,65 @@ def run_campaign(
         ``("campaign")``); a station-day is recomputed only when its files
         (SHA-256) or options change.
     options : dict, optional
-        :class:`~psdbound.pipeline.FitConfig` sections for every station-day.
+        :class:`~psdbound.pipeline.FitConfig` sections for every station-day
+        (``inputs`` may set ``system`` and ``signals``; the files are the
+        campaign's). The pooled bounds use the same ``bound`` options and the
+        verdicts the same ``verdict`` options.
     progress : callable, optional
         ``progress(done, total)`` after each computed station-day.
 
     Returns
     -------
     CampaignResult
+
+    Raises
+    ------
+    InputError
+        Bad files or options, a day without its navigation file (before
+        anything is computed).
     """
+    from psdbound.campaign.pool import pool_stations
+    from psdbound.compute import run_tasks
+    from psdbound.version import __version__
+
+    cfg = _day_options(options)
+    plan = plan_campaign(obs, nav, system=cfg.inputs.system)
+    items = [_item(sd, options or {}) for sd in plan]
+    run = run_tasks(station_day_task, items, workers=workers, scheduler=scheduler,
+                    cache=_cache(cache_dir), progress=progress)  # fmt: skip
+    results = list(run.results)
+    stations, pooled = pool_stations(results, bound_options=cfg.bound,
+                                     verdict_options=cfg.verdict)  # fmt: skip
+    return CampaignResult(
+        days=[_public(r, it, any(r is p for p in pooled))
+              for r, it in zip(results, items, strict=True)],  # fmt: skip
+        stations=stations,
+        held_out=held_out(pooled, options=cfg.bound),
+        n_computed=run.n_computed,
+        n_cached=run.n_cached,
+        meta={"files": [{"station": it["station"], "day": it["day"], "sha256": it["sha256"]}
+                        for it in items], "options": options or {},
+              "psdbound": __version__},  # fmt: skip
+    )
+
+
+def _item(sd: StationDay, options: dict[str, dict[str, Any]]) -> dict[str, Any]:
+    """Return the Dask task item of one station-day (files, their SHA-256, the options)."""
     from psdbound.common import file_sha256
-    from psdbound.compute import DiskCache, cache_key, default_cache_dir, run_tasks
+
+    digests = {Path(p).name: file_sha256(p) for p in (*sd.obs, sd.nav)}
+    return {"station": sd.station, "day": sd.day, "obs": list(sd.obs), "nav": sd.nav,
+            "sha256": digests, "options": options}  # fmt: skip
+
+
+def _cache(cache_dir: str | os.PathLike[str] | None) -> Any:
+    """Return the station-day task cache (key: the files' hashes, the options, the code)."""
+    from psdbound.compute import DiskCache, cache_key, default_cache_dir
     from psdbound.version import __version__, code_digest
 
-    if (options or {}).get("code_multipath", {}).get("codes"):
-        raise InputError("[code_multipath] is a fit option: a campaign pools the carrier-phase "
-                         "bounds only; run `psdbound fit --code-multipath` per day, or remove it")
-    plan = plan_campaign(obs, nav)
-    items = []
-    for sd in plan:
-        digests = {Path(p).name: file_sha256(p) for p in (*sd.obs, sd.nav)}
-        items.append({"station": sd.station, "day": sd.day, "obs": list(sd.obs), "nav": sd.nav,
-                      "sha256": digests, "options": options or {}})  # fmt: skip
-    cache = DiskCache(
+    return DiskCache(
         cache_dir or default_cache_dir("campaign"),
         key=lambda it: cache_key({"task": "station-day", "version": __version__,
                                   "code": code_digest(), "sha256": it["sha256"],
                                   "options": it["options"]}),
     )  # fmt: skip
-    run = run_tasks(station_day_task, items, workers=workers, scheduler=scheduler, cache=cache,
-                    progress=progress)  # fmt: skip
-    results = list(run.results)
-    return CampaignResult(
-        days=[_public(r) for r in results],
-        stations=_station_bounds(results),
-        held_out=held_out(results),
-        n_computed=run.n_computed,
-        n_cached=run.n_cached,
-        meta={"files": [{"station": it["station"], "day": it["day"], "sha256": it["sha256"]}
-                        for it in items], "psdbound": __version__},  # fmt: skip
-    )

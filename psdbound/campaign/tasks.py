@@ -13,11 +13,30 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["pooled_days_bound", "psds_from_result", "station_day_task"]
+__all__ = ["day_config", "pooled_days_bound", "psds_from_result", "station_day_task"]
+
+
+def day_config(item: dict[str, Any]) -> Any:
+    """Return the :class:`~psdbound.pipeline.FitConfig` of one station-day task item.
+
+    The item's ``options`` (FitConfig sections) with its observation files,
+    its navigation file and the dual-frequency method: exactly what
+    ``psdbound fit OBS... --nav NAV --method df`` with the same options uses.
+    """
+    from psdbound.pipeline.config import FitConfig
+
+    cfg = FitConfig()
+    for section, values in (item.get("options") or {}).items():
+        cfg = cfg.updated(section, **values)
+    return cfg.updated("inputs", obs=tuple(item["obs"]), nav=(item["nav"],), method="df")
 
 
 def station_day_task(item: dict[str, Any]) -> dict[str, Any]:
-    """Run read, cutoff, isolation, screening, windows and the pooled bound of one station-day.
+    """Fit one station-day as ``psdbound fit`` does and keep what pooling needs.
+
+    The day is fitted by :func:`psdbound.fit` (every stage, the result
+    document and its verdict by :func:`psdbound.pipeline.verdict.judge`), so
+    the day's verdict and reasons are the ones ``fit`` gives for it.
 
     Parameters
     ----------
@@ -29,71 +48,74 @@ def station_day_task(item: dict[str, Any]) -> dict[str, Any]:
     Returns
     -------
     dict
-        ``station``, ``day``, ``ok`` and either ``error`` (a one-line
-        reason) or the bound (``sigma_gm_m``, ``tau_s``, ``sigma_wn_m``,
-        ``dt_s``), ``f_min_hz``, ``f_c_hz``, ``covered_fraction``,
-        ``n_windows`` and the window PSDs as flat arrays ``psd_f_hz``,
-        ``psd_m2_hz`` (divided by the high-pass's power response where it
-        passes at least half the power, as the pooled bound does),
+        ``station``, ``day``, ``fitted`` (a bound was computed),
+        ``verdict`` (``"bounded"``, ``"not-bounded"`` or ``"failed"``: ``fit``
+        would stop with exit code 2) and ``verdict_reasons``; when failed,
+        ``error`` (a one-line reason); when fitted, the bound
+        (``sigma_gm_m``, ``tau_s``, ``sigma_wn_m``, ``dt_s``), ``f_min_hz``,
+        ``f_c_hz``, ``covered_fraction``, ``covered_s`` (time in stationary
+        windows, s), ``n_windows`` and the window PSDs as flat arrays
+        ``psd_f_hz``, ``psd_m2_hz`` (divided by the high-pass's power response
+        where it passes at least half the power, as the pooled bound does),
         ``psd_dof``, ``psd_n`` (samples) and ``psd_len`` (frequencies per window).
     """
     from psdbound.errors import InputError, NoDataError
-    from psdbound.pipeline import stages
-    from psdbound.pipeline.config import FitConfig
+    from psdbound.pipeline.front import fit
 
-    out: dict[str, Any] = {"station": item["station"], "day": item["day"], "ok": False}
-    cfg = FitConfig()
-    for section, values in (item.get("options") or {}).items():
-        cfg = cfg.updated(section, **values)
-    cfg = cfg.updated("inputs", obs=tuple(item["obs"]), nav=item["nav"], method="df")
+    out: dict[str, Any] = {"station": item["station"], "day": item["day"], "fitted": False}
     try:
-        inputs = stages.read_inputs(cfg.inputs)
-        cutoff = stages.choose_cutoff(inputs, cfg.cutoff)
-        iso = stages.isolate(inputs, cutoff, arcs=cfg.arcs, highpass=cfg.filter,
-                             options=cfg.inputs)  # fmt: skip
-        scr = stages.screen(iso, options=cfg.screening, mapping=cfg.mapping,
-                            min_length_s=cfg.stationarity.min_window_s)  # fmt: skip
-        win = stages.window(scr, mapping=cfg.mapping, options=cfg.stationarity)
-        res = stages.bound(win, spectra=cfg.spectra, options=cfg.bound, cutoff=cutoff,
-                           highpass=cfg.filter)  # fmt: skip
+        res = fit(config=day_config(item))
     except (InputError, NoDataError) as exc:
-        out["error"] = " ".join(str(exc).split())
+        error = " ".join(str(exc).split())
+        out.update(verdict="failed", verdict_reasons=[f"no bound (fit exits 2): {error}"],
+                   error=error)  # fmt: skip
         return out
-    b = res.bound
-    w = win.windows
-    series = scr.series
-    data_s = series.data_s
-    psds = res.psds
+    out.update(verdict=res.verdict, verdict_reasons=res.verdict_reasons)
+    out.update(_day_bound(res))
+    return out
+
+
+def _psd_values(res: Any) -> list[np.ndarray]:
+    """Window PSDs divided by the high-pass's power response where it passes >= half the power."""
+    psds, cutoff, b = res.bounded.psds, res.cutoff, res.bounded.bound
     values = [p.psd_m2_hz for p in psds]
-    if cutoff is not None:  # undo the high-pass where it passes at least half the power
-        from psdbound.spectra.bands import smoothed_response
+    if cutoff is None:
+        return values
+    from psdbound.spectra.bands import smoothed_response
 
-        def gain(f: np.ndarray) -> np.ndarray:
-            return cfg.filter.response(f, b.dt_s, cutoff.f_c_hz) ** 2
+    def gain(f: np.ndarray) -> np.ndarray:
+        return res.config.filter.response(f, b.dt_s, cutoff.f_c_hz) ** 2
 
-        gains = [smoothed_response(gain, p.f_hz, float(p.params.get("bandwidth_hz", 0.0)))
-                 for p in psds]  # fmt: skip
-        values = [np.where(g >= 0.5, v / np.maximum(g, 0.5), v) for v, g in zip(values, gains,
-                                                                                  strict=True)]
-    out.update({
-        "ok": True,
+    gains = [smoothed_response(gain, p.f_hz, float(p.params.get("bandwidth_hz", 0.0)))
+             for p in psds]  # fmt: skip
+    return [np.where(g >= 0.5, v / np.maximum(g, 0.5), v)
+            for v, g in zip(values, gains, strict=True)]  # fmt: skip
+
+
+def _day_bound(res: Any) -> dict[str, Any]:
+    """Return the bound, coverage and window spectra of a fitted day (numbers and arrays)."""
+    b, win, psds = res.bounded.bound, res.windowed, res.bounded.psds
+    w = win.windows
+    data_s = res.screened.series.data_s
+    return {
+        "fitted": True,
         "sigma_gm_m": b.sigma_gm_m, "tau_s": b.tau_s, "sigma_wn_m": b.sigma_wn_m,
         "dt_s": b.dt_s, "f_min_hz": b.f_min_hz,
-        "f_c_hz": None if cutoff is None else cutoff.f_c_hz,
+        "f_c_hz": None if res.cutoff is None else res.cutoff.f_c_hz,
         "mapping": [win.mapping.a, win.mapping.b, win.mapping.c_deg],
         "n_windows": len(w),
         "covered_fraction": max(1.0 - w.uncovered_s / data_s, 0.0) if data_s > 0 else 0.0,
+        "covered_s": float(sum(p.n_samples for p in psds) * b.dt_s),
         "psd_f_hz": np.concatenate([p.f_hz for p in psds]),
-        "psd_m2_hz": np.concatenate(values),
+        "psd_m2_hz": np.concatenate(_psd_values(res)),
         "psd_dof": np.concatenate([np.broadcast_to(p.dof, p.f_hz.shape) for p in psds]),
         "psd_n": np.array([p.n_samples for p in psds]),
         "psd_len": np.array([p.f_hz.size for p in psds]),
         "psd_bandwidth_hz": np.array([p.params.get("bandwidth_hz", 0.0) for p in psds]),
         "win_sats": [x.sats for x in w.windows],
         "win_t_start_gps_s": np.array([x.t_start_gps_s for x in w.windows]),
-        "estimator": res.estimator,
-    })  # fmt: skip
-    return out
+        "estimator": res.bounded.estimator,
+    }  # fmt: skip
 
 
 def psds_from_result(result: dict[str, Any]) -> list[Any]:
@@ -122,21 +144,34 @@ def psds_from_result(result: dict[str, Any]) -> list[Any]:
     ]
 
 
-def pooled_days_bound(days: list[dict[str, Any]], *, f_min_hz: float) -> Any:
+def _unit_response(f_hz: np.ndarray) -> np.ndarray:
+    """Return a power response of 1 at every frequency (the response already divided out)."""
+    return np.ones_like(np.asarray(f_hz, dtype=float))
+
+
+def pooled_days_bound(days: list[dict[str, Any]], *, f_min_hz: float,
+                      options: Any = None) -> Any:  # fmt: skip
     """Pool the windows of several days of one station; a sidereal repeat is not independent.
 
     Windows of one satellite a whole number of sidereal days apart repeat
     the same multipath (:func:`psdbound.spectra.dependence.repeat_clusters`):
     they form one cluster with intra-cluster correlation 1, i.e. count as
     one window in the pooled degrees of freedom (conservative: the repeat is
-    close, not exact).
+    close, not exact). When the days were high-pass filtered, the model set
+    and the low-frequency statement are identified on the statement's bands
+    (from ``f_min_hz``), as in ``fit``: below them the filter, not the data,
+    set the spectra.
 
     Parameters
     ----------
     days : list of dict
-        Successful station-day results of one sampling interval.
+        Fitted station-day results of one sampling interval.
     f_min_hz : float
         Lowest band edge, Hz.
+    options : BoundOptions, optional
+        The pooled rule's options of the days' fits (confidence level,
+        coverage, shape test level, bands per decade, objective, prior
+        ``tau_max_s`` in s); default :class:`~psdbound.spectra.BoundOptions`.
 
     Returns
     -------
@@ -145,8 +180,10 @@ def pooled_days_bound(days: list[dict[str, Any]], *, f_min_hz: float) -> Any:
         low-frequency statement).
     """
     from psdbound.spectra.dependence import repeat_clusters
+    from psdbound.spectra.options import BoundOptions
     from psdbound.spectra.stated import fit_stated_bound
 
+    opt = options or BoundOptions()
     psds = [p for r in days for p in psds_from_result(r)]
     dt = float(days[0]["dt_s"])
     clusters = None
@@ -155,5 +192,15 @@ def pooled_days_bound(days: list[dict[str, Any]], *, f_min_hz: float) -> Any:
         t0 = np.concatenate([np.asarray(r["win_t_start_gps_s"], dtype=float) for r in days])
         dur = np.array([p.n_samples * dt for p in psds])
         clusters = repeat_clusters(sats, t0, dur)
-    return fit_stated_bound(psds, dt, f_min_hz=f_min_hz, clusters=clusters,
-                            cluster_correlation=1.0 if clusters is not None else 0.0)
+    # the days' spectra are already divided by their own high-pass's response (each day has
+    # its own cutoff); a unit response tells the model set that a filter shaped everything
+    # below f_min, so it is identified on the statement's bands, as fit does (without it the
+    # filtered lowest frequencies looked like data with no low-frequency power)
+    filtered = any(r.get("f_c_hz") for r in days)
+    return fit_stated_bound(
+        psds, dt, f_min_hz=f_min_hz, confidence_level=opt.confidence_level,
+        power_response=_unit_response if filtered else None,
+        tau_max_s=opt.tau_max_s, objective=opt.objective, coverage=opt.coverage,
+        shape_alpha=opt.shape_alpha, bands_per_decade=opt.bands_per_decade, clusters=clusters,
+        cluster_correlation=1.0 if clusters is not None else 0.0,
+    )  # fmt: skip

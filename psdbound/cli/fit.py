@@ -19,7 +19,15 @@ from typing import Any
 from psdbound.cli.exit_codes import EXIT_NOT_BOUNDED, EXIT_OK
 from psdbound.errors import InputError, NoDataError
 
-__all__ = ["add_parser", "run", "add_output_options", "build_config", "output_dir"]
+__all__ = [
+    "DefaultsFormatter",
+    "add_day_options",
+    "add_output_options",
+    "add_parser",
+    "build_config",
+    "output_dir",
+    "run",
+]
 
 #: (section, option) -> command-line flag
 FLAGS: dict[tuple[str, str], str] = {
@@ -133,7 +141,7 @@ def help_text(action: argparse.Action) -> str:
     return text
 
 
-class _DefaultsFormatter(argparse.HelpFormatter):
+class DefaultsFormatter(argparse.HelpFormatter):
     """Help formatter that states every ``fit`` option's default (see :func:`help_text`)."""
 
     def _get_help_string(self, action: argparse.Action) -> str | None:
@@ -144,7 +152,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     """Register the ``fit`` subcommand."""
     p = sub.add_parser(
         "fit",
-        formatter_class=_DefaultsFormatter,
+        formatter_class=DefaultsFormatter,
         help="fit a PSD bound to RINEX observations (no files: the demo data)",
         description="Read RINEX observations, isolate carrier-phase multipath (dual-frequency "
         "for one file, dual-antenna for two), window it into stationary pieces, estimate PSDs "
@@ -165,12 +173,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="navigation (RINEX 2/3) or SP3 file, repeatable: several (e.g. of "
                    "consecutive days, or a zip of them) are joined (required with OBS, unless "
                    "OBS is a zip archive that also holds the navigation file)")
-    p.add_argument("--config", help="TOML configuration file (default: none)")
+    # fmt: on
+    add_day_options(p)
+    # fmt: off
     p.add_argument("--method", choices=("auto", "df", "da"),
                    help="isolation method: df dual-frequency, da dual-antenna, auto by the inputs")
-    p.add_argument("--system", help="satellite system letter")
-    p.add_argument("--signals", help="dual-frequency phase pair, e.g. L1C,L2W or L1C,L5Q "
-                   "(default: the system's usual pair, GPS L1C,L2W)")
     p.add_argument("--da-signal", help="dual-antenna phase code")
     p.add_argument("--pair", nargs=2, metavar=("A", "B"),
                    help="dual-antenna pair: antenna A and antenna B, each a station (marker) "
@@ -185,6 +192,33 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    "3 standard errors; estimate always; given keeps the positions")
     p.add_argument("--baseline-tolerance-m", type=float,
                    help="correction above which --baseline auto uses the estimate, m")
+    p.add_argument("--code-multipath", metavar="CODES",
+                   help="also estimate code multipath by carrier levelling and overbound it per "
+                   "elevation bin: one pseudorange code (C1C: MP combination) or two (C1C,C5Q: "
+                   "ionosphere-free); result.json code_multipath and a report section "
+                   "(default: off)")
+    p.add_argument("--code-edges-deg", metavar="EDGES",
+                   help="elevation bin edges of the code-multipath overbound, deg")
+    p.add_argument("--code-overbound", choices=("two_step", "cdf"),
+                   help="Gaussian overbound construction of the code multipath")
+    # fmt: on
+    add_output_options(p)
+    p.set_defaults(func=run)
+
+
+def add_day_options(p: argparse.ArgumentParser) -> None:
+    """Add the options of one station-day's fit (``fit`` and ``campaign`` share them).
+
+    These are every ``fit`` option except the input files, the
+    dual-antenna pair, the isolation method, code multipath and the outputs:
+    ``--config``, the system and signals, cutoff, arcs, screening, filter,
+    mapping, stationarity, spectra, bound, verdict and validation options.
+    """
+    # fmt: off
+    p.add_argument("--config", help="TOML configuration file (default: none)")
+    p.add_argument("--system", help="satellite system letter")
+    p.add_argument("--signals", help="dual-frequency phase pair, e.g. L1C,L2W or L1C,L5Q "
+                   "(default: the system's usual pair, GPS L1C,L2W)")
     p.add_argument("--cutoff-hz", type=float, help="high-pass cutoff frequency, Hz (default: "
                    "none; the cutoff comes from --cutoff-source)")
     p.add_argument("--cutoff-source", choices=("auto", "given", "map", "computed", "thesis"),
@@ -235,18 +269,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    "repeatable)")
     p.add_argument("--validation-threshold", type=float,
                    help="largest fraction of reflector multipath power below f_c (fraction)")
-    p.add_argument("--code-multipath", metavar="CODES",
-                   help="also estimate code multipath by carrier levelling and overbound it per "
-                   "elevation bin: one pseudorange code (C1C: MP combination) or two (C1C,C5Q: "
-                   "ionosphere-free); result.json code_multipath and a report section "
-                   "(default: off)")
-    p.add_argument("--code-edges-deg", metavar="EDGES",
-                   help="elevation bin edges of the code-multipath overbound, deg")
-    p.add_argument("--code-overbound", choices=("two_step", "cdf"),
-                   help="Gaussian overbound construction of the code multipath")
     # fmt: on
-    add_output_options(p)
-    p.set_defaults(func=run)
 
 
 def _mapping(text: str | None) -> dict[str, Any]:

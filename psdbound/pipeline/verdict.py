@@ -61,6 +61,15 @@ physical limit
 Every rule is a :class:`VerdictCheck` (:func:`verdict_checks`) with the
 measured value and its limit, so every output shows the same lines
 (``verdict_checks`` of result.json; :mod:`psdbound.results.headline`).
+
+Pooled bounds (campaigns)
+-------------------------
+A campaign judges every station-day with :func:`judge` (the day's ``fit``)
+and pools only the bounded days. The pooled bound of a station is judged by
+:func:`judge_pooled`: not bounded when no bounded day is left, when it is
+degenerate, when the pooled windows cover less than ``min_tau_multiple``
+tau, or by the low-frequency rule. The other rules concern one day's data
+and have already kept those days out of the pool.
 cutoff validation (no longer a rule)
     The multipath the high-pass removes below the cutoff is part of the
     exported error model (``error_model`` component ``slow``: the
@@ -94,7 +103,8 @@ import numpy as np
 from psdbound.common.options import Choice, Number, check_fields, option
 from psdbound.spectra.lowfreq import POLICIES, low_frequency_reasons
 
-__all__ = ["VerdictCheck", "VerdictOptions", "judge", "verdict_checks"]
+__all__ = ["VerdictCheck", "VerdictOptions", "judge", "judge_pooled", "pooled_checks",
+           "verdict_checks"]
 
 
 @dataclass(frozen=True)
@@ -215,7 +225,9 @@ def _degenerate(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
 
 def _data_for_tau(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
     b = d["bound"]
-    covered = _covered_s(d["windows"]["per_window"], d["sampling"]["interval_s"])
+    covered = d.get("covered_s")
+    if covered is None:
+        covered = _covered_s(d["windows"]["per_window"], d["sampling"]["interval_s"])
     need = opt.min_tau_multiple * b["tau_s"]
     ok = b["sigma_gm_m"] <= 0 or covered >= need
     return [_check("data for tau", ok, f"{covered / 3600:.2f} h in windows",
@@ -347,4 +359,65 @@ def judge(document: dict[str, Any], options: VerdictOptions | None = None) -> tu
         One sentence per rule that fired (empty when bounded).
     """
     reasons = [c.reason for c in verdict_checks(document, options) if not c.passed]
+    return ("not-bounded" if reasons else "bounded"), reasons
+
+
+def pooled_checks(bound: dict[str, Any] | None, *, covered_s: float, n_days: int,
+                  options: VerdictOptions | None = None) -> list[VerdictCheck]:  # fmt: skip
+    """Apply the verdict rules that make sense for a campaign station's pooled bound.
+
+    The pool holds only the station's bounded days (each judged by
+    :func:`judge`), so the rules on one day's data (filter loss, band, data
+    outside the bound, data excluded, data used) have already kept the bad
+    days out. On the pooled bound itself apply: **bounded days** (at least
+    one), the **degenerate bound** rules, **data for tau** over the pooled
+    windows and **low frequencies** with the same policy.
+
+    Parameters
+    ----------
+    bound : dict or None
+        ``sigma_gm_m`` (m), ``tau_s`` (s), ``tau_grid_s`` (s) and
+        ``low_frequency`` of the pooled bound; None when nothing was pooled.
+    covered_s : float
+        Time covered by the pooled days' stationary windows, s.
+    n_days : int
+        Bounded days in the pool.
+    options : VerdictOptions, optional
+
+    Returns
+    -------
+    list of VerdictCheck
+    """
+    opt = options or VerdictOptions()
+    days = _check("bounded days", bool(n_days and bound is not None), f"{n_days} day(s)", ">= 1",
+                  "no bounded day left: every day of the station is not-bounded or failed, so "
+                  "there is nothing to pool")  # fmt: skip
+    if not days.passed:
+        return [days]
+    d = {"bound": bound, "covered_s": covered_s}
+    return [days, *_degenerate(d, opt), *_data_for_tau(d, opt), *_low_frequency(d, opt)]
+
+
+def judge_pooled(bound: dict[str, Any] | None, *, covered_s: float, n_days: int,
+                 options: VerdictOptions | None = None) -> tuple[str, list[str]]:  # fmt: skip
+    """Return the verdict of a campaign station's pooled bound (:func:`pooled_checks`).
+
+    Parameters
+    ----------
+    bound : dict or None
+        The pooled bound (see :func:`pooled_checks`); None when nothing was pooled.
+    covered_s : float
+        Time covered by the pooled days' stationary windows, s.
+    n_days : int
+        Bounded days in the pool.
+    options : VerdictOptions, optional
+
+    Returns
+    -------
+    verdict : {"bounded", "not-bounded"}
+    reasons : list of str
+        One sentence per rule that fired (empty when bounded).
+    """
+    checks = pooled_checks(bound, covered_s=covered_s, n_days=n_days, options=options)
+    reasons = [c.reason for c in checks if not c.passed]
     return ("not-bounded" if reasons else "bounded"), reasons
