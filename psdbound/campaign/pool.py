@@ -82,7 +82,8 @@ def pool_station(days: Sequence[dict[str, Any]], *, bound_options: Any = None,
     -------
     row : dict
         ``station``, ``verdict``, ``verdict_reasons``, ``verdict_checks``
-        (each rule applied, with its numbers), ``n_days``, ``n_pooled``, ``pooled_days``,
+        (each rule applied, with its numbers), ``n_days``, ``n_pooled``,
+        ``pooled_days``,
         ``excluded_days`` (day, verdict, reasons), ``covered_s`` (s, the
         pooled windows' time), ``comparison_note`` and the bound
         (``sigma_gm_m``, ``tau_s``, ``sigma_wn_m``, ``dt_s``, ``band_hz``,
@@ -105,7 +106,8 @@ def pool_station(days: Sequence[dict[str, Any]], *, bound_options: Any = None,
     empty = dict.fromkeys(("sigma_gm_m", "tau_s", "sigma_wn_m", "dt_s", "band_hz",
                            "confidence_level", "n_groups", "low_frequency"))  # fmt: skip
     row = {"station": days[0]["station"], "verdict": verdict, "verdict_reasons": reasons,
-           "verdict_checks": [c.as_dict() for c in checks], "n_days": len(days), "n_pooled": len(pooled),
+           "verdict_checks": [c.as_dict() for c in checks], "n_days": len(days),
+           "n_pooled": len(pooled),
            "pooled_days": [d["day"] for d in pooled],
            "excluded_days": [_excluded(d, dt) for d in days if all(d is not p for p in pooled)],
            "covered_s": covered, "comparison_note": _comparison_note(len(pooled)),

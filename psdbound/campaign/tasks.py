@@ -144,11 +144,6 @@ def psds_from_result(result: dict[str, Any]) -> list[Any]:
     ]
 
 
-def _unit_response(f_hz: np.ndarray) -> np.ndarray:
-    """Return a power response of 1 at every frequency (the response already divided out)."""
-    return np.ones_like(np.asarray(f_hz, dtype=float))
-
-
 def pooled_days_bound(days: list[dict[str, Any]], *, f_min_hz: float,
                       options: Any = None) -> Any:  # fmt: skip
     """Pool the windows of several days of one station; a sidereal repeat is not independent.
@@ -193,13 +188,13 @@ def pooled_days_bound(days: list[dict[str, Any]], *, f_min_hz: float,
         dur = np.array([p.n_samples * dt for p in psds])
         clusters = repeat_clusters(sats, t0, dur)
     # the days' spectra are already divided by their own high-pass's response (each day has
-    # its own cutoff); a unit response tells the model set that a filter shaped everything
-    # below f_min, so it is identified on the statement's bands, as fit does (without it the
-    # filtered lowest frequencies looked like data with no low-frequency power)
+    # its own cutoff): a filter shaped everything below f_min, so the model set is identified
+    # on the statement's bands, as fit does (below them the filtered lowest frequencies looked
+    # like data with no low-frequency power)
     filtered = any(r.get("f_c_hz") for r in days)
     return fit_stated_bound(
         psds, dt, f_min_hz=f_min_hz, confidence_level=opt.confidence_level,
-        power_response=_unit_response if filtered else None,
+        filtered=filtered,
         tau_max_s=opt.tau_max_s, objective=opt.objective, coverage=opt.coverage,
         shape_alpha=opt.shape_alpha, bands_per_decade=opt.bands_per_decade, clusters=clusters,
         cluster_correlation=1.0 if clusters is not None else 0.0,

@@ -79,6 +79,7 @@ def fit_stated_bound(
     objective: str = "variance",
     n_grid: int = 64,
     power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]] | None = None,
+    filtered: bool | None = None,
     **pool_options: Any,
 ) -> StatedBound:
     """Fit the pooled bound, its model set and its low-frequency statement.
@@ -102,6 +103,12 @@ def fit_stated_bound(
         ``tau`` grid size.
     power_response : callable, optional
         ``|H(f)|^2`` of a high-pass the data went through.
+    filtered : bool, optional
+        Whether a filter shaped the spectra below ``f_min`` (then the model
+        set is identified on the statement's bands only,
+        :func:`identification_bands`); default: whether ``power_response``
+        is given. Pass True for spectra whose filter response was divided
+        out already (a campaign's days).
     **pool_options
         ``coverage``, ``shape_alpha``, ``bands_per_decade``, ``clusters``,
         ``cluster_correlation``, ``deviation_model``
@@ -115,8 +122,10 @@ def fit_stated_bound(
         psds, dt_s, f_min_hz=f_min_hz, confidence_level=confidence_level,
         power_response=power_response, objective=objective, n_grid=n_grid, **pool_options,
     )  # fmt: skip
-    id_bands = identification_bands(psds, bands, power_response=power_response,
-                                    bands_per_decade=pool_options.get("bands_per_decade", 10))
+    id_bands = identification_bands(
+        psds, bands, filtered=power_response is not None if filtered is None else filtered,
+        bands_per_decade=pool_options.get("bands_per_decade", 10),
+    )  # fmt: skip
     ms, why = model_set(id_bands, limits, dt_s, confidence_level=confidence_level,
                         smoothing_hz=smoothing_hz(psds), tau_max_s=tau_max_s)  # fmt: skip
     fit, low = bound_below(fit, bands, limits, ms, dt_s, tau_max_s=tau_max_s,
@@ -130,7 +139,7 @@ def identification_bands(
     psds: Sequence[PSDEstimate],
     bands: BandSpectra,
     *,
-    power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]] | None = None,
+    filtered: bool = False,
     bands_per_decade: int = 10,
 ) -> BandSpectra:
     """Return the bands the model set is identified on.
@@ -141,10 +150,10 @@ def identification_bands(
         One estimate per window.
     bands : BandSpectra
         The statement's bands (from ``f_min``).
-    power_response : callable, optional
-        ``|H(f)|^2`` of a filter the data went through: then the statement's
-        bands are returned (below ``f_min`` the filter's response, not the
-        data, would set the estimate).
+    filtered : bool, default False
+        Whether a filter (a high-pass) shaped the spectra below ``f_min``:
+        then the statement's bands are returned (there the filter's
+        response, not the data, set the estimate).
     bands_per_decade : int, default 10
         Bands per decade.
 
@@ -155,7 +164,7 @@ def identification_bands(
         frequency ``1 / T`` of the longest window, every ordinate used;
         otherwise ``bands``.
     """
-    if power_response is not None or smoothing_hz(psds) <= 0 or bands.duration_s is None:
+    if filtered or smoothing_hz(psds) <= 0 or bands.duration_s is None:
         return bands
     f_low = 1.0 / float(np.max(bands.duration_s))
     if f_low >= bands.edges_hz[0]:
