@@ -9,7 +9,6 @@ method (dual-frequency), code multipath and the outputs are the campaign's.
 from __future__ import annotations
 
 import argparse
-import sys
 from dataclasses import fields
 from typing import Any
 
@@ -126,20 +125,15 @@ def run(args: argparse.Namespace) -> int:
     from psdbound.campaign import run_campaign, write_campaign
     from psdbound.common.options import Number
     from psdbound.common.outputs import check_writable_folder
+    from psdbound.common.progress import counter
 
     Number(lo=0, hi=256, integer=True)("--workers", args.workers)
     check_writable_folder(args.out, option="--out")
     options = day_options(args)
 
-    def progress(done: int, total: int) -> None:
-        bar = "#" * int(30 * done / max(total, 1))
-        print(f"\r[psdbound] station-days {done}/{total} [{bar:<30}]", end="", file=sys.stderr,
-              flush=True)  # fmt: skip
-        if done == total:
-            print(file=sys.stderr)
-
     res = run_campaign(args.obs, args.nav, workers=args.workers, scheduler=args.scheduler,
-                       cache_dir=args.cache_dir, options=options, progress=progress)  # fmt: skip
+                       cache_dir=args.cache_dir, options=options,
+                       progress=counter("station-days computed"))  # fmt: skip
     files = write_campaign(res, args.out, pdf=not args.no_pdf)
     print(res.summary())
     for f in files.values():

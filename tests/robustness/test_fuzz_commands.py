@@ -108,3 +108,43 @@ def test_fuzz_budget_nav(bases, tmp_path, kind, index):  # noqa: F811
                  "--out", tmp_path / "out"], timeout_s=120)  # fmt: skip
     problem = check_run(r, name, allowed=(0, 2))
     assert problem is None, f"{name} ({what}): {problem}"
+
+
+@pytest.fixture(scope="module")
+def campaign_days(tmp_path_factory):
+    """Two simulated 6-h days of one station, as ``simulate`` names them (plain RINEX)."""
+    import gzip
+
+    from psdbound.simulate import preset, simulate
+
+    root = tmp_path_factory.mktemp("fuzz-campaign")
+    obs, nav = [], []
+    for k, start in enumerate(("2020-11-24T06:00:00", "2020-11-25T06:00:00")):
+        sc = preset("demo").replace(name="FUZZ", start_gps=start, duration_s=6 * 3600.0,
+                                    interval_s=30.0, dual_antenna=False, seed=31 + k)  # fmt: skip
+        res = simulate(sc, root / f"sim{k}")
+        obs.append(gzip.decompress(res.obs_paths[0].read_bytes()))
+        nav.append(res.nav_path)
+    return obs, nav
+
+
+CAMPAIGN_KINDS = ("byte_flip", "truncate", "obs_types", "epoch_date", "interval")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("kind", CAMPAIGN_KINDS)
+def test_fuzz_campaign_one_day_mutated(campaign_days, tmp_path, kind):
+    """A campaign with one damaged day: exit 0, 2 or 3, never a traceback or exit 1."""
+    obs, nav = campaign_days
+    rng = _rng("campaign", kind)
+    data, what = OBS_MUTATIONS[kind](obs[1], rng)
+    good = write(tmp_path / "FUZZ00XXX_R_20203290600_06H_30S_MO.rnx", obs[0])
+    name = f"campaign-{kind}-FUZZ00XXX_R_20203300600_06H_30S_MO.rnx"
+    bad = write(tmp_path / name, data)
+    out = tmp_path / "out"
+    r = run_cli(["campaign", good, bad, "--nav", *nav, "--out", out, "--workers", "0",
+                 "--cache-dir", tmp_path / "cache", "--no-pdf"], timeout_s=600)  # fmt: skip
+    problem = check_run(r, name, allowed=(0, 2, 3))
+    if problem is None and r.code == 2:
+        assert not out.exists(), "a refused campaign left an output folder"
+    assert problem is None, f"{name} ({what}): {problem}"
