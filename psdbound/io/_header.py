@@ -112,6 +112,7 @@ NEWEST_VERSION = 4.02
 
 
 def _first_line(text: bytes) -> str:
+    """Line 1 of the file as text."""
     first = text[: text.find(b"\n")] if b"\n" in text else text
     return first.decode("ascii", "replace")
 
@@ -169,6 +170,7 @@ def _version(first_s: str, path: Path) -> tuple[float, list[str]]:
 
 
 def _file_system(first_s: str, path: Path) -> str:
+    """The satellite system letter of line 1 (column 41; ``M`` mixed, blank GPS)."""
     file_system = first_s[40:41].strip() or "G"
     if file_system not in SYSTEM_LETTERS + "M":
         raise InputError(

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import gzip
 import zipfile
+from collections.abc import Sequence
 from pathlib import Path
 
 from psdbound.io.ephemeris import is_beidou_geo
@@ -40,7 +41,9 @@ def with_version(line1: str, version: str) -> str:
     return f"{version:>9s}{line1[9:]}"
 
 
-def obs_to_v4(text: bytes, version: str = "4.00", records=V4_OBS_RECORDS) -> bytes:
+def obs_to_v4(
+    text: bytes, version: str = "4.00", records: Sequence[tuple[str, str]] = V4_OBS_RECORDS
+) -> bytes:
     """Return a RINEX 3 observation file's text as a RINEX 4 file.
 
     Parameters

@@ -9,20 +9,23 @@ record and a GPS CNAV record to be skipped).
 from __future__ import annotations
 
 import gzip
+import re
 import warnings
 from pathlib import Path
 
 import numpy as np
 import pytest
 from conftest import ESBC_NAV, shared_file
-from rinex4_samples import cnav_record, eop_record, header_line, nav_to_v4
+from rinex4_samples import cnav_record, eop_record, header_line, nav_to_v4, with_version
+from samples import moving_observations
 
+from psdbound.cli import main
 from psdbound.common.notices import PsdboundWarning
 from psdbound.errors import InputError
 from psdbound.io import read_nav, read_orbit
 from psdbound.io.navigation import Navigation, merge_navigation
 from psdbound.io.nominal import nominal_navigation
-from psdbound.io.write import format_nav_v3
+from psdbound.io.write import format_nav_v3, format_obs_v3
 
 T0 = 1_400_000_000.0  # 2024-05-19, GPS seconds
 
@@ -193,6 +196,23 @@ def test_rinex4_records_in_a_rinex3_file_are_refused(tmp_path):
     with pytest.raises(InputError, match=r"a RINEX 4 record header \('> EPH \.\.\.'\) in a file "
                        r"whose line 1 gives a RINEX 3 version"):
         read_nav(_write(tmp_path, "\n".join(text), "mixed.rnx"))
+
+
+@pytest.mark.parametrize(
+    ("edit", "message"),
+    [
+        (lambda ln: [with_version(ln[0], "5.00"), *ln[1:]],
+         r"line 1: RINEX 5\.00 navigation files are not supported; expected RINEX 2, 3 or 4"),
+        (lambda ln: [x.replace("> EPH G01 LNAV", "> EPH G01") for x in ln],
+         r"line \d+: cannot read the record header '> EPH G01'"),
+    ],
+)  # fmt: skip
+def test_bad_navigation_input_exits_2_naming_the_line(tmp_path, capsys, edit, message):
+    obs = _write(tmp_path, format_obs_v3(moving_observations()), "o.rnx")
+    nav = _write(tmp_path, "\n".join(edit(nav_to_v4(_v3_text()).split("\n"))), "bad_nav.rnx")
+    assert main(["inspect", str(obs), "--nav", str(nav)]) == 2
+    err = capsys.readouterr().err
+    assert re.search(r"bad_nav\.rnx, " + message, err), err
 
 
 def test_merged_files_sum_the_unused_records(tmp_path):
