@@ -41,7 +41,7 @@ def code_multipath_from_files(
     Parameters
     ----------
     obs_path : path
-        RINEX 2/3 observation file (gzip, Hatanaka, zip).
+        RINEX 2/3/4 observation file (gzip, Hatanaka, zip).
     nav_path : path
         Navigation or SP3 file, for elevations.
     codes : str or sequence of str

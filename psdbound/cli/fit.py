@@ -170,7 +170,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="observation file(s) of one station (consecutive files are merged), or "
                    "of the two antennas named by --pair (default: none, the embedded demo)")
     p.add_argument("--nav", action="append", metavar="NAV",
-                   help="navigation (RINEX 2/3) or SP3 file, repeatable: several (e.g. of "
+                   help="navigation (RINEX 2/3/4) or SP3 file, repeatable: several (e.g. of "
                    "consecutive days, or a zip of them) are joined (required with OBS, unless "
                    "OBS is a zip archive that also holds the navigation file)")
     # fmt: on

@@ -19,7 +19,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "inspect",
         help="read observation files and list systems, signals and tracking arcs",
-        description="Read RINEX observation files (2.x/3.x, gzip, Hatanaka) and "
+        description="Read RINEX observation files (2.x/3.x/4.x, gzip, Hatanaka) and "
         "print their content and the continuous dual-signal tracking arcs. With --nav, "
         "also the orbit file's coverage of the observations (systems, span, satellites "
         "without ephemerides).",

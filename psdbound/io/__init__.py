@@ -2,7 +2,7 @@
 
 Public surface:
 
-* :func:`read_obs` -> :class:`Observations` (RINEX 2.1x/3.0x observation files)
+* :func:`read_obs` -> :class:`Observations` (RINEX 2.1x/3.0x/4.0x observation files)
 * :func:`read_orbit` -> :class:`Navigation` or :class:`PreciseOrbit`
   (also :func:`read_nav`, :func:`read_sp3`); GLONASS broadcast records are
   :class:`GlonassEphemerides`

@@ -1,4 +1,4 @@
-"""RINEX observation data sections (versions 2.1x and 3.0x) -> arrays, strict.
+"""RINEX observation data sections (versions 2.1x, 3.0x and 4.0x) -> arrays, strict.
 
 What is checked (every failure is an :class:`InputError` naming the file and
 the line):

@@ -1,4 +1,4 @@
-"""RINEX observation header parsing (versions 2.1x and 3.0x), strict.
+"""RINEX observation header parsing (versions 2.1x, 3.0x and 4.00-4.02), strict.
 
 Every record psdbound uses is checked against the format: the observation
 type lists are read slot by slot (a blank code inside the declared count,
@@ -7,18 +7,29 @@ are errors naming the line), numbers must be finite, the time system must
 be known. Records that only inform (``INTERVAL``, ``APPROX POSITION XYZ``)
 are checked too, but a bad value there is reported as a warning and not
 used: the sampling interval is taken from the epochs.
+
+RINEX 4.00-4.02 observation files have the RINEX 3.05 layout; their header
+may hold new records (``DOI``, ``LICENSE OF USE``, ``STATION INFORMATION``)
+that psdbound passes over. A record of a type no RINEX version defines is
+skipped and counted in one warning (:mod:`psdbound.io._header_records`).
+A version from 4.03 on is read with the 4.02 layout, with a warning; a
+version before 2 or from 5 on is refused.
 """
 
 from __future__ import annotations
 
-import math
-import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from psdbound.errors import InputError, NoDataError
+from psdbound.io._header_records import (
+    SYSTEM_LETTERS,
+    HeaderRecords,
+    TypeLists,
+    parse_float,
+)
 
 
 @dataclass(frozen=True)
@@ -89,139 +100,25 @@ _TYPE_NAMES = {
     "C": "a clock file",
 }
 
-#: Satellite system letters of RINEX 3 (and RINEX 2 observation files).
-SYSTEM_LETTERS = "GRECJSI"
 #: Name of each system letter.
 SYSTEM_NAMES = {"G": "GPS", "E": "Galileo", "R": "GLONASS", "C": "BeiDou", "J": "QZSS",
                 "S": "SBAS", "I": "NavIC"}  # fmt: skip
 #: Time systems an observation file may use.
 TIME_SYSTEMS = ("GPS", "GLO", "GAL", "BDT", "QZS", "IRN", "UTC")
-_V3_CODE = re.compile(r"[CLDSX][1-9][A-Z]")
-_V3_IONO = re.compile(r"I[1-9][A-Z ]")  # RINEX 3.01 ionosphere phase delay
-_V2_CODE = re.compile(r"[A-Z][0-9A-Z]")
-_V3_PER_LINE, _V2_PER_LINE = 13, 9
+#: The RINEX observation versions read, for messages.
+SUPPORTED_VERSIONS = "2.1x, 3.0x and 4.00-4.02"
+#: The newest RINEX version whose layout the reader knows.
+NEWEST_VERSION = 4.02
 
 
-def _float(text: str, what: str) -> float:
-    try:
-        x = float(text)
-    except ValueError:
-        raise ValueError(f"{what} {text.strip()!r} is not a number") from None
-    if not math.isfinite(x):
-        raise ValueError(f"{what} {text.strip()!r} is not a finite number")
-    return x
-
-
-def _int(text: str, what: str) -> int:
-    try:
-        return int(text)
-    except ValueError:
-        raise ValueError(f"{what} {text.strip()!r} is not an integer") from None
-
-
-def _time_record(body: str) -> tuple[tuple, str]:
-    """(year, month, day, hour, minute, second) and the time system of a TIME OF ... record."""
-    date = tuple(_int(body[k : k + 6], "date field") for k in (0, 6, 12, 18, 24)) + (
-        _float(body[30:43], "seconds"),
-    )
-    return date, body[48:51].strip()
-
-
-class _TypeLists:
-    """Observation-type records read slot by slot, checked against the declared counts."""
-
-    def __init__(self, version: float) -> None:
-        self.v3 = version >= 3
-        self.types: dict[str, list[str]] = {}
-        self.count: dict[str, int] = {}
-        self.first_line: dict[str, int] = {}
-        self.cur = ""
-
-    def add(self, body: str, line: int) -> None:
-        if self.v3:
-            head, slot0, per, width, sys_ = body[:6], 7, _V3_PER_LINE, 4, body[0]
-        else:
-            head, slot0, per, width, sys_ = body[:6], 10, _V2_PER_LINE, 6, "*"
-        if head.strip():
-            if self.v3:
-                if sys_ not in SYSTEM_LETTERS:
-                    raise ValueError(
-                        f"unknown satellite system {sys_!r} in column 1; expected one of "
-                        f"{', '.join(SYSTEM_LETTERS)}"
-                    )
-                n = _int(body[3:6], "the number of observation types")
-            else:
-                n = _int(body[:6], "the number of observation types")
-            if sys_ in self.types:
-                raise ValueError(
-                    f"the observation types of {'system ' + sys_ if self.v3 else 'the file'} "
-                    f"are declared twice (first on line {self.first_line[sys_]})"
-                )
-            if not 1 <= n <= 999:
-                raise ValueError(f"{n} observation types declared; expected 1 to 999")
-            self.cur = sys_
-            self.types[sys_], self.count[sys_], self.first_line[sys_] = [], n, line
-        elif not self.cur or len(self.types[self.cur]) >= self.count[self.cur]:
-            what = f"system {self.cur}" if self.v3 and self.cur else "the file"
-            raise ValueError(
-                "continuation line without a declaration to continue"
-                + (f" ({what} already has its {self.count[self.cur]} types)" if self.cur else "")
-            )
-        have = self.types[self.cur]
-        before = len(have)
-        n_here = min(per, self.count[self.cur] - before)
-        for k in range(per):
-            a = slot0 + width * k
-            code = body[a : a + (3 if self.v3 else 2)]
-            if k >= n_here:
-                if body[a - (1 if self.v3 else 4) : a + width].strip():
-                    raise ValueError(
-                        f"more observation types than the {self.count[self.cur]} declared "
-                        f"(extra code {body[a : a + width].strip()!r} in columns {a + 1}-"
-                        f"{a + len(code)})"
-                    )
-                continue
-            sep = body[a - 1 : a] if self.v3 else body[a - 4 : a]
-            if sep.strip():
-                raise ValueError(
-                    f"observation code {k + 1 + before} is not in its columns "
-                    f"{a + 1}-{a + len(code)} (found {body[a - len(sep) : a + len(code)]!r})"
-                )
-            if not code.strip():
-                raise ValueError(
-                    f"observation code {k + 1 + before} of {self.count[self.cur]} is blank "
-                    f"(columns {a + 1}-{a + len(code)}): the type list is damaged and every "
-                    "later column would be misread"
-                )
-            ok = (_V3_CODE.fullmatch(code) or _V3_IONO.fullmatch(code)) if self.v3 else (
-                _V2_CODE.fullmatch(code)
-            )  # fmt: skip
-            if not ok:
-                raise ValueError(
-                    f"{code!r} in columns {a + 1}-{a + len(code)} is not an observation code"
-                )
-            if code in have:
-                raise ValueError(f"observation code {code} is listed twice")
-            have.append(code)
-
-    def result(self, path: Path, n_lines: int) -> dict[str, list[str]]:
-        for s, codes in self.types.items():
-            if len(codes) != self.count[s]:
-                what = f"system {s}" if self.v3 else "the file"
-                raise InputError(
-                    f"the observation types of {what} declare {self.count[s]} codes but list "
-                    f"{len(codes)} (a line of the list is missing or damaged)",
-                    path=path,
-                    line=self.first_line[s],
-                )
-        return self.types
-
-
-def parse_header(text: bytes, path: Path) -> tuple[ObsHeader, int]:
-    """Parse the header; return it and the byte offset of the first data line."""
-    end = text.find(b"END OF HEADER")
+def _first_line(text: bytes) -> str:
+    """Line 1 of the file as text."""
     first = text[: text.find(b"\n")] if b"\n" in text else text
-    first_s = first.decode("ascii", "replace")
+    return first.decode("ascii", "replace")
+
+
+def _check_kind(first_s: str, path: Path) -> None:
+    """Refuse anything but a RINEX observation file, saying what the file is."""
     if first_s.startswith(("#a", "#b", "#c", "#d")):
         raise InputError("this is an SP3 orbit file, expected a RINEX observation file", path=path)
     if "RINEX VERSION / TYPE" not in first_s:
@@ -231,10 +128,6 @@ def parse_header(text: bytes, path: Path) -> tuple[ObsHeader, int]:
             path=path,
             line=1,
         )
-    try:
-        version = _float(first_s[:9], "RINEX version")
-    except ValueError:
-        raise InputError(f"bad RINEX version {first_s[:9]!r}", path=path, line=1) from None
     ftype = first_s[20:21].upper()
     if ftype != "O":
         what = _TYPE_NAMES.get(ftype, f"a RINEX file of type {ftype!r}")
@@ -246,28 +139,38 @@ def parse_header(text: bytes, path: Path) -> tuple[ObsHeader, int]:
             path=path,
             line=1,
         )
-    if not 2.0 <= version < 4.0:
-        raise InputError(
-            f"RINEX version {version} is not supported (2.1x and 3.0x are)", path=path, line=1
-        )
-    if end < 0:
-        raise InputError("header has no 'END OF HEADER' record (truncated file?)", path=path)
-    stop = text.find(b"\n", end)
-    stop = len(text) if stop < 0 else stop + 1
-    lines = text[:stop].decode("ascii", "replace").split("\n")
-    if lines and lines[-1] == "":
-        lines.pop()
 
-    marker = receiver = antenna = ""
-    approx = None
-    delta = np.zeros(3)
-    interval = None
-    time_system = ""
-    leap = None
-    first_obs = last_obs = None
-    notes: list[str] = []
-    glo: dict[str, int] = {}
-    type_lists = _TypeLists(version)
+
+def _version(first_s: str, path: Path) -> tuple[float, list[str]]:
+    """The RINEX version of line 1 and a note when it is newer than the reader knows."""
+    try:
+        version = parse_float(first_s[:9], "RINEX version")
+    except ValueError:
+        raise InputError(
+            f"bad RINEX version {first_s[:9]!r} in columns 1-9; expected a number such as "
+            "3.05 or 4.01",
+            path=path,
+            line=1,
+        ) from None
+    if not 2.0 <= version < 5.0:
+        raise InputError(
+            f"RINEX version {version:g} is not supported ({SUPPORTED_VERSIONS} are); convert "
+            "the file to RINEX 3 or 4 (e.g. with gfzrnx) and read it again",
+            path=path,
+            line=1,
+        )
+    notes = []
+    if version > NEWEST_VERSION + 1e-9:
+        notes.append(
+            f"line 1: RINEX {version:.2f} is newer than the {NEWEST_VERSION:.2f} this reader "
+            f"knows; read with the RINEX {NEWEST_VERSION:.2f} layout (unknown header records "
+            "are counted)"
+        )
+    return version, notes
+
+
+def _file_system(first_s: str, path: Path) -> str:
+    """The satellite system letter of line 1 (column 41; ``M`` mixed, blank GPS)."""
     file_system = first_s[40:41].strip() or "G"
     if file_system not in SYSTEM_LETTERS + "M":
         raise InputError(
@@ -276,85 +179,77 @@ def parse_header(text: bytes, path: Path) -> tuple[ObsHeader, int]:
             path=path,
             line=1,
         )
+    return file_system
 
+
+def _header_lines(text: bytes, path: Path) -> tuple[list[str], int]:
+    """The header's lines (to END OF HEADER) and the byte offset of the first data line."""
+    end = text.find(b"END OF HEADER")
+    if end < 0:
+        raise InputError("header has no 'END OF HEADER' record (truncated file?)", path=path)
+    stop = text.find(b"\n", end)
+    stop = len(text) if stop < 0 else stop + 1
+    lines = text[:stop].decode("ascii", "replace").split("\n")
+    if lines and lines[-1] == "":
+        lines.pop()
+    return lines, stop
+
+
+def parse_header(text: bytes, path: Path) -> tuple[ObsHeader, int]:
+    """Parse the header; return it and the byte offset of the first data line."""
+    first_s = _first_line(text)
+    _check_kind(first_s, path)
+    version, notes = _version(first_s, path)
+    lines, stop = _header_lines(text, path)
+    file_system = _file_system(first_s, path)
+    rec = HeaderRecords(version, path)
     for i, ln in enumerate(lines, start=1):
-        label = ln[60:].strip()
-        body = ln[:60]
-        try:
-            if label == "MARKER NAME":
-                marker = body.strip()
-            elif label == "REC # / TYPE / VERS":
-                receiver = body[20:40].strip()
-            elif label == "ANT # / TYPE":
-                antenna = body[20:40].strip()
-            elif label == "APPROX POSITION XYZ":
-                xyz = np.array([_float(body[k : k + 14], "coordinate") for k in (0, 14, 28)])
-                r = float(np.linalg.norm(xyz))
-                approx = None if not np.any(xyz) else xyz
-                if approx is not None and not 6.2e6 <= r <= 6.5e6:
-                    notes.append(
-                        f"line {i}: APPROX POSITION XYZ is {r / 1000:.6g} km from the Earth's "
-                        "centre, not near its surface; ignored"
-                    )
-                    approx = None
-            elif label == "ANTENNA: DELTA H/E/N":
-                delta = np.array([_float(body[k : k + 14], "eccentricity") for k in (0, 14, 28)])
-                if np.any(np.abs(delta) > 1000.0):
-                    raise ValueError(
-                        f"antenna eccentricities {delta.tolist()} m are not plausible (at most "
-                        "1000 m)"
-                    )
-            elif label == "INTERVAL":
-                try:
-                    value = _float(body[:10], "INTERVAL")
-                    if value < 0:
-                        raise ValueError(f"INTERVAL {value:g} s is negative")
-                    interval = value or None
-                except ValueError as exc:
-                    notes.append(f"line {i}: {exc}; the interval is taken from the epochs")
-            elif label == "TIME OF FIRST OBS":
-                first_obs, time_system = _time_record(body)
-            elif label == "TIME OF LAST OBS":
-                last_obs, _ = _time_record(body)
-            elif label == "LEAP SECONDS":
-                leap = _int(body[:6], "leap seconds")
-            elif label in ("# / TYPES OF OBSERV", "SYS / # / OBS TYPES"):
-                if (label == "SYS / # / OBS TYPES") != (version >= 3):
-                    raise ValueError(f"this record does not belong in a RINEX {version:g} header")
-                type_lists.add(body, i)
-            elif label == "GLONASS SLOT / FRQ #":
-                parts = body[4:].split()
-                if len(parts) % 2:
-                    raise ValueError("expected pairs of slot and channel")
-                for k in range(0, len(parts), 2):
-                    slot, ch = parts[k], _int(parts[k + 1], "channel")
-                    if not re.fullmatch(r"R\d\d", slot) or not -7 <= ch <= 6:
-                        raise ValueError(
-                            f"{slot} {ch}: expected a slot such as R01 and a channel from -7 to 6"
-                        )
-                    glo[slot] = ch
-        except ValueError as exc:
-            raise InputError(
-                f"cannot parse header record {label!r}: {exc}", path=path, line=i
-            ) from None
+        rec.read(ln, i)
+    types, type_lines = _obs_types(rec.type_lists, version, file_system, path, len(lines))
+    time_system = _time_system(rec.time_system, file_system, lines, path)
+    header = ObsHeader(
+        version=version,
+        file_system=file_system,
+        marker_name=rec.marker,
+        receiver_type=rec.receiver,
+        antenna_type=rec.antenna,
+        approx_position_m=rec.approx,
+        antenna_delta_hen_m=rec.delta,
+        interval_s=rec.interval,
+        time_system=time_system,
+        obs_types=types,
+        glonass_channels=rec.glo,
+        leap_seconds=rec.leap,
+        n_lines=len(lines),
+        first_obs=rec.first_obs,
+        last_obs=rec.last_obs,
+        notes=tuple(notes + rec.notes + rec.unknown_notes()),
+        type_lines=type_lines,
+    )
+    return header, stop
 
-    types_raw = type_lists.result(path, len(lines))
+
+def _obs_types(
+    type_lists: TypeLists, version: float, file_system: str, path: Path, n_lines: int
+) -> tuple[dict[str, tuple[str, ...]], dict[str, int]]:
+    """Observation codes per system and the header line of each list."""
+    types_raw = type_lists.result(path, n_lines)
     if version < 3:
         if not types_raw:
             raise InputError("header has no '# / TYPES OF OBSERV' record", path=path)
         systems = "GRES" if file_system == "M" else file_system
         types = {s: tuple(types_raw["*"]) for s in systems}
-        type_lines = {s: type_lists.first_line["*"] for s in systems}
-    else:
-        if not types_raw:
-            raise InputError("header has no 'SYS / # / OBS TYPES' record", path=path)
-        types = {s: tuple(v) for s, v in types_raw.items()}
-        type_lines = dict(type_lists.first_line)
+        return types, {s: type_lists.first_line["*"] for s in systems}
+    if not types_raw:
+        raise InputError("header has no 'SYS / # / OBS TYPES' record", path=path)
+    return {s: tuple(v) for s, v in types_raw.items()}, dict(type_lists.first_line)
+
+
+def _time_system(time_system: str, file_system: str, lines: list[str], path: Path) -> str:
+    """The epochs' time system: TIME OF FIRST OBS's, else the file system's own."""
     if not time_system:
-        time_system = {"R": "GLO", "E": "GAL", "C": "BDT", "J": "QZS", "I": "IRN"}.get(
-            file_system, "GPS"
-        )
-    elif time_system not in TIME_SYSTEMS:
+        return {"R": "GLO", "E": "GAL", "C": "BDT", "J": "QZS", "I": "IRN"}.get(file_system, "GPS")
+    if time_system not in TIME_SYSTEMS:
         line = next(k for k, ln in enumerate(lines, 1) if ln[60:].strip() == "TIME OF FIRST OBS")
         raise InputError(
             f"unknown time system {time_system!r} in TIME OF FIRST OBS (columns 49-51); expected "
@@ -362,26 +257,7 @@ def parse_header(text: bytes, path: Path) -> tuple[ObsHeader, int]:
             path=path,
             line=line,
         )
-    header = ObsHeader(
-        version=version,
-        file_system=file_system,
-        marker_name=marker,
-        receiver_type=receiver,
-        antenna_type=antenna,
-        approx_position_m=approx,
-        antenna_delta_hen_m=delta,
-        interval_s=interval,
-        time_system=time_system,
-        obs_types=types,
-        glonass_channels=glo,
-        leap_seconds=leap,
-        n_lines=len(lines),
-        first_obs=first_obs,
-        last_obs=last_obs,
-        notes=tuple(notes),
-        type_lines=type_lines,
-    )
-    return header, stop
+    return time_system
 
 
 def system_list(systems) -> str:

@@ -1,4 +1,4 @@
-"""Record layout and column collection shared by the RINEX 2 and 3 navigation parsers.
+"""Record layout and column collection shared by the RINEX 2, 3 and 4 navigation parsers.
 
 A Keplerian navigation record is an epoch line (satellite, time of clock,
 three clock terms) and seven orbit lines of four 19-character Fortran reals.

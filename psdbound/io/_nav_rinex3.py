@@ -62,8 +62,9 @@ class Rinex3Parser(GlonassParser):
                 )
             if system == ">":
                 raise self.error(
-                    "RINEX 4 record header ('> EPH ...') found; only RINEX 2 and 3 "
-                    "navigation files are supported",
+                    "a RINEX 4 record header ('> EPH ...') in a file whose line 1 gives a "
+                    "RINEX 3 version; expected a satellite id such as 'G01' in columns 1-3 "
+                    "(if the file is RINEX 4, its line 1 should say 4.00-4.02)",
                     i,
                 )
             sat = line[:3].replace(" ", "0")

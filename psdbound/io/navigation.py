@@ -60,6 +60,10 @@ class Navigation:
         :class:`~psdbound.common.notices.PsdboundWarning`.
     glonass : GlonassEphemerides or None
         GLONASS records (state vectors in PZ-90), None when the file has none.
+    unused : dict of str to int
+        RINEX 4 records skipped because psdbound does not use them, per
+        record type (``'STO'``, ``'EOP'``, ``'ION'``) or ephemeris message
+        (``'EPH G CNAV'``, ``'EPH S SBAS'``); empty for RINEX 2 and 3.
 
     """
 
@@ -70,6 +74,7 @@ class Navigation:
     skipped: dict[str, int] = field(default_factory=dict)
     warnings: tuple[str, ...] = ()
     glonass: GlonassEphemerides | None = None
+    unused: dict[str, int] = field(default_factory=dict)
 
     @property
     def satellites(self) -> tuple[str, ...]:
@@ -211,8 +216,8 @@ def merge_navigation(navs: Sequence[Navigation], path: str | Path) -> Navigation
     Navigation
         Every system's records of every file, a record repeated in two files
         (same satellite, time of ephemeris, issue of data) once; the first
-        file's version, the first leap seconds given, the skipped records
-        summed and the warnings of every file.
+        file's version, the first leap seconds given, the skipped and unused
+        records summed and the warnings of every file.
     """
     ephs: dict[str, KeplerEphemerides] = {}
     for system in sorted({s for n in navs for s in n.ephemerides}):
@@ -220,9 +225,12 @@ def merge_navigation(navs: Sequence[Navigation], path: str | Path) -> Navigation
         ephs[system] = _unique_records(parts[0].concatenate(*parts[1:]), *_KEPLER_KEY)
     glo = [n.glonass for n in navs if n.glonass is not None]
     skipped: dict[str, int] = {}
+    unused: dict[str, int] = {}
     for n in navs:
         for s, k in n.skipped.items():
             skipped[s] = skipped.get(s, 0) + k
+        for s, k in n.unused.items():
+            unused[s] = unused.get(s, 0) + k
     return Navigation(
         path=Path(path),
         version=navs[0].version,
@@ -231,4 +239,5 @@ def merge_navigation(navs: Sequence[Navigation], path: str | Path) -> Navigation
         skipped=dict(sorted(skipped.items())),
         warnings=tuple(w for n in navs for w in n.warnings),
         glonass=_unique_records(glo[0].concatenate(*glo[1:]), *_GLONASS_KEY) if glo else None,
+        unused=dict(sorted(unused.items())),
     )

@@ -1,8 +1,8 @@
 """Reading RINEX observation files into :class:`Observations`.
 
 One front function, :func:`read_obs`, dispatches on the RINEX version found in
-the header (2.1x or 3.0x) and accepts plain, gzip/Z/bz2/zip and Hatanaka
-(compact RINEX) files.
+the header (2.1x, or 3.0x and 4.00-4.02, which share the data layout) and
+accepts plain, gzip/Z/bz2/zip and Hatanaka (compact RINEX) files.
 """
 
 from __future__ import annotations
@@ -318,7 +318,7 @@ def read_obs(
     codes: Iterable[str] | None = None,
     optional_codes: Iterable[str] = (),
 ) -> Observations:
-    """Read a RINEX 2.1x or 3.0x observation file.
+    """Read a RINEX 2.1x, 3.0x or 4.00-4.02 observation file.
 
     Parameters
     ----------
@@ -346,8 +346,16 @@ def read_obs(
     ------
     InputError
         For a missing, empty, truncated or corrupted file, a file that is not
-        a RINEX observation file, an unknown code, or a requested system with
-        no epochs.
+        a RINEX observation file or of an unsupported version (before 2, from
+        5 on), an unknown code, or a requested system with no epochs.
+
+    Warns
+    -----
+    PsdboundWarning
+        For what was repaired or ignored (also in
+        :attr:`Observations.warnings`), e.g. header records of a type no
+        RINEX version defines (skipped, counted in one warning) or a version
+        newer than 4.02 (read with the 4.02 layout).
 
     See Also
     --------
@@ -358,7 +366,7 @@ def read_obs(
     References
     ----------
     .. [1] IGS RINEX Working Group and RTCM-SC104 (2020). RINEX, The Receiver
-       Independent Exchange Format, Version 3.05.
+       Independent Exchange Format, Version 3.05; (2021-2024) Versions 4.00-4.02.
     .. [2] Gurtner, W., & Estey, L. (2007). RINEX, Version 2.11.
     .. [3] Hatanaka, Y. (2008). A compression format and tools for GNSS
        observation data. *Bulletin of the Geographical Survey Institute*, 55.

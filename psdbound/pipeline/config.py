@@ -110,7 +110,7 @@ class InputsConfig:
     """Input files and what to take from them.
 
     ``obs``: one file (dual-frequency) or two (dual-antenna); empty runs the
-    demo (a single name is one file). ``nav``: navigation (RINEX 2/3) or SP3
+    demo (a single name is one file). ``nav``: navigation (RINEX 2/3/4) or SP3
     file(s), needed with observation files; several (e.g. of consecutive days,
     or a zip archive of them) are joined into one orbit. ``method``: ``auto`` (DF for one
     file, DA for two), ``df`` or ``da``. ``system``: satellite system letter.

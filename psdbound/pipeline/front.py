@@ -330,7 +330,7 @@ def fit(
         One observation file (dual-frequency) or two (dual-antenna). None or
         empty: the embedded demo (simulated, known truth).
     nav : path or sequence of paths, optional
-        Navigation (RINEX 2/3) or SP3 file; several (e.g. of consecutive
+        Navigation (RINEX 2/3/4) or SP3 file; several (e.g. of consecutive
         days) are joined into one orbit. Not needed when ``obs`` is a zip
         archive that also holds the navigation file.
     config : FitConfig, optional
