@@ -92,7 +92,7 @@ def pool_station(days: Sequence[dict[str, Any]], *, bound_options: Any = None,
     pooled : list of dict
         The day results in the pool.
     """
-    from psdbound.pipeline.verdict import pooled_checks
+    from psdbound.pipeline.verdict import pooled_checks, verdict_of
 
     days = sorted(days, key=lambda d: d["day"])
     dt = _pool_interval([d for d in days if d["verdict"] == "bounded"])
@@ -101,8 +101,7 @@ def pool_station(days: Sequence[dict[str, Any]], *, bound_options: Any = None,
     covered = float(sum(d.get("covered_s", 0.0) for d in pooled))
     checks = pooled_checks(bound, covered_s=covered, n_days=len(pooled),
                            options=verdict_options)  # fmt: skip
-    reasons = [c.reason for c in checks if not c.passed]
-    verdict = "not-bounded" if reasons else "bounded"
+    verdict, reasons = verdict_of(checks)
     empty = dict.fromkeys(("sigma_gm_m", "tau_s", "sigma_wn_m", "dt_s", "band_hz",
                            "confidence_level", "n_groups", "low_frequency"))  # fmt: skip
     row = {"station": days[0]["station"], "verdict": verdict, "verdict_reasons": reasons,

@@ -14,7 +14,7 @@ from psdbound.kalman.error_model import Component, error_model_section
 from psdbound.pipeline.config import FitConfig
 from psdbound.pipeline.products import CodeOverbound
 from psdbound.pipeline.stages import InputData, Isolated, Screened, Validated, Windowed
-from psdbound.pipeline.verdict import verdict_checks
+from psdbound.pipeline.verdict import verdict_checks, verdict_of
 from psdbound.reports import figure_data
 from psdbound.results import SCHEMA_VERSION, to_jsonable
 from psdbound.results.headline import headline
@@ -423,9 +423,9 @@ def build_document(
         }
     doc = to_jsonable(doc)
     checks = verdict_checks(doc, config.verdict)
-    reasons = [c.reason for c in checks if not c.passed]
-    out = {"schema_version": doc.pop("schema_version"),
-           "verdict": "not-bounded" if reasons else "bounded", "verdict_reasons": reasons,
+    verdict, reasons = verdict_of(checks)
+    out = {"schema_version": doc.pop("schema_version"), "verdict": verdict,
+           "verdict_reasons": reasons,
            "verdict_checks": [c.as_dict() for c in checks], **doc}  # fmt: skip
     out["headline"] = headline(out)
     return out

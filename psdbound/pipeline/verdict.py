@@ -104,7 +104,7 @@ from psdbound.common.options import Choice, Number, check_fields, option
 from psdbound.spectra.lowfreq import POLICIES, low_frequency_reasons
 
 __all__ = ["VerdictCheck", "VerdictOptions", "judge", "judge_pooled", "pooled_checks",
-           "verdict_checks"]
+           "verdict_checks", "verdict_of"]
 
 
 @dataclass(frozen=True)
@@ -342,6 +342,23 @@ def verdict_checks(document: dict[str, Any],
     return [c for rule in RULES for c in rule(document, opt)]
 
 
+def verdict_of(checks: list[VerdictCheck]) -> tuple[str, list[str]]:
+    """Return the verdict the checks give and the reason of each that failed.
+
+    Parameters
+    ----------
+    checks : list of VerdictCheck
+
+    Returns
+    -------
+    verdict : {"bounded", "not-bounded"}
+        ``"bounded"`` only when every check passed.
+    reasons : list of str
+    """
+    reasons = [c.reason for c in checks if not c.passed]
+    return ("not-bounded" if reasons else "bounded"), reasons
+
+
 def judge(document: dict[str, Any], options: VerdictOptions | None = None) -> tuple[str, list[str]]:
     """Apply the verdict rules to a result document.
 
@@ -358,8 +375,7 @@ def judge(document: dict[str, Any], options: VerdictOptions | None = None) -> tu
     reasons : list of str
         One sentence per rule that fired (empty when bounded).
     """
-    reasons = [c.reason for c in verdict_checks(document, options) if not c.passed]
-    return ("not-bounded" if reasons else "bounded"), reasons
+    return verdict_of(verdict_checks(document, options))
 
 
 def pooled_checks(bound: dict[str, Any] | None, *, covered_s: float, n_days: int,
@@ -418,6 +434,4 @@ def judge_pooled(bound: dict[str, Any] | None, *, covered_s: float, n_days: int,
     reasons : list of str
         One sentence per rule that fired (empty when bounded).
     """
-    checks = pooled_checks(bound, covered_s=covered_s, n_days=n_days, options=options)
-    reasons = [c.reason for c in checks if not c.passed]
-    return ("not-bounded" if reasons else "bounded"), reasons
+    return verdict_of(pooled_checks(bound, covered_s=covered_s, n_days=n_days, options=options))
