@@ -78,6 +78,7 @@ FLAGS: dict[tuple[str, str], str] = {
     ("output", "name"): "--name",
     ("output", "pdf"): "--no-pdf",
     ("output", "overwrite"): "--overwrite",
+    ("output", "series"): "--series",
 }
 
 
@@ -86,6 +87,9 @@ def add_output_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--out", help="output folder (default reports/<run-name>)")
     p.add_argument("--name", help="run name (default from the first observation file)")
     p.add_argument("--no-pdf", action="store_true", help="skip the PDF report")
+    p.add_argument("--series", action="store_true",
+                   help="also write series.csv.gz: every isolated sample with its time, "
+                   "satellite, azimuth, elevation, value, screening and window")  # fmt: skip
     p.add_argument(
         "--overwrite",
         action="store_true",
@@ -324,7 +328,8 @@ def _cli_values(args: argparse.Namespace) -> list[tuple[str, dict[str, Any], dic
         ("code_multipath", dict(codes=args.code_multipath, edges_deg=args.code_edges_deg,
                                 method=args.code_overbound), {}),
         ("output", dict(out=args.out, name=args.name, pdf=False if args.no_pdf else None,
-                        overwrite=True if getattr(args, "overwrite", False) else None), {}),
+                        overwrite=True if getattr(args, "overwrite", False) else None,
+                        series=True if getattr(args, "series", False) else None), {}),
     ]  # fmt: skip
 
 
@@ -449,9 +454,13 @@ def run(args: argparse.Namespace) -> int:
         result = psdbound.fit(config=cfg, progress=say)
     except InputError as exc:
         raise _with_files(exc, cfg.inputs.obs) from None
-    say(f"writing {out}/ (result.json, report.html{', report.pdf' if cfg.output.pdf else ''})")
+    extra = {"series.csv.gz": result.series_csv()} if cfg.output.series else None
+    names = ["result.json", "report.html", *(["report.pdf"] if cfg.output.pdf else []),
+             *(extra or {})]  # fmt: skip
+    say(f"writing {out}/ ({', '.join(names)})")
     paths = write_report_folder(result.document, out, pdf=cfg.output.pdf,
-                                overwrite=cfg.output.overwrite, option="--out")  # fmt: skip
+                                overwrite=cfg.output.overwrite, option="--out",
+                                extra=extra)  # fmt: skip
     print(result.summary())
     for p in paths.values():
         print(p)

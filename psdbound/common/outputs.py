@@ -43,7 +43,7 @@ __all__ = [
 ]
 
 #: The files psdbound writes into a report folder.
-REPORT_FILES = ("result.json", "report.html", "report.pdf")
+REPORT_FILES = ("result.json", "report.html", "report.pdf", "series.csv.gz")
 
 
 def is_report_folder(path: str | os.PathLike[str]) -> bool:

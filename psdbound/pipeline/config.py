@@ -158,10 +158,12 @@ class InputsConfig:
 
 @dataclass(frozen=True)
 class OutputConfig:
-    """Outputs: folder (default ``reports/<name>``), run name, PDF on/off, overwrite.
+    """Outputs: folder (default ``reports/<name>``), run name, PDF on/off, overwrite, series.
 
     ``overwrite``: also write into an existing folder that is not a previous
     psdbound output (psdbound's files are replaced, nothing else is touched).
+    ``series``: also write ``series.csv.gz``, every isolated sample with its
+    direction, screening and window (:mod:`psdbound.results.series_table`).
     """
 
     out: str | None = option(None, Text(what="a folder name", paths=True, optional=True))
@@ -172,6 +174,7 @@ class OutputConfig:
     )  # fmt: skip
     pdf: bool = option(True, Boolean())
     overwrite: bool = option(False, Boolean())
+    series: bool = option(False, Boolean())
 
     def __post_init__(self) -> None:
         check_fields(self)

@@ -151,10 +151,16 @@ class FitResults:
 
         if self.isolated is None:
             raise InputError("this result was read from a file, which holds no per-epoch "
-                             "series: fit again (psdbound.fit(...).series_table())")  # fmt: skip
+                             "series: fit again (psdbound.fit(...), or fit --series)")  # fmt: skip
         d = self.document
         return series_table(self.isolated.series, self.isolated.arcs,
                             d["screening"]["excluded"], d["windows"]["per_window"])  # fmt: skip
+
+    def series_csv(self, *, gz: bool = True) -> bytes:
+        """Return :meth:`series_table` as CSV bytes (gzip-compressed by default)."""
+        from psdbound.results.series_table import series_csv
+
+        return series_csv(self.series_table(), gz=gz)
 
     def write_series(self, path: str | os.PathLike[str]) -> Path:
         """Write :meth:`series_table` as CSV (gzip when the name ends in ``.gz``), atomically."""

@@ -409,6 +409,7 @@ def write_report_folder(
     pdf: bool = True,
     overwrite: bool = False,
     option: str = "output folder",
+    extra: dict[str, bytes] | None = None,
 ) -> dict[str, Path]:
     """Write ``result.json``, ``report.html`` (and ``report.pdf``) safely and atomically.
 
@@ -430,6 +431,9 @@ def write_report_folder(
         Also write the PDF report.
     overwrite : bool, default False
         Allow writing into a folder that is not a psdbound output.
+    extra : dict of str to bytes, optional
+        Further files of the run (name -> content, e.g. ``series.csv.gz``),
+        written into the same folder in the same atomic step.
     option : str, default "output folder"
         How to name the destination in messages (the CLI passes ``"--out"``).
 
@@ -450,7 +454,9 @@ def write_report_folder(
         (tmp / "report.html").write_text(render_html(document, rendered=figures))
         if pdf:
             render_pdf(document, tmp / "report.pdf", rendered=figures)
+        for name, data in (extra or {}).items():
+            (tmp / name).write_bytes(data)
     paths = {"result": out / "result.json", "html": out / "report.html"}
     if pdf:
         paths["pdf"] = out / "report.pdf"
-    return paths
+    return paths | {Path(name).name.split(".")[0]: out / name for name in extra or {}}

@@ -34,7 +34,7 @@ from numpy.typing import NDArray
 
 from psdbound.common.atomic import atomic_write_bytes
 
-__all__ = ["COLUMNS", "series_table", "write_series_csv"]
+__all__ = ["COLUMNS", "series_csv", "series_table", "write_series_csv"]
 
 #: The table's columns, in order.
 COLUMNS = ("t_gps_s", "sat", "azimuth_deg", "elevation_deg", "value_m", "screened", "window")
@@ -93,6 +93,29 @@ def series_table(series: Any, arcs: Any, excluded: Sequence[dict[str, Any]],
             "window": window}  # fmt: skip
 
 
+def series_csv(table: dict[str, NDArray], *, gz: bool = False) -> bytes:
+    """Return a series table as CSV bytes (gzip-compressed when ``gz``).
+
+    Parameters
+    ----------
+    table : dict of str to ndarray
+        :func:`series_table`.
+    gz : bool, default False
+        Compress with gzip (reproducibly: no time stamp).
+
+    Returns
+    -------
+    bytes
+    """
+    buf = io.StringIO()
+    buf.write(",".join(COLUMNS) + "\n")
+    for t, sat, az, el, v, scr, win in zip(*(table[c] for c in COLUMNS), strict=True):
+        buf.write(f"{t:.1f},{sat},{'' if np.isnan(az) else f'{az:.2f}'},{el:.2f},{v:.6f},"
+                  f"{scr},{win}\n")  # fmt: skip
+    data = buf.getvalue().encode()
+    return gzip.compress(data, mtime=0) if gz else data
+
+
 def write_series_csv(table: dict[str, NDArray], path: str | os.PathLike[str]) -> Path:
     """Write a series table as CSV (gzip when ``path`` ends in ``.gz``), atomically.
 
@@ -107,15 +130,5 @@ def write_series_csv(table: dict[str, NDArray], path: str | os.PathLike[str]) ->
     -------
     Path
     """
-    buf = io.StringIO()
-    buf.write(",".join(COLUMNS) + "\n")
-    cols = [table[c] for c in COLUMNS]
-    for row in zip(*cols, strict=True):
-        t, sat, az, el, v, scr, win = row
-        buf.write(f"{t:.1f},{sat},{'' if np.isnan(az) else f'{az:.2f}'},{el:.2f},{v:.6f},"
-                  f"{scr},{win}\n")  # fmt: skip
-    data = buf.getvalue().encode()
     p = Path(path)
-    if p.name.endswith(".gz"):
-        data = gzip.compress(data, mtime=0)
-    return atomic_write_bytes(p, data)
+    return atomic_write_bytes(p, series_csv(table, gz=p.name.endswith(".gz")))

@@ -64,3 +64,21 @@ def test_csv_round_trip_and_a_loaded_result_says_why_it_has_none(demo, tmp_path)
     write_document(out, demo.document)
     with pytest.raises(psdbound.InputError, match="holds no per-epoch series"):
         psdbound.load(out).series_table()
+
+
+def test_fit_series_writes_the_table_with_the_report(tmp_path, capsys):
+    from psdbound.cli.main import main
+
+    out = tmp_path / "out"
+    code = main(["fit", "--series", "--no-pdf", "--quiet", "--out", str(out)])
+    assert code == 0
+    assert sorted(p.name for p in out.iterdir()) == ["report.html", "result.json",
+                                                     "series.csv.gz"]  # fmt: skip
+    with gzip.open(out / "series.csv.gz", "rt") as f:
+        head = f.readline().strip().split(",")
+        first = f.readline().strip().split(",")
+    assert head == list(COLUMNS) and len(first) == len(COLUMNS)
+    assert str(out / "series.csv.gz") in capsys.readouterr().out
+    # the configuration records it, so the run can be repeated as it was
+    doc = psdbound.load(out / "result.json").document
+    assert doc["provenance"]["configuration"]["output"]["series"] is True
