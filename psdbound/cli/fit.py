@@ -84,21 +84,24 @@ FLAGS: dict[tuple[str, str], str] = {
 
 def add_output_options(p: argparse.ArgumentParser) -> None:
     """Options shared by the commands that write reports."""
-    p.add_argument("--out", help="output folder (default reports/<run-name>)")
-    p.add_argument("--name", help="run name (default from the first observation file)")
-    p.add_argument("--no-pdf", action="store_true", help="skip the PDF report")
-    p.add_argument("--series", action="store_true",
+    g = p.add_argument_group("outputs")
+    g.add_argument("-o", "--out", help="output folder (default reports/<run-name>)")
+    g.add_argument("--name", help="run name (default from the first observation file)")
+    g.add_argument("--no-pdf", action="store_true", help="skip the PDF report")
+    g.add_argument("--series", action="store_true",
                    help="also write series.csv.gz: every isolated sample with its time, "
                    "satellite, azimuth, elevation, value, screening and window")  # fmt: skip
-    p.add_argument(
+    g.add_argument(
         "--overwrite",
         action="store_true",
         help="write into an existing folder that is not a psdbound output (psdbound's files "
         "are replaced, nothing else is touched); a previous psdbound output is always replaced",
     )
-    g = p.add_mutually_exclusive_group()
-    g.add_argument("--quiet", action="store_true", help="print only errors and the result")
-    g.add_argument("--verbose", action="store_true", help="print stage timings and tracebacks")
+    talk = g.add_mutually_exclusive_group()
+    talk.add_argument("-q", "--quiet", action="store_true",
+                      help="print only errors and the result")  # fmt: skip
+    talk.add_argument("-v", "--verbose", action="store_true",
+                      help="print stage timings and tracebacks")  # fmt: skip
 
 
 #: Command-line options in other units than their configuration field: (factor, unit).
@@ -157,6 +160,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "fit",
         formatter_class=DefaultsFormatter,
+        usage="psdbound fit [OBS ...] [--nav NAV] [-o OUT] [-q | -v] [options]",
         help="fit a PSD bound to RINEX observations (no files: the demo data)",
         description="Read RINEX observations, isolate carrier-phase multipath (dual-frequency "
         "for one file, dual-antenna for two), window it into stationary pieces, estimate PSDs "
@@ -179,31 +183,33 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    "OBS is a zip archive that also holds the navigation file)")
     # fmt: on
     add_day_options(p)
+    g_da = p.add_argument_group("isolation method and dual-antenna pairs")
+    g_code = p.add_argument_group("code multipath (optional)")
     # fmt: off
-    p.add_argument("--method", choices=("auto", "df", "da"),
+    g_da.add_argument("--method", choices=("auto", "df", "da"),
                    help="isolation method: df dual-frequency, da dual-antenna, auto by the inputs")
-    p.add_argument("--da-signal", help="dual-antenna phase code")
-    p.add_argument("--pair", nargs=2, metavar=("A", "B"),
+    g_da.add_argument("--da-signal", help="dual-antenna phase code")
+    g_da.add_argument("--pair", nargs=2, metavar=("A", "B"),
                    help="dual-antenna pair: antenna A and antenna B, each a station (marker) "
                    "name among OBS or an observation file (default: none)")
-    p.add_argument("--position-a", nargs=3, type=float, metavar=("X", "Y", "Z"),
+    g_da.add_argument("--position-a", nargs=3, type=float, metavar=("X", "Y", "Z"),
                    help="ECEF position of the (first) antenna, m (default: the header's)")
-    p.add_argument("--position-b", nargs=3, type=float, metavar=("X", "Y", "Z"),
+    g_da.add_argument("--position-b", nargs=3, type=float, metavar=("X", "Y", "Z"),
                    help="ECEF position of antenna B of a pair, m (default: the header's)")
-    p.add_argument("--baseline", choices=("auto", "estimate", "given"),
+    g_da.add_argument("--baseline", choices=("auto", "estimate", "given"),
                    help="dual-antenna baseline: auto uses the estimate from the double "
                    "differences when it moves antenna B by more than --baseline-tolerance-m and "
                    "3 standard errors; estimate always; given keeps the positions")
-    p.add_argument("--baseline-tolerance-m", type=float,
+    g_da.add_argument("--baseline-tolerance-m", type=float,
                    help="correction above which --baseline auto uses the estimate, m")
-    p.add_argument("--code-multipath", metavar="CODES",
+    g_code.add_argument("--code-multipath", metavar="CODES",
                    help="also estimate code multipath by carrier levelling and overbound it per "
                    "elevation bin: one pseudorange code (C1C: MP combination) or two (C1C,C5Q: "
                    "ionosphere-free); result.json code_multipath and a report section "
                    "(default: off)")
-    p.add_argument("--code-edges-deg", metavar="EDGES",
+    g_code.add_argument("--code-edges-deg", metavar="EDGES",
                    help="elevation bin edges of the code-multipath overbound, deg")
-    p.add_argument("--code-overbound", choices=("two_step", "cdf"),
+    g_code.add_argument("--code-overbound", choices=("two_step", "cdf"),
                    help="Gaussian overbound construction of the code multipath")
     # fmt: on
     add_output_options(p)
@@ -218,60 +224,67 @@ def add_day_options(p: argparse.ArgumentParser) -> None:
     ``--config``, the system and signals, cutoff, arcs, screening, filter,
     mapping, stationarity, spectra, bound, verdict and validation options.
     """
+    g_in = p.add_argument_group("configuration and signals")
+    g_cut = p.add_argument_group("cutoff, arcs and high-pass filter")
+    g_scr = p.add_argument_group("screening and elevation mapping")
+    g_win = p.add_argument_group("stationary windows")
+    g_bnd = p.add_argument_group("spectra and bound")
+    g_ver = p.add_argument_group("verdict and cutoff validation")
     # fmt: off
-    p.add_argument("--config", help="TOML configuration file (default: none)")
-    p.add_argument("--system", help="satellite system letter")
-    p.add_argument("--signals", help="dual-frequency phase pair, e.g. L1C,L2W or L1C,L5Q "
+    g_in.add_argument("--config", help="TOML configuration file (default: none)")
+    g_in.add_argument("--system", help="satellite system letter")
+    g_in.add_argument("--signals", help="dual-frequency phase pair, e.g. L1C,L2W or L1C,L5Q "
                    "(default: the system's usual pair, GPS L1C,L2W)")
-    p.add_argument("--cutoff-hz", type=float, help="high-pass cutoff frequency, Hz (default: "
+    g_cut.add_argument("--cutoff-hz", type=float, help="high-pass cutoff frequency, Hz (default: "
                    "none; the cutoff comes from --cutoff-source)")
-    p.add_argument("--cutoff-source", choices=("auto", "given", "map", "computed", "thesis"),
+    g_cut.add_argument("--cutoff-source", choices=("auto", "given", "map", "computed", "thesis"),
                    help="cutoff source (auto: --cutoff-hz if given, else the shipped world map)")
-    p.add_argument("--min-arc-min", type=float, help="minimum arc length, min")
-    p.add_argument("--elevation-mask-deg", type=float, help="elevation mask, deg")
-    p.add_argument("--roti-threshold", type=float,
+    g_cut.add_argument("--min-arc-min", type=float, help="minimum arc length, min")
+    g_cut.add_argument("--elevation-mask-deg", type=float, help="elevation mask, deg")
+    g_scr.add_argument("--roti-threshold", type=float,
                    help="screening: ROTI above this is ionosphere, TECU/min")
-    p.add_argument("--filter", choices=("butter", "cheby2", "fir"), help="high-pass design")
-    p.add_argument("--filter-order", type=float, help="IIR filter order, 1 to 20 (dimensionless)")
-    p.add_argument("--edge", choices=("trim", "pad"), help="filter edge handling")
-    p.add_argument("--mapping", help="elevation mapping: thesis, fit, or a,b,c (a, b "
+    g_cut.add_argument("--filter", choices=("butter", "cheby2", "fir"), help="high-pass design")
+    g_cut.add_argument("--filter-order", type=float,
+                       help="IIR filter order, 1 to 20 (dimensionless)")
+    g_cut.add_argument("--edge", choices=("trim", "pad"), help="filter edge handling")
+    g_scr.add_argument("--mapping", help="elevation mapping: thesis, fit, or a,b,c (a, b "
                    "dimensionless, c in deg) (default: fit, fitted to the data)")
-    p.add_argument("--stationarity", choices=("spectral", "thesis"),
+    g_win.add_argument("--stationarity", choices=("spectral", "thesis"),
                    help="stationarity test: spectral homogeneity of the window halves, valid "
                    "for correlated samples, or thesis (Levene then K-S)")
-    p.add_argument("--windows", choices=("disjoint", "slide"),
+    g_win.add_argument("--windows", choices=("disjoint", "slide"),
                    help="windows: disjoint tiles (needed by --rule pooled) or the thesis's "
                    "overlapping slide rule")
-    p.add_argument("--alpha", type=float, help="stationarity significance level (probability)")
-    p.add_argument("--p-slide", type=float, help="windowing slide coefficient (dimensionless)")
-    p.add_argument("--p-trim", type=float, help="windowing trim coefficient (dimensionless)")
-    p.add_argument("--min-window-s", type=float,
+    g_win.add_argument("--alpha", type=float, help="stationarity significance level (probability)")
+    g_win.add_argument("--p-slide", type=float, help="windowing slide coefficient (dimensionless)")
+    g_win.add_argument("--p-trim", type=float, help="windowing trim coefficient (dimensionless)")
+    g_win.add_argument("--min-window-s", type=float,
                    help="minimum window length, s; the spectral test needs at least 68 samples "
                    "(34 min at 30 s), a shorter value is an error")
-    p.add_argument("--estimator", choices=("multitaper", "welch", "blackman-tukey"),
+    g_bnd.add_argument("--estimator", choices=("multitaper", "welch", "blackman-tukey"),
                    help="PSD estimator")
-    p.add_argument("--rule", choices=("pooled", "envelope"),
+    g_bnd.add_argument("--rule", choices=("pooled", "envelope"),
                    help="bound pooled confidence limits of the windows' spectra or the thesis's "
                    "envelope of every window's PSD (use with --windows slide)")
-    p.add_argument("--confidence-level", type=float,
+    g_bnd.add_argument("--confidence-level", type=float,
                    help="family-wise confidence of the pooled bound (probability)")
-    p.add_argument("--coverage", type=float,
+    g_bnd.add_argument("--coverage", type=float,
                    help="pooled rule: fraction of differing windows covered (probability)")
-    p.add_argument("--objective", choices=("variance", "area"), help="tightness objective")
-    p.add_argument("--target", choices=("point", "upper"),
+    g_bnd.add_argument("--objective", choices=("variance", "area"), help="tightness objective")
+    g_bnd.add_argument("--target", choices=("point", "upper"),
                    help="envelope rule: bound the estimates or their confidence-interval tops")
-    p.add_argument("--level", type=float,
+    g_bnd.add_argument("--level", type=float,
                    help="envelope rule: confidence level for --target upper (probability)")
-    p.add_argument("--tau-max-s", type=float,
+    g_bnd.add_argument("--tau-max-s", type=float,
                    help="pooled rule: prior upper limit of the multipath time constant, s, used "
                    "below the lowest band where the data do not bound it")
-    p.add_argument("--low-frequency", choices=("prior", "refuse"),
+    g_ver.add_argument("--low-frequency", choices=("prior", "refuse"),
                    help="when the data do not bound the time constant: state the bound on the "
                    "prior --tau-max-s, or refuse (exit 3)")
-    p.add_argument("--geometry", action="append",
+    g_ver.add_argument("--geometry", action="append",
                    help="reflection geometry for the cutoff check, e.g. wall:d=25 (d, h in m; "
                    "repeatable)")
-    p.add_argument("--validation-threshold", type=float,
+    g_ver.add_argument("--validation-threshold", type=float,
                    help="largest fraction of reflector multipath power below f_c (fraction)")
     # fmt: on
 
