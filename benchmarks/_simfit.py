@@ -18,13 +18,14 @@ import sys
 from pathlib import Path
 from typing import Any
 
-__all__ = ["REPO", "fit_simulated", "fmt", "run_cli", "simulated_truth", "tail"]
+__all__ = ["REPO", "checkout_env", "fit_simulated", "fmt", "run_cli", "simulated_truth", "tail"]
 
 #: The checkout the benchmarks belong to.
 REPO = Path(__file__).resolve().parent.parent
 
 
-def _env() -> dict[str, str]:
+def checkout_env() -> dict[str, str]:
+    """Return the environment with this checkout's package first on ``PYTHONPATH``."""
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join(p for p in (str(REPO), env.get("PYTHONPATH")) if p)
     return env
@@ -32,7 +33,7 @@ def _env() -> dict[str, str]:
 
 def run_cli(args: list[str], cwd: Path) -> subprocess.CompletedProcess[str]:
     """Run ``python -m psdbound ARGS`` with this checkout's package; never raises on exit codes."""
-    return subprocess.run([sys.executable, "-m", "psdbound", *args], cwd=cwd, env=_env(),
+    return subprocess.run([sys.executable, "-m", "psdbound", *args], cwd=cwd, env=checkout_env(),
                           capture_output=True, text=True)  # fmt: skip
 
 

@@ -29,54 +29,59 @@ The airborne sigma curves, smoothing ratios and the Q-Q overbound of seeds
 
 from __future__ import annotations
 
-from psdbound.aviation.bias import (
-    BiasResponse,
-    bias_response,
-    fault_threshold,
-    kalman_gains,
-    prob_horizontal_exceeds,
-)
-from psdbound.aviation.budget import (
-    GAD_PARAMETERS,
-    K_FFMD,
-    K_MD,
-    PROCESSES,
-    BudgetTerms,
-    budget_report,
-    error_budget,
-    ground_sigma_pr_m,
-    iono_free_multiplier,
-    los_from_az_el,
-    obliquity_factor,
-    projection_matrix,
-    vpl,
-)
-from psdbound.aviation.code_samples import (
-    code_multipath_from_files,
-    describe_code_series,
-    overbound_code_series,
-)
-from psdbound.aviation.files import read_samples, write_overbound
-from psdbound.aviation.geometry import (
-    SEED004_START_GPS_S,
-    Sky,
-    VplSeries,
-    nominal_orbit,
-    sky_over,
-    vpl_series,
-    write_vpl_series,
-)
-from psdbound.aviation.options import CodeMultipathOptions
-from psdbound.aviation.overbound import (
-    DEFAULT_MIN_ABS_Z,
-    METHODS,
-    BinOverbound,
-    OverboundResult,
-    cdf_overbound_sigma,
-    overbound_by_elevation,
-    samples_in_full_bins,
-    two_step_overbound,
-)
+from typing import TYPE_CHECKING
+
+from psdbound.common.lazy import lazy_exports
+
+if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
+    from psdbound.aviation.bias import (
+        BiasResponse,
+        bias_response,
+        fault_threshold,
+        kalman_gains,
+        prob_horizontal_exceeds,
+    )
+    from psdbound.aviation.budget import (
+        GAD_PARAMETERS,
+        K_FFMD,
+        K_MD,
+        PROCESSES,
+        BudgetTerms,
+        budget_report,
+        error_budget,
+        ground_sigma_pr_m,
+        iono_free_multiplier,
+        los_from_az_el,
+        obliquity_factor,
+        projection_matrix,
+        vpl,
+    )
+    from psdbound.aviation.code_samples import (
+        code_multipath_from_files,
+        describe_code_series,
+        overbound_code_series,
+    )
+    from psdbound.aviation.files import read_samples, write_overbound
+    from psdbound.aviation.geometry import (
+        SEED004_START_GPS_S,
+        Sky,
+        VplSeries,
+        nominal_orbit,
+        sky_over,
+        vpl_series,
+        write_vpl_series,
+    )
+    from psdbound.aviation.options import CodeMultipathOptions
+    from psdbound.aviation.overbound import (
+        DEFAULT_MIN_ABS_Z,
+        METHODS,
+        BinOverbound,
+        OverboundResult,
+        cdf_overbound_sigma,
+        overbound_by_elevation,
+        samples_in_full_bins,
+        two_step_overbound,
+    )
 
 __all__ = [
     "DEFAULT_MIN_ABS_Z",
@@ -119,3 +124,48 @@ __all__ = [
     "write_vpl_series",
     "write_overbound",
 ]
+
+#: Where each public name lives (imported on first use: importing the package stays cheap).
+_EXPORTS = {
+    "BiasResponse": ("psdbound.aviation.bias", "BiasResponse"),
+    "bias_response": ("psdbound.aviation.bias", "bias_response"),
+    "fault_threshold": ("psdbound.aviation.bias", "fault_threshold"),
+    "kalman_gains": ("psdbound.aviation.bias", "kalman_gains"),
+    "prob_horizontal_exceeds": ("psdbound.aviation.bias", "prob_horizontal_exceeds"),
+    "GAD_PARAMETERS": ("psdbound.aviation.budget", "GAD_PARAMETERS"),
+    "K_FFMD": ("psdbound.aviation.budget", "K_FFMD"),
+    "K_MD": ("psdbound.aviation.budget", "K_MD"),
+    "PROCESSES": ("psdbound.aviation.budget", "PROCESSES"),
+    "BudgetTerms": ("psdbound.aviation.budget", "BudgetTerms"),
+    "budget_report": ("psdbound.aviation.budget", "budget_report"),
+    "error_budget": ("psdbound.aviation.budget", "error_budget"),
+    "ground_sigma_pr_m": ("psdbound.aviation.budget", "ground_sigma_pr_m"),
+    "iono_free_multiplier": ("psdbound.aviation.budget", "iono_free_multiplier"),
+    "los_from_az_el": ("psdbound.aviation.budget", "los_from_az_el"),
+    "obliquity_factor": ("psdbound.aviation.budget", "obliquity_factor"),
+    "projection_matrix": ("psdbound.aviation.budget", "projection_matrix"),
+    "vpl": ("psdbound.aviation.budget", "vpl"),
+    "code_multipath_from_files": ("psdbound.aviation.code_samples", "code_multipath_from_files"),
+    "describe_code_series": ("psdbound.aviation.code_samples", "describe_code_series"),
+    "overbound_code_series": ("psdbound.aviation.code_samples", "overbound_code_series"),
+    "read_samples": ("psdbound.aviation.files", "read_samples"),
+    "write_overbound": ("psdbound.aviation.files", "write_overbound"),
+    "SEED004_START_GPS_S": ("psdbound.aviation.geometry", "SEED004_START_GPS_S"),
+    "Sky": ("psdbound.aviation.geometry", "Sky"),
+    "VplSeries": ("psdbound.aviation.geometry", "VplSeries"),
+    "nominal_orbit": ("psdbound.aviation.geometry", "nominal_orbit"),
+    "sky_over": ("psdbound.aviation.geometry", "sky_over"),
+    "vpl_series": ("psdbound.aviation.geometry", "vpl_series"),
+    "write_vpl_series": ("psdbound.aviation.geometry", "write_vpl_series"),
+    "CodeMultipathOptions": ("psdbound.aviation.options", "CodeMultipathOptions"),
+    "DEFAULT_MIN_ABS_Z": ("psdbound.aviation.overbound", "DEFAULT_MIN_ABS_Z"),
+    "METHODS": ("psdbound.aviation.overbound", "METHODS"),
+    "BinOverbound": ("psdbound.aviation.overbound", "BinOverbound"),
+    "OverboundResult": ("psdbound.aviation.overbound", "OverboundResult"),
+    "cdf_overbound_sigma": ("psdbound.aviation.overbound", "cdf_overbound_sigma"),
+    "overbound_by_elevation": ("psdbound.aviation.overbound", "overbound_by_elevation"),
+    "samples_in_full_bins": ("psdbound.aviation.overbound", "samples_in_full_bins"),
+    "two_step_overbound": ("psdbound.aviation.overbound", "two_step_overbound"),
+}
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from psdbound.aviation.overbound import DEFAULT_EDGES_DEG, METHODS
 from psdbound.common.options import (
     Choice,
     Number,
@@ -14,6 +13,11 @@ from psdbound.common.options import (
     check_fields,
     option,
 )
+
+#: Gaussian overbound constructions (:mod:`psdbound.aviation.overbound`).
+METHODS = ("two_step", "cdf")
+#: Default elevation bin edges of the overbounds, deg.
+DEFAULT_EDGES_DEG = (5.0, 15.0, 30.0, 45.0, 60.0, 90.0)
 
 __all__ = ["CodeMultipathOptions"]
 

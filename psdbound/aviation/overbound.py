@@ -52,6 +52,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.stats import norm
 
+from psdbound.aviation.options import DEFAULT_EDGES_DEG, METHODS
 from psdbound.common.notices import warn
 from psdbound.errors import InputError
 
@@ -66,8 +67,6 @@ __all__ = [
     "two_step_overbound",
 ]
 
-METHODS = ("two_step", "cdf")
-DEFAULT_EDGES_DEG = (5.0, 15.0, 30.0, 45.0, 60.0, 90.0)
 DEFAULT_MIN_ABS_Z = 0.25
 
 

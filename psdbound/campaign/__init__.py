@@ -12,11 +12,16 @@
 
 from __future__ import annotations
 
-from psdbound.campaign.heldout import held_out
-from psdbound.campaign.navmatch import match_nav, orbit_span
-from psdbound.campaign.pool import pool_station
-from psdbound.campaign.report import write_campaign
-from psdbound.campaign.run import CampaignResult, StationDay, plan_campaign, run_campaign
+from typing import TYPE_CHECKING
+
+from psdbound.common.lazy import lazy_exports
+
+if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
+    from psdbound.campaign.heldout import held_out
+    from psdbound.campaign.navmatch import match_nav, orbit_span
+    from psdbound.campaign.pool import pool_station
+    from psdbound.campaign.report import write_campaign
+    from psdbound.campaign.run import CampaignResult, StationDay, plan_campaign, run_campaign
 
 __all__ = [
     "CampaignResult",
@@ -29,3 +34,18 @@ __all__ = [
     "run_campaign",
     "write_campaign",
 ]
+
+#: Where each public name lives (imported on first use: importing the package stays cheap).
+_EXPORTS = {
+    "held_out": ("psdbound.campaign.heldout", "held_out"),
+    "match_nav": ("psdbound.campaign.navmatch", "match_nav"),
+    "orbit_span": ("psdbound.campaign.navmatch", "orbit_span"),
+    "pool_station": ("psdbound.campaign.pool", "pool_station"),
+    "write_campaign": ("psdbound.campaign.report", "write_campaign"),
+    "CampaignResult": ("psdbound.campaign.run", "CampaignResult"),
+    "StationDay": ("psdbound.campaign.run", "StationDay"),
+    "plan_campaign": ("psdbound.campaign.run", "plan_campaign"),
+    "run_campaign": ("psdbound.campaign.run", "run_campaign"),
+}
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

@@ -23,16 +23,21 @@ Example::
 
 from __future__ import annotations
 
-from psdbound.compute.cache import (
-    CACHE_ENV,
-    DiskCache,
-    ResultStore,
-    TaskCache,
-    cache_key,
-    default_cache_dir,
-)
-from psdbound.compute.cluster import START_METHODS, dask_client, default_start_method
-from psdbound.compute.runner import TaskRun, run_tasks
+from typing import TYPE_CHECKING
+
+from psdbound.common.lazy import lazy_exports
+
+if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
+    from psdbound.compute.cache import (
+        CACHE_ENV,
+        DiskCache,
+        ResultStore,
+        TaskCache,
+        cache_key,
+        default_cache_dir,
+    )
+    from psdbound.compute.cluster import START_METHODS, dask_client, default_start_method
+    from psdbound.compute.runner import TaskRun, run_tasks
 
 __all__ = [
     "CACHE_ENV",
@@ -47,3 +52,20 @@ __all__ = [
     "default_start_method",
     "run_tasks",
 ]
+
+#: Where each public name lives (imported on first use: importing the package stays cheap).
+_EXPORTS = {
+    "CACHE_ENV": ("psdbound.compute.cache", "CACHE_ENV"),
+    "DiskCache": ("psdbound.compute.cache", "DiskCache"),
+    "ResultStore": ("psdbound.compute.cache", "ResultStore"),
+    "TaskCache": ("psdbound.compute.cache", "TaskCache"),
+    "cache_key": ("psdbound.compute.cache", "cache_key"),
+    "default_cache_dir": ("psdbound.compute.cache", "default_cache_dir"),
+    "START_METHODS": ("psdbound.compute.cluster", "START_METHODS"),
+    "dask_client": ("psdbound.compute.cluster", "dask_client"),
+    "default_start_method": ("psdbound.compute.cluster", "default_start_method"),
+    "TaskRun": ("psdbound.compute.runner", "TaskRun"),
+    "run_tasks": ("psdbound.compute.runner", "run_tasks"),
+}
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

@@ -14,15 +14,20 @@ Public surface:
 
 from __future__ import annotations
 
-from psdbound.io.arcs import DEFAULT_SIGNALS, Arc, ArcSet, find_arcs, require_arcs
-from psdbound.io.coverage import OrbitCoverage, SystemCoverage, orbit_coverage
-from psdbound.io.geometry import azimuth_elevation, ecef_to_geodetic, satellite_azel
-from psdbound.io.glonass import GlonassEphemerides
-from psdbound.io.nav import Navigation, read_nav
-from psdbound.io.obs import Observations, ObsHeader, SystemBlock, read_obs
-from psdbound.io.options import ArcOptions
-from psdbound.io.orbits import read_orbit
-from psdbound.io.sp3 import PreciseOrbit, read_sp3
+from typing import TYPE_CHECKING
+
+from psdbound.common.lazy import lazy_exports
+
+if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
+    from psdbound.io.arcs import DEFAULT_SIGNALS, Arc, ArcSet, find_arcs, require_arcs
+    from psdbound.io.coverage import OrbitCoverage, SystemCoverage, orbit_coverage
+    from psdbound.io.geometry import azimuth_elevation, ecef_to_geodetic, satellite_azel
+    from psdbound.io.glonass import GlonassEphemerides
+    from psdbound.io.nav import Navigation, read_nav
+    from psdbound.io.obs import Observations, ObsHeader, SystemBlock, read_obs
+    from psdbound.io.options import ArcOptions
+    from psdbound.io.orbits import read_orbit
+    from psdbound.io.sp3 import PreciseOrbit, read_sp3
 
 __all__ = [
     "ArcOptions",
@@ -48,3 +53,31 @@ __all__ = [
     "require_arcs",
     "satellite_azel",
 ]
+
+#: Where each public name lives (imported on first use: importing the package stays cheap).
+_EXPORTS = {
+    "DEFAULT_SIGNALS": ("psdbound.io.arcs", "DEFAULT_SIGNALS"),
+    "Arc": ("psdbound.io.arcs", "Arc"),
+    "ArcSet": ("psdbound.io.arcs", "ArcSet"),
+    "find_arcs": ("psdbound.io.arcs", "find_arcs"),
+    "require_arcs": ("psdbound.io.arcs", "require_arcs"),
+    "OrbitCoverage": ("psdbound.io.coverage", "OrbitCoverage"),
+    "SystemCoverage": ("psdbound.io.coverage", "SystemCoverage"),
+    "orbit_coverage": ("psdbound.io.coverage", "orbit_coverage"),
+    "azimuth_elevation": ("psdbound.io.geometry", "azimuth_elevation"),
+    "ecef_to_geodetic": ("psdbound.io.geometry", "ecef_to_geodetic"),
+    "satellite_azel": ("psdbound.io.geometry", "satellite_azel"),
+    "GlonassEphemerides": ("psdbound.io.glonass", "GlonassEphemerides"),
+    "Navigation": ("psdbound.io.nav", "Navigation"),
+    "read_nav": ("psdbound.io.nav", "read_nav"),
+    "Observations": ("psdbound.io.obs", "Observations"),
+    "ObsHeader": ("psdbound.io.obs", "ObsHeader"),
+    "SystemBlock": ("psdbound.io.obs", "SystemBlock"),
+    "read_obs": ("psdbound.io.obs", "read_obs"),
+    "ArcOptions": ("psdbound.io.options", "ArcOptions"),
+    "read_orbit": ("psdbound.io.orbits", "read_orbit"),
+    "PreciseOrbit": ("psdbound.io.sp3", "PreciseOrbit"),
+    "read_sp3": ("psdbound.io.sp3", "read_sp3"),
+}
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

@@ -50,59 +50,69 @@ Public surface:
 
 from __future__ import annotations
 
-from psdbound.ionosphere.almanac import Almanac, almanac_from_navigation, read_yuma, write_yuma
-from psdbound.ionosphere.batch import default_cache_dir, map_cutoffs, select_days, station_cutoffs
-from psdbound.ionosphere.constellation import (
-    SIDEREAL_DAY_S,
-    NominalConstellation,
-    nominal_constellation,
-)
-from psdbound.ionosphere.cutoff import (
-    CRITERIA,
-    SeriesCutoff,
-    absolute_cutoff,
-    one_day_series,
-    relative_cutoff,
-    series_cutoff,
-)
-from psdbound.ionosphere.envelope import Envelope, fit_envelope, local_maxima
-from psdbound.ionosphere.iri import DEFAULT_F107_SFU
-from psdbound.ionosphere.outputs import write_cutoff_outputs
-from psdbound.ionosphere.policy import (
-    CUTOFF_SOURCES,
-    THESIS_CUTOFF_HZ,
-    CutoffChoice,
-    CutoffOptions,
-    choose_cutoff,
-    cutoff_computed,
-    cutoff_from_map,
-)
-from psdbound.ionosphere.residual import (
-    ResidualCutoff,
-    residual_cutoff,
-    residual_cutoffs,
-    residual_rms,
-    residual_threshold_m,
-)
-from psdbound.ionosphere.results import CutoffMap, StationCutoffs
-from psdbound.ionosphere.settings import SETTING_OPTIONS, CutoffSettings
-from psdbound.ionosphere.slant import FREQUENCIES_HZ, SlantDelay, simulate_slant_delay
-from psdbound.ionosphere.stations import (
-    CHICAGO,
-    MAP_STATIONS,
-    THESIS_CHICAGO_2020_HZ,
-    Station,
-    nearest_station,
-    validate_station,
-)
-from psdbound.ionosphere.workflow import CutoffOutcome, run_cutoff, run_world_map
-from psdbound.ionosphere.worldmap import (
-    MapLayer,
-    compute_world_map,
-    interpolate_map,
-    load_map,
-)
-from psdbound.periodogram import frequency_grid, lomb_scargle, to_one_sided_density
+from typing import TYPE_CHECKING
+
+from psdbound.common.lazy import lazy_exports
+
+if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
+    from psdbound.ionosphere.almanac import Almanac, almanac_from_navigation, read_yuma, write_yuma
+    from psdbound.ionosphere.batch import (
+        default_cache_dir,
+        map_cutoffs,
+        select_days,
+        station_cutoffs,
+    )
+    from psdbound.ionosphere.constellation import (
+        SIDEREAL_DAY_S,
+        NominalConstellation,
+        nominal_constellation,
+    )
+    from psdbound.ionosphere.cutoff import (
+        CRITERIA,
+        SeriesCutoff,
+        absolute_cutoff,
+        one_day_series,
+        relative_cutoff,
+        series_cutoff,
+    )
+    from psdbound.ionosphere.envelope import Envelope, fit_envelope, local_maxima
+    from psdbound.ionosphere.iri import DEFAULT_F107_SFU
+    from psdbound.ionosphere.outputs import write_cutoff_outputs
+    from psdbound.ionosphere.policy import (
+        CUTOFF_SOURCES,
+        THESIS_CUTOFF_HZ,
+        CutoffChoice,
+        CutoffOptions,
+        choose_cutoff,
+        cutoff_computed,
+        cutoff_from_map,
+    )
+    from psdbound.ionosphere.residual import (
+        ResidualCutoff,
+        residual_cutoff,
+        residual_cutoffs,
+        residual_rms,
+        residual_threshold_m,
+    )
+    from psdbound.ionosphere.results import CutoffMap, StationCutoffs
+    from psdbound.ionosphere.settings import SETTING_OPTIONS, CutoffSettings
+    from psdbound.ionosphere.slant import FREQUENCIES_HZ, SlantDelay, simulate_slant_delay
+    from psdbound.ionosphere.stations import (
+        CHICAGO,
+        MAP_STATIONS,
+        THESIS_CHICAGO_2020_HZ,
+        Station,
+        nearest_station,
+        validate_station,
+    )
+    from psdbound.ionosphere.workflow import CutoffOutcome, run_cutoff, run_world_map
+    from psdbound.ionosphere.worldmap import (
+        MapLayer,
+        compute_world_map,
+        interpolate_map,
+        load_map,
+    )
+    from psdbound.periodogram import frequency_grid, lomb_scargle, to_one_sided_density
 
 __all__ = [
     "CHICAGO",
@@ -163,3 +173,66 @@ __all__ = [
     "write_cutoff_outputs",
     "write_yuma",
 ]
+
+#: Where each public name lives (imported on first use: importing the package stays cheap).
+_EXPORTS = {
+    "Almanac": ("psdbound.ionosphere.almanac", "Almanac"),
+    "almanac_from_navigation": ("psdbound.ionosphere.almanac", "almanac_from_navigation"),
+    "read_yuma": ("psdbound.ionosphere.almanac", "read_yuma"),
+    "write_yuma": ("psdbound.ionosphere.almanac", "write_yuma"),
+    "default_cache_dir": ("psdbound.ionosphere.batch", "default_cache_dir"),
+    "map_cutoffs": ("psdbound.ionosphere.batch", "map_cutoffs"),
+    "select_days": ("psdbound.ionosphere.batch", "select_days"),
+    "station_cutoffs": ("psdbound.ionosphere.batch", "station_cutoffs"),
+    "SIDEREAL_DAY_S": ("psdbound.ionosphere.constellation", "SIDEREAL_DAY_S"),
+    "NominalConstellation": ("psdbound.ionosphere.constellation", "NominalConstellation"),
+    "nominal_constellation": ("psdbound.ionosphere.constellation", "nominal_constellation"),
+    "CRITERIA": ("psdbound.ionosphere.cutoff", "CRITERIA"),
+    "SeriesCutoff": ("psdbound.ionosphere.cutoff", "SeriesCutoff"),
+    "absolute_cutoff": ("psdbound.ionosphere.cutoff", "absolute_cutoff"),
+    "one_day_series": ("psdbound.ionosphere.cutoff", "one_day_series"),
+    "relative_cutoff": ("psdbound.ionosphere.cutoff", "relative_cutoff"),
+    "series_cutoff": ("psdbound.ionosphere.cutoff", "series_cutoff"),
+    "Envelope": ("psdbound.ionosphere.envelope", "Envelope"),
+    "fit_envelope": ("psdbound.ionosphere.envelope", "fit_envelope"),
+    "local_maxima": ("psdbound.ionosphere.envelope", "local_maxima"),
+    "DEFAULT_F107_SFU": ("psdbound.ionosphere.iri", "DEFAULT_F107_SFU"),
+    "write_cutoff_outputs": ("psdbound.ionosphere.outputs", "write_cutoff_outputs"),
+    "CUTOFF_SOURCES": ("psdbound.ionosphere.policy", "CUTOFF_SOURCES"),
+    "THESIS_CUTOFF_HZ": ("psdbound.ionosphere.policy", "THESIS_CUTOFF_HZ"),
+    "CutoffChoice": ("psdbound.ionosphere.policy", "CutoffChoice"),
+    "CutoffOptions": ("psdbound.ionosphere.policy", "CutoffOptions"),
+    "choose_cutoff": ("psdbound.ionosphere.policy", "choose_cutoff"),
+    "cutoff_computed": ("psdbound.ionosphere.policy", "cutoff_computed"),
+    "cutoff_from_map": ("psdbound.ionosphere.policy", "cutoff_from_map"),
+    "ResidualCutoff": ("psdbound.ionosphere.residual", "ResidualCutoff"),
+    "residual_cutoff": ("psdbound.ionosphere.residual", "residual_cutoff"),
+    "residual_cutoffs": ("psdbound.ionosphere.residual", "residual_cutoffs"),
+    "residual_rms": ("psdbound.ionosphere.residual", "residual_rms"),
+    "residual_threshold_m": ("psdbound.ionosphere.residual", "residual_threshold_m"),
+    "CutoffMap": ("psdbound.ionosphere.results", "CutoffMap"),
+    "StationCutoffs": ("psdbound.ionosphere.results", "StationCutoffs"),
+    "SETTING_OPTIONS": ("psdbound.ionosphere.settings", "SETTING_OPTIONS"),
+    "CutoffSettings": ("psdbound.ionosphere.settings", "CutoffSettings"),
+    "FREQUENCIES_HZ": ("psdbound.ionosphere.slant", "FREQUENCIES_HZ"),
+    "SlantDelay": ("psdbound.ionosphere.slant", "SlantDelay"),
+    "simulate_slant_delay": ("psdbound.ionosphere.slant", "simulate_slant_delay"),
+    "CHICAGO": ("psdbound.ionosphere.stations", "CHICAGO"),
+    "MAP_STATIONS": ("psdbound.ionosphere.stations", "MAP_STATIONS"),
+    "THESIS_CHICAGO_2020_HZ": ("psdbound.ionosphere.stations", "THESIS_CHICAGO_2020_HZ"),
+    "Station": ("psdbound.ionosphere.stations", "Station"),
+    "nearest_station": ("psdbound.ionosphere.stations", "nearest_station"),
+    "validate_station": ("psdbound.ionosphere.stations", "validate_station"),
+    "CutoffOutcome": ("psdbound.ionosphere.workflow", "CutoffOutcome"),
+    "run_cutoff": ("psdbound.ionosphere.workflow", "run_cutoff"),
+    "run_world_map": ("psdbound.ionosphere.workflow", "run_world_map"),
+    "MapLayer": ("psdbound.ionosphere.worldmap", "MapLayer"),
+    "compute_world_map": ("psdbound.ionosphere.worldmap", "compute_world_map"),
+    "interpolate_map": ("psdbound.ionosphere.worldmap", "interpolate_map"),
+    "load_map": ("psdbound.ionosphere.worldmap", "load_map"),
+    "frequency_grid": ("psdbound.periodogram", "frequency_grid"),
+    "lomb_scargle": ("psdbound.periodogram", "lomb_scargle"),
+    "to_one_sided_density": ("psdbound.periodogram", "to_one_sided_density"),
+}
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

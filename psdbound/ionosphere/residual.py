@@ -50,8 +50,6 @@ from psdbound.errors import InputError
 from psdbound.isolation import HighPass
 
 __all__ = [
-    "DEFAULT_MARGIN_DB",
-    "DEFAULT_MP_SIGMA_M",
     "MIN_KEPT_S",
     "F_MIN_HZ",
     "ResidualCutoff",
@@ -63,10 +61,6 @@ __all__ = [
     "split_arcs",
 ]
 
-#: Reference multipath sigma (per carrier, the bound's units), m.
-DEFAULT_MP_SIGMA_M = 1e-3
-#: Residual ionosphere below the reference multipath, dB (amplitude factor 100).
-DEFAULT_MARGIN_DB = 40.0
 #: Arcs shorter than this after edge trimming are dropped (the DF isolation's default), s.
 MIN_KEPT_S = 600.0
 #: Lowest cutoff searched, Hz: the fit's trimming then removes 2.8 h at each arc end.

@@ -39,9 +39,8 @@ from psdbound.ionosphere.cutoff import (
     REFERENCES,
 )
 from psdbound.ionosphere.iri import ALT_RESOLUTIONS, DEFAULT_F107_SFU, IRI_MODELS
+from psdbound.ionosphere.names import DEFAULT_MARGIN_DB, DEFAULT_MP_SIGMA_M
 from psdbound.ionosphere.residual import (
-    DEFAULT_MARGIN_DB,
-    DEFAULT_MP_SIGMA_M,
     F_MIN_HZ,
     MIN_KEPT_S,
     residual_threshold_m,

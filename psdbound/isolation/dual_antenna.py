@@ -74,6 +74,7 @@ from psdbound.isolation._dd_support import (
     resolve_pair,
 )
 from psdbound.isolation.baseline import estimate_baseline_correction
+from psdbound.isolation.names import BASELINE_MODES, BASELINE_TOLERANCE_M
 from psdbound.isolation.series import MultipathSeries
 
 __all__ = ["isolate_dual_antenna"]
@@ -84,10 +85,6 @@ DA_SCALING = 0.5
 #: fraction of the wavelength is an undetected cycle slip: the arc is split.
 DD_JUMP_FRACTION = 0.4
 MIN_ANTENNA_SEPARATION_M = 1e-3
-#: Baseline modes: estimate and use above the tolerance, always use, keep given.
-BASELINE_MODES = ("auto", "estimate", "given")
-#: Default size above which the estimated correction replaces the given position, m.
-BASELINE_TOLERANCE_M = 0.005
 #: With ``baseline="auto"`` the correction must also exceed this many sigmas.
 SIGNIFICANCE = 3.0
 _NOTE = (

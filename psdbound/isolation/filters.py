@@ -27,7 +27,6 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy import signal
 
 from psdbound.common.options import Choice, Number, check_fields, option
 from psdbound.errors import InputError
@@ -104,6 +103,8 @@ class HighPass:
             Samples to keep (all True for ``edge="pad"``; False on the
             trimmed ends for ``edge="trim"``).
         """
+        from scipy import signal  # deferred: the options class is imported by every --help
+
         self.check_cutoff(cutoff_hz, interval_s)
         n = x.size
         pad = int(min(n - 1, np.ceil(3.0 / (cutoff_hz * interval_s))))
@@ -121,6 +122,8 @@ class HighPass:
 
     def sos(self, interval_s: float, cutoff_hz: float) -> NDArray[np.float64]:
         """Second-order sections of the single-pass IIR design."""
+        from scipy import signal  # deferred: the options class is imported by every --help
+
         fs = 1.0 / interval_s
         if self.kind == "butter":
             return signal.butter(self.order, cutoff_hz, btype="highpass", fs=fs, output="sos")
@@ -143,6 +146,8 @@ class HighPass:
         return int(np.ceil(n)) | 1
 
     def _fir(self, x: NDArray[np.float64], interval_s: float, cutoff_hz: float, pad: int):
+        from scipy import signal  # deferred: the options class is imported by every --help
+
         fs = 1.0 / interval_s
         numtaps = self._numtaps(interval_s, cutoff_hz)
         taps = signal.firwin(numtaps, cutoff_hz, pass_zero=False, fs=fs, window="hamming")
@@ -154,6 +159,8 @@ class HighPass:
 
     def response(self, f_hz: NDArray[np.float64], interval_s: float, cutoff_hz: float):
         """Zero-phase amplitude response (applied forward-backward for IIR) at ``f_hz``."""
+        from scipy import signal  # deferred: the options class is imported by every --help
+
         self.check_cutoff(cutoff_hz, interval_s)
         fs = 1.0 / interval_s
         if self.kind == "fir":

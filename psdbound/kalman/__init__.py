@@ -36,44 +36,49 @@ export), :mod:`~psdbound.kalman.augment`, :mod:`~psdbound.kalman.covariance`
 
 from __future__ import annotations
 
-from psdbound.kalman.analysis import CovarianceAnalysis
-from psdbound.kalman.augment import AugmentedModel, augment_gm_states
-from psdbound.kalman.aviation import (
-    F_L1_HZ,
-    F_L5_HZ,
-    alpha_for_inflation,
-    alpha_from_tau,
-    gaussian_overbound_sigma,
-    hatch_filter_variance,
-    iono_free_factor,
-    qq_ratio,
-    running_mean_variance,
-    sigma_air_m,
-    sigma_multipath_airborne_m,
-    sigma_noise_airborne_m,
-    smoothing_sigma_factor,
-    smoothing_time_ratio,
-    smoothing_variance_factor,
-)
-from psdbound.kalman.bound import WHITE_NOISE_MODES, GaussMarkovBound, GMStateSpace
-from psdbound.kalman.covariance import analyze_covariance
-from psdbound.kalman.error_model import Component, ErrorModel, ErrorStateSpace
-from psdbound.kalman.kf_araim import (
-    PositionCovariance,
-    monte_carlo_position_covariance,
-    predict_position_covariance,
-    pvt_model,
-)
-from psdbound.kalman.process import ErrorProcess
-from psdbound.kalman.truth import ErrorSequences, SampledPSD
-from psdbound.kalman.uncertain import (
-    DesignCheck,
-    GaussMarkovSet,
-    UncertainGMBound,
-    UncertainGMStateSpace,
-    minimum_initial_variance_m2,
-    verify_design,
-)
+from typing import TYPE_CHECKING
+
+from psdbound.common.lazy import lazy_exports
+
+if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
+    from psdbound.kalman.analysis import CovarianceAnalysis
+    from psdbound.kalman.augment import AugmentedModel, augment_gm_states
+    from psdbound.kalman.aviation import (
+        F_L1_HZ,
+        F_L5_HZ,
+        alpha_for_inflation,
+        alpha_from_tau,
+        gaussian_overbound_sigma,
+        hatch_filter_variance,
+        iono_free_factor,
+        qq_ratio,
+        running_mean_variance,
+        sigma_air_m,
+        sigma_multipath_airborne_m,
+        sigma_noise_airborne_m,
+        smoothing_sigma_factor,
+        smoothing_time_ratio,
+        smoothing_variance_factor,
+    )
+    from psdbound.kalman.bound import WHITE_NOISE_MODES, GaussMarkovBound, GMStateSpace
+    from psdbound.kalman.covariance import analyze_covariance
+    from psdbound.kalman.error_model import Component, ErrorModel, ErrorStateSpace
+    from psdbound.kalman.kf_araim import (
+        PositionCovariance,
+        monte_carlo_position_covariance,
+        predict_position_covariance,
+        pvt_model,
+    )
+    from psdbound.kalman.process import ErrorProcess
+    from psdbound.kalman.truth import ErrorSequences, SampledPSD
+    from psdbound.kalman.uncertain import (
+        DesignCheck,
+        GaussMarkovSet,
+        UncertainGMBound,
+        UncertainGMStateSpace,
+        minimum_initial_variance_m2,
+        verify_design,
+    )
 
 __all__ = [
     "F_L1_HZ",
@@ -115,3 +120,48 @@ __all__ = [
     "smoothing_variance_factor",
     "verify_design",
 ]
+
+#: Where each public name lives (imported on first use: importing the package stays cheap).
+_EXPORTS = {
+    "CovarianceAnalysis": ("psdbound.kalman.analysis", "CovarianceAnalysis"),
+    "AugmentedModel": ("psdbound.kalman.augment", "AugmentedModel"),
+    "augment_gm_states": ("psdbound.kalman.augment", "augment_gm_states"),
+    "F_L1_HZ": ("psdbound.kalman.aviation", "F_L1_HZ"),
+    "F_L5_HZ": ("psdbound.kalman.aviation", "F_L5_HZ"),
+    "alpha_for_inflation": ("psdbound.kalman.aviation", "alpha_for_inflation"),
+    "alpha_from_tau": ("psdbound.kalman.aviation", "alpha_from_tau"),
+    "gaussian_overbound_sigma": ("psdbound.kalman.aviation", "gaussian_overbound_sigma"),
+    "hatch_filter_variance": ("psdbound.kalman.aviation", "hatch_filter_variance"),
+    "iono_free_factor": ("psdbound.kalman.aviation", "iono_free_factor"),
+    "qq_ratio": ("psdbound.kalman.aviation", "qq_ratio"),
+    "running_mean_variance": ("psdbound.kalman.aviation", "running_mean_variance"),
+    "sigma_air_m": ("psdbound.kalman.aviation", "sigma_air_m"),
+    "sigma_multipath_airborne_m": ("psdbound.kalman.aviation", "sigma_multipath_airborne_m"),
+    "sigma_noise_airborne_m": ("psdbound.kalman.aviation", "sigma_noise_airborne_m"),
+    "smoothing_sigma_factor": ("psdbound.kalman.aviation", "smoothing_sigma_factor"),
+    "smoothing_time_ratio": ("psdbound.kalman.aviation", "smoothing_time_ratio"),
+    "smoothing_variance_factor": ("psdbound.kalman.aviation", "smoothing_variance_factor"),
+    "WHITE_NOISE_MODES": ("psdbound.kalman.bound", "WHITE_NOISE_MODES"),
+    "GaussMarkovBound": ("psdbound.kalman.bound", "GaussMarkovBound"),
+    "GMStateSpace": ("psdbound.kalman.bound", "GMStateSpace"),
+    "analyze_covariance": ("psdbound.kalman.covariance", "analyze_covariance"),
+    "Component": ("psdbound.kalman.error_model", "Component"),
+    "ErrorModel": ("psdbound.kalman.error_model", "ErrorModel"),
+    "ErrorStateSpace": ("psdbound.kalman.error_model", "ErrorStateSpace"),
+    "PositionCovariance": ("psdbound.kalman.kf_araim", "PositionCovariance"),
+    "monte_carlo_position_covariance": (
+        "psdbound.kalman.kf_araim", "monte_carlo_position_covariance"),
+    "predict_position_covariance": ("psdbound.kalman.kf_araim", "predict_position_covariance"),
+    "pvt_model": ("psdbound.kalman.kf_araim", "pvt_model"),
+    "ErrorProcess": ("psdbound.kalman.process", "ErrorProcess"),
+    "ErrorSequences": ("psdbound.kalman.truth", "ErrorSequences"),
+    "SampledPSD": ("psdbound.kalman.truth", "SampledPSD"),
+    "DesignCheck": ("psdbound.kalman.uncertain", "DesignCheck"),
+    "GaussMarkovSet": ("psdbound.kalman.uncertain", "GaussMarkovSet"),
+    "UncertainGMBound": ("psdbound.kalman.uncertain", "UncertainGMBound"),
+    "UncertainGMStateSpace": ("psdbound.kalman.uncertain", "UncertainGMStateSpace"),
+    "minimum_initial_variance_m2": ("psdbound.kalman.uncertain", "minimum_initial_variance_m2"),
+    "verify_design": ("psdbound.kalman.uncertain", "verify_design"),
+}
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

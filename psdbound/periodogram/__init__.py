@@ -19,15 +19,20 @@ The PSD *estimators* of the bound (Welch, multitaper, Blackman-Tukey) are in
 
 from __future__ import annotations
 
-from psdbound.periodogram._ls_astropy import replicate_series
-from psdbound.periodogram.lombscargle import (
-    LS_METHODS,
-    SIDEREAL_DAY_S,
-    frequency_grid,
-    lomb_scargle,
-    to_one_sided_density,
-)
-from psdbound.periodogram.tapered import hann_taper, tapered_lomb_scargle, tapered_periodogram
+from typing import TYPE_CHECKING
+
+from psdbound.common.lazy import lazy_exports
+
+if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
+    from psdbound.periodogram._ls_astropy import replicate_series
+    from psdbound.periodogram.lombscargle import (
+        LS_METHODS,
+        SIDEREAL_DAY_S,
+        frequency_grid,
+        lomb_scargle,
+        to_one_sided_density,
+    )
+    from psdbound.periodogram.tapered import hann_taper, tapered_lomb_scargle, tapered_periodogram
 
 __all__ = [
     "LS_METHODS",
@@ -40,3 +45,18 @@ __all__ = [
     "tapered_periodogram",
     "to_one_sided_density",
 ]
+
+#: Where each public name lives (imported on first use: importing the package stays cheap).
+_EXPORTS = {
+    "replicate_series": ("psdbound.periodogram._ls_astropy", "replicate_series"),
+    "LS_METHODS": ("psdbound.periodogram.lombscargle", "LS_METHODS"),
+    "SIDEREAL_DAY_S": ("psdbound.periodogram.lombscargle", "SIDEREAL_DAY_S"),
+    "frequency_grid": ("psdbound.periodogram.lombscargle", "frequency_grid"),
+    "lomb_scargle": ("psdbound.periodogram.lombscargle", "lomb_scargle"),
+    "to_one_sided_density": ("psdbound.periodogram.lombscargle", "to_one_sided_density"),
+    "hann_taper": ("psdbound.periodogram.tapered", "hann_taper"),
+    "tapered_lomb_scargle": ("psdbound.periodogram.tapered", "tapered_lomb_scargle"),
+    "tapered_periodogram": ("psdbound.periodogram.tapered", "tapered_periodogram"),
+}
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

@@ -8,10 +8,15 @@
 
 from __future__ import annotations
 
-from psdbound.ionosphere.policy import THESIS_CUTOFF_HZ
-from psdbound.pipeline.config import FitConfig
-from psdbound.pipeline.front import FitResults, fit, load
-from psdbound.results import REQUIRED_FIELDS, SCHEMA_VERSION
+from typing import TYPE_CHECKING
+
+from psdbound.common.lazy import lazy_exports
+
+if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
+    from psdbound.ionosphere.policy import THESIS_CUTOFF_HZ
+    from psdbound.pipeline.config import FitConfig
+    from psdbound.pipeline.front import FitResults, fit, load
+    from psdbound.results import REQUIRED_FIELDS, SCHEMA_VERSION
 
 __all__ = [
     "REQUIRED_FIELDS",
@@ -22,3 +27,16 @@ __all__ = [
     "fit",
     "load",
 ]
+
+#: Where each public name lives (imported on first use: importing the package stays cheap).
+_EXPORTS = {
+    "THESIS_CUTOFF_HZ": ("psdbound.ionosphere.policy", "THESIS_CUTOFF_HZ"),
+    "FitConfig": ("psdbound.pipeline.config", "FitConfig"),
+    "FitResults": ("psdbound.pipeline.front", "FitResults"),
+    "fit": ("psdbound.pipeline.front", "fit"),
+    "load": ("psdbound.pipeline.front", "load"),
+    "REQUIRED_FIELDS": ("psdbound.results", "REQUIRED_FIELDS"),
+    "SCHEMA_VERSION": ("psdbound.results", "SCHEMA_VERSION"),
+}
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

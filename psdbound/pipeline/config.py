@@ -59,7 +59,7 @@ from psdbound.io.archive import zip_members
 from psdbound.io.options import ArcOptions
 from psdbound.ionosphere.policy import CUTOFF_SOURCES, CutoffOptions
 from psdbound.isolation import HighPass
-from psdbound.isolation.dual_antenna import BASELINE_MODES, BASELINE_TOLERANCE_M
+from psdbound.isolation.names import BASELINE_MODES, BASELINE_TOLERANCE_M
 from psdbound.pipeline.verdict import VerdictOptions
 from psdbound.screening import ScreeningOptions
 from psdbound.spectra.options import BoundOptions, SpectraOptions, check_estimator_options

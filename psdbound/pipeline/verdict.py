@@ -101,7 +101,7 @@ from typing import Any
 import numpy as np
 
 from psdbound.common.options import Choice, Number, check_fields, option
-from psdbound.spectra.lowfreq import POLICIES, low_frequency_reasons
+from psdbound.spectra.names import POLICIES
 
 __all__ = ["VerdictCheck", "VerdictOptions", "judge", "judge_pooled", "pooled_checks",
            "verdict_checks", "verdict_of"]
@@ -295,6 +295,8 @@ def _data_used(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
 
 
 def _low_frequency(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
+    from psdbound.spectra.lowfreq import low_frequency_reasons  # deferred: the stage is heavy
+
     low = d["bound"].get("low_frequency")
     reasons = low_frequency_reasons(low, opt.low_frequency)
     status = (low or {}).get("status", "unchecked")

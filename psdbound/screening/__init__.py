@@ -14,16 +14,22 @@ Public surface:
 
 from __future__ import annotations
 
-from psdbound.screening.plausibility import multipath_limit_m
-from psdbound.screening.rot import (
-    ROT_INTERVAL_S,
-    ROTI_BLOCK_S,
-    RotiBlocks,
-    geometry_free_m_per_tecu,
-    rate_of_tec,
-    roti_blocks,
-)
-from psdbound.screening.screen import ExcludedSpan, Screening, ScreeningOptions, screen_series
+from typing import TYPE_CHECKING
+
+from psdbound.common.lazy import lazy_exports
+
+if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
+    from psdbound.screening.options import ScreeningOptions
+    from psdbound.screening.plausibility import multipath_limit_m
+    from psdbound.screening.rot import (
+        ROT_INTERVAL_S,
+        ROTI_BLOCK_S,
+        RotiBlocks,
+        geometry_free_m_per_tecu,
+        rate_of_tec,
+        roti_blocks,
+    )
+    from psdbound.screening.screen import ExcludedSpan, Screening, screen_series
 
 __all__ = [
     "ROTI_BLOCK_S",
@@ -38,3 +44,20 @@ __all__ = [
     "roti_blocks",
     "screen_series",
 ]
+
+#: Where each public name lives (imported on first use: importing the package stays cheap).
+_EXPORTS = {
+    "multipath_limit_m": ("psdbound.screening.plausibility", "multipath_limit_m"),
+    "ROT_INTERVAL_S": ("psdbound.screening.rot", "ROT_INTERVAL_S"),
+    "ROTI_BLOCK_S": ("psdbound.screening.rot", "ROTI_BLOCK_S"),
+    "RotiBlocks": ("psdbound.screening.rot", "RotiBlocks"),
+    "geometry_free_m_per_tecu": ("psdbound.screening.rot", "geometry_free_m_per_tecu"),
+    "rate_of_tec": ("psdbound.screening.rot", "rate_of_tec"),
+    "roti_blocks": ("psdbound.screening.rot", "roti_blocks"),
+    "ExcludedSpan": ("psdbound.screening.screen", "ExcludedSpan"),
+    "Screening": ("psdbound.screening.screen", "Screening"),
+    "ScreeningOptions": ("psdbound.screening.options", "ScreeningOptions"),
+    "screen_series": ("psdbound.screening.screen", "screen_series"),
+}
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

@@ -60,10 +60,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy import optimize, stats
 
+from psdbound.screening.options import FALSE_ALARM
+
 __all__ = ["FALSE_ALARM", "MEMBER_TAIL", "MIN_BLOCKS", "MultipathNull", "fit_null"]
 
-#: Default false-alarm probability per 5-min block.
-FALSE_ALARM = 1e-3
 #: Fewest blocks to fit a null; also the neighbours of each local scale.
 MIN_BLOCKS = 40
 #: Quantiles of ROTI^2 the null is fitted to (the lower part: disturbed blocks sit above).

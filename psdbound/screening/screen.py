@@ -93,11 +93,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from psdbound.common.options import Boolean, Number, OptionError, check_fields, option
 from psdbound.io.signals import carrier_frequency_hz, wavelength_m
 from psdbound.isolation import MultipathSeries
 from psdbound.screening.coherence import coherent_blocks
-from psdbound.screening.null import FALSE_ALARM, NU_DISTURBED, MultipathNull, fit_null
+from psdbound.screening.null import NU_DISTURBED, MultipathNull, fit_null
+from psdbound.screening.options import ScreeningOptions
 from psdbound.screening.plausibility import multipath_limit_m
 from psdbound.screening.rot import (
     ROTI_BLOCK_S,
@@ -111,68 +111,6 @@ __all__ = ["ExcludedSpan", "N_TESTS", "Screening", "ScreeningOptions", "screen_s
 #: Tests of the multipath null that share the false-alarm probability (Bonferroni): the block
 #: alone, the 15-min persistence and the coherence across satellites.
 N_TESTS = 3
-
-
-@dataclass(frozen=True)
-class ScreeningOptions:
-    """What the screening excludes.
-
-    Parameters
-    ----------
-    roti_threshold_tecu_min : float, default 0.15
-        Blocks with a larger ROTI are ionosphere (dual-frequency), TECU/min;
-        multiplied by the elevation mapping when ``elevation_scaled``.
-    roti_cap_tecu_min : float or None, default None
-        Largest threshold after the elevation scaling, TECU/min (None: no cap).
-    elevation_scaled : bool, default True
-        Scale the threshold by ``m(el)`` (needs a mapping; see the module
-        docstring).
-    guard_s : float or None, default None
-        Widening of every flagged span on each side, s; None: half a cutoff
-        period ``0.5 / f_c`` of the series' high-pass (0 without one).
-    ionosphere : bool, default True
-        Apply the ROTI test (dual-frequency only).
-    plausibility : bool, default True
-        Apply the carrier-multipath limit.
-    multipath_null : bool, default True
-        Compare ROTI with what the series' own multipath produces at that
-        elevation (:mod:`psdbound.screening.null`): a block is ionosphere
-        when its ROTI exceeds both ``roti_threshold_tecu_min`` (unscaled) and
-        the null's ``1 - false_alarm`` quantile. False: the elevation-scaled
-        fixed threshold (``elevation_scaled``, ``roti_cap_tecu_min``).
-    false_alarm : float, default 1e-3
-        False-alarm probability per 5-min block under multipath alone.
-
-    Raises
-    ------
-    OptionError
-        A value of the wrong type or outside its range (thresholds > 0 and at
-        most 100 TECU/min, the cap not below the threshold, the guard from 0
-        to 86400 s).
-    """
-
-    roti_threshold_tecu_min: float = option(
-        0.15, Number(lo=0.0, hi=100.0, lo_open=True, unit="TECU/min")
-    )
-    roti_cap_tecu_min: float | None = option(
-        None, Number(lo=0.0, hi=100.0, lo_open=True, unit="TECU/min", optional=True)
-    )
-    elevation_scaled: bool = option(True, Boolean())
-    guard_s: float | None = option(None, Number(lo=0.0, hi=86400.0, unit="s", optional=True))
-    ionosphere: bool = option(True, Boolean())
-    plausibility: bool = option(True, Boolean())
-    multipath_null: bool = option(True, Boolean())
-    false_alarm: float = option(FALSE_ALARM, Number(lo=0.0, hi=0.5, lo_open=True))
-
-    def __post_init__(self) -> None:
-        check_fields(self)
-        cap = self.roti_cap_tecu_min
-        if cap is not None and cap < self.roti_threshold_tecu_min:
-            raise OptionError(
-                "roti_cap_tecu_min", cap,
-                f"a number >= roti_threshold_tecu_min = {self.roti_threshold_tecu_min:g} "
-                "TECU/min (or unset)",
-            )  # fmt: skip
 
 
 @dataclass(frozen=True)

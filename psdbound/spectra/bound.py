@@ -38,12 +38,10 @@ from scipy.optimize import linprog, minimize_scalar
 
 from psdbound.errors import InputError
 from psdbound.spectra.models import GaussMarkovWhiteNoise, gm_psd_sampled
+from psdbound.spectra.names import OBJECTIVES, RULES
 
 __all__ = ["BoundFit", "fit_bound", "OBJECTIVES", "RULES"]
 
-OBJECTIVES = ("variance", "area")
-#: How the data to bound are formed: pooled confidence limits or the thesis's envelope.
-RULES = ("pooled", "envelope")
 
 
 class _PSDLike(Protocol):
@@ -328,7 +326,11 @@ def fit_bound(
         if r.fun < best_val:
             best_tau, best_val = float(np.exp(r.x)), float(r.fun)
     _, x = solve(best_tau)
-    var_gm, var_wn = float(x[0]) * scale, float(x[1]) * scale
+    if not np.all(np.isfinite(x)):
+        raise InputError(f"no bound could be fitted: the linear program failed at tau = "
+                         f"{best_tau:.4g} s (data of {s_all.size} points)")  # fmt: skip
+    # HiGHS may return -1e-18 for a variance at its bound of 0: a variance is not negative
+    var_gm, var_wn = max(float(x[0]), 0.0) * scale, max(float(x[1]), 0.0) * scale
     # enforce the bound exactly on every data point (and floor point)
     model = var_gm * gm_psd_sampled(f_con, 1.0, best_tau, dt_s) + var_wn * white
     worst = float(np.min(model / s_con))

@@ -39,11 +39,10 @@ from psdbound.errors import InputError
 from psdbound.spectra._blackman_tukey import blackman_tukey
 from psdbound.spectra._multitaper import multitaper
 from psdbound.spectra._welch import welch
+from psdbound.spectra.names import METHODS
 
 __all__ = ["PSDEstimate", "estimate_psd", "METHODS", "MIN_SAMPLES"]
 
-METHODS: tuple[str, ...] = ("blackman-tukey", "welch", "multitaper")
-"""Names accepted by :func:`estimate_psd`."""
 
 MIN_SAMPLES = 16
 """Fewest samples :func:`estimate_psd` accepts."""

@@ -58,6 +58,7 @@ from psdbound.spectra.bands import BandSpectra
 from psdbound.spectra.bound import BoundFit
 from psdbound.spectra.intervals import ModelSet
 from psdbound.spectra.models import gm_psd_sampled
+from psdbound.spectra.names import POLICIES, TAU_MAX_S
 from psdbound.spectra.pooled import PooledLimits, fit_limits
 
 __all__ = [
@@ -69,10 +70,6 @@ __all__ = [
     "low_frequency_reasons",
 ]
 
-#: Default prior upper limit of the multipath time constant, seconds.
-TAU_MAX_S = 900.0
-#: What to do when the data do not bound tau above: use the prior, or refuse.
-POLICIES = ("prior", "refuse")
 #: Envelope frequencies below f_min, as fractions of it (1e-4: every admitted plateau is flat).
 _FRACTIONS = np.geomspace(1e-4, 1.0, 41)
 

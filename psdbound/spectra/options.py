@@ -16,9 +16,7 @@ from psdbound.common.options import (
     check_fields,
     option,
 )
-from psdbound.spectra.bound import OBJECTIVES, RULES
-from psdbound.spectra.estimators import METHODS
-from psdbound.spectra.lowfreq import TAU_MAX_S
+from psdbound.spectra.names import METHODS, OBJECTIVES, RULES, TAU_MAX_S
 
 __all__ = ["BoundOptions", "ESTIMATOR_OPTIONS", "SpectraOptions", "check_estimator_options"]
 

@@ -3,15 +3,21 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 from numpy.typing import ArrayLike
 
 from psdbound.common.options import Choice, Number, check_fields, option
 from psdbound.errors import InputError
-from psdbound.stationarity.mapping import THESIS_MAPPING, ElevationMapping, fit_mapping
-from psdbound.stationarity.windowing import STATIONARITY_TESTS
 
-__all__ = ["MAPPING_KINDS", "MappingOptions", "StationarityOptions", "choose_mapping"]
+if TYPE_CHECKING:
+    from psdbound.stationarity.mapping import ElevationMapping
+
+#: Stationarity tests: the thesis's (Levene then K-S) or spectral homogeneity of the halves.
+STATIONARITY_TESTS = ("thesis", "spectral")
+
+__all__ = ["MAPPING_KINDS", "STATIONARITY_TESTS", "MappingOptions", "StationarityOptions",
+           "choose_mapping"]
 
 MAPPING_KINDS = ("thesis", "fixed", "fit")
 
@@ -111,6 +117,8 @@ def choose_mapping(
     -------
     ElevationMapping
     """
+    from psdbound.stationarity.mapping import THESIS_MAPPING, ElevationMapping, fit_mapping
+
     if options.kind == "thesis":
         return THESIS_MAPPING
     if options.kind == "fixed":
