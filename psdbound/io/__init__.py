@@ -9,7 +9,8 @@ Public surface:
 * :func:`orbit_coverage` -> :class:`OrbitCoverage`: does an orbit cover the
   observed satellites and epochs, and if not why
 * :func:`satellite_azel`, :func:`azimuth_elevation`, :func:`ecef_to_geodetic`
-* :func:`find_arcs` -> :class:`ArcSet` of :class:`Arc`
+* :func:`find_arcs` -> :class:`ArcSet` of :class:`Arc`; :func:`add_third_carrier` reads a
+  third carrier's phase alongside the pair (:data:`THIRD_SIGNALS`)
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from psdbound.io.obs import Observations, ObsHeader, SystemBlock, read_obs
 from psdbound.io.options import ArcOptions
 from psdbound.io.orbits import read_orbit
 from psdbound.io.sp3 import PreciseOrbit, read_sp3
+from psdbound.io.third import THIRD_SIGNALS, add_third_carrier
 
 __all__ = [
     "ArcOptions",
@@ -37,6 +39,8 @@ __all__ = [
     "PreciseOrbit",
     "SystemBlock",
     "SystemCoverage",
+    "THIRD_SIGNALS",
+    "add_third_carrier",
     "azimuth_elevation",
     "ecef_to_geodetic",
     "find_arcs",
