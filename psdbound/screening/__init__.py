@@ -10,6 +10,8 @@ Public surface:
 * ROT/ROTI: :func:`rate_of_tec`, :func:`roti_blocks`,
   :func:`geometry_free_m_per_tecu`
 * the carrier-multipath limit: :func:`multipath_limit_m`
+* three carriers: :func:`triple_combination`, :class:`RatioNull`
+  (:mod:`psdbound.screening.threefreq`)
 """
 
 from __future__ import annotations
@@ -24,11 +26,13 @@ from psdbound.screening.rot import (
     roti_blocks,
 )
 from psdbound.screening.screen import ExcludedSpan, Screening, ScreeningOptions, screen_series
+from psdbound.screening.threefreq import RatioNull, triple_combination
 
 __all__ = [
     "ROTI_BLOCK_S",
     "ROT_INTERVAL_S",
     "ExcludedSpan",
+    "RatioNull",
     "RotiBlocks",
     "Screening",
     "ScreeningOptions",
@@ -37,4 +41,5 @@ __all__ = [
     "rate_of_tec",
     "roti_blocks",
     "screen_series",
+    "triple_combination",
 ]
