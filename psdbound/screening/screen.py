@@ -7,6 +7,10 @@ For every arc, consecutive 5-min blocks are tested:
 * **implausible**: any sample of the isolated series beyond the physical
   carrier-multipath limit (:mod:`psdbound.screening.plausibility`).
 
+Where a third carrier exists, the three-frequency test
+(:mod:`psdbound.screening.threefreq`) names blocks ionosphere or multipath,
+flags the first and keeps ROTI-flagged blocks it names multipath.
+
 Flagged blocks are merged into spans, widened by a guard on each side and
 cut out of the arc. The guard is the memory of the high-pass filter: the
 isolated value at time t is the filter's response to the geometry-free phase
@@ -56,8 +60,8 @@ longer the default.
 
 Measured with the defaults (``psdbound fit``): the quiet mid-latitude ESBC day
 (2020-06-25, 30 s) has 5 blocks flagged (0.45 % of the data excluded, the
-bound within 1.5 % of the fixed threshold's); NYA1 (78.9 N, 2024-05-03) has a
-disturbed null (dof 1.9) and 20.6 % excluded (19.1 % with the fixed
+bound within 1.5 % of the fixed threshold's; L5Q keeps one of them: 0.35 %);
+NYA1 (78.9 N, 2024-05-03) has a disturbed null (dof 1.9) and 20.6 % excluded (19.1 % with the fixed
 threshold); a simulated 12-h day with 6 mm / 30 s zenith multipath and no
 ionosphere (``psdbound simulate --preset demo --single-antenna --duration-h
 12 --interval-s 30 --multipath sigma_gm_m=0.006,tau_s=30,sigma_wn_m=0.001,
@@ -503,9 +507,16 @@ def screen_series(
         three_freq = summary(tf, rnull, series.third_signal, len(bounds),
                              sum(bool(np.isfinite(b["ratio"]).any()) for b in blocks), blocks,
                              [a["flagged"] for a in arcs])  # fmt: skip
+    notes = _notes(m_per_tecu, null, rnull, tf)
+    if tf is not None and three_freq is not None:
+        f = three_freq
+        notes += (f"three-frequency test ({f['signal']} on {f['arcs_with_third']} of "
+                  f"{f['arcs']} arcs): {f['kept_as_multipath']} blocks flagged by ROTI kept as "
+                  f"multipath, {f['confirmed']} confirmed and {f['added']} added as ionosphere "
+                  "(screening.three_frequency)",)  # fmt: skip
     return Screening(out, tuple(e for a in arcs for e in a["excluded"]), ctx["limit"], input_s,
-                     excluded_s, [a["fig"] for a in arcs], opt,
-                     _notes(m_per_tecu, null, rnull, tf), guard_s, null, three_freq)  # fmt: skip
+                     excluded_s, [a["fig"] for a in arcs], opt, notes, guard_s, null,
+                     three_freq)  # fmt: skip
 
 
 def _part(a: NDArray[np.float64] | None, lo: int, hi: int) -> NDArray[np.float64] | None:

@@ -98,9 +98,9 @@ References
 Simsky, A. (2006). Three's the charm: triple-frequency combinations in
 future GNSS. Inside GNSS 1(5), 38-41.
 
-Zhao, Q., Sun, B., Dai, Z., Hu, Z., Shi, C., Liu, J. (2015). Real-time
-detection and repair of cycle slips in triple-frequency GNSS measurements.
-GPS Solutions 19, 381-391.
+Zhao, Q., Sun, B., Dai, Z., et al. (2015). Real-time detection and repair of
+cycle slips in triple-frequency GNSS measurements. GPS Solutions 19(3),
+381-391.
 """
 
 from __future__ import annotations
