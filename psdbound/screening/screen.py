@@ -225,8 +225,10 @@ class Screening:
         the fixed threshold).
     three_frequency : dict or None
         What the three-frequency test did (:func:`psdbound.screening.threefreq.summary`;
-        None: the series has no third carrier). The figure entries of ``roti``
-        then carry ``ratio_3f`` (the block's ratio) and ``named_3f`` (its name).
+        None: the series has no third carrier). Where the test ran, the figure
+        entries of ``roti`` also carry ``ratio_3f`` (the block's ratio),
+        ``named_3f`` (its name) and ``roti_d_tecu_min`` (the RMS 30-s rate of the
+        ionosphere-free combination D, TECU/min-equivalent).
     """
 
     series: MultipathSeries
@@ -282,12 +284,13 @@ def _arc_blocks(t: NDArray[np.float64], v: NDArray[np.float64], el: NDArray[np.f
         tm, rot = rate_of_tec(t, gf, m_per_tecu)
         roti = roti_blocks(tm, rot, t0_gps_s=t0, t1_gps_s=max(t1, t0 + 1.0)).roti_tecu_min
         roti = np.r_[roti, np.full(max(0, n_blocks - roti.size), np.nan)][:n_blocks]
-    ratio = np.full(n_blocks, np.nan)
+    roti_d = ratio = np.full(n_blocks, np.nan)
     if gf is not None and third is not None and comb is not None and np.isfinite(third).any():
-        ratio = pooled_ratio(*block_rates(t, gf, third, comb, n_blocks=n_blocks),
-                             blocks=POOL_BLOCKS)
+        roti_i, roti_d = block_rates(t, gf, third, comb, n_blocks=n_blocks)
+        ratio = pooled_ratio(roti_i, roti_d, blocks=POOL_BLOCKS)
     return {"start": start, "stop": start + ROTI_BLOCK_S, "roti": roti, "el": el_mean,
-            "vmax": vmax, "ratio": ratio, "named": empty_names(n_blocks)}  # fmt: skip
+            "vmax": vmax, "ratio": ratio, "roti_d": roti_d,
+            "named": empty_names(n_blocks)}  # fmt: skip
 
 
 def _combination(series: MultipathSeries, sats: str,
@@ -400,7 +403,7 @@ def _screen_arc(series: MultipathSeries, lo: int, hi: int, k: int, bk: dict[str,
            "threshold_tecu_min": thr, "value_max_m": bk["vmax"],
            "excluded": np.bincount(blk, weights=~used, minlength=start.size) > 0}  # fmt: skip
     if ctx["tf"] is not None:
-        fig.update(ratio_3f=bk["ratio"], named_3f=bk["named"])
+        fig.update(ratio_3f=bk["ratio"], named_3f=bk["named"], roti_d_tecu_min=bk["roti_d"])
     return {"kept": kept, "excluded": excluded + short, "fig": fig, "flagged": flagged,
             "input_s": t.size * ctx["dt"]}  # fmt: skip
 

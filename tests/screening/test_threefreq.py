@@ -186,3 +186,19 @@ def test_nya1_polar_day_is_named_disturbed():
     assert f["signal"] == "L5X" and not f["applied"] and f["kept_as_multipath"] == 0
     assert min(f["null"]["median_ratio"]) > RATIO_MAX
     assert f["blocks_above_multipath_ratio"] > 0.5 * f["blocks_with_third"]
+
+
+def test_the_ionosphere_free_rate_does_not_see_the_disturbance():
+    """ROTI of L1-L2 rises ~5 times in a 0.5 TECU/min disturbance; D's rate stays put."""
+    d = Disturbance(3 * 3600.0, 3600.0, 0.5, tuple(range(24)))
+    sc = _screen(three_carrier_series(2, disturbances=(d,)), three_frequency=True)
+    inside, outside = [], []
+    for r in sc.roti:
+        tm = r["t_gps_s"] - T0
+        on = (tm - 150 >= d.start_s) & (tm + 150 <= d.start_s + d.duration_s)
+        inside.append(np.c_[r["roti_tecu_min"][on], r["roti_d_tecu_min"][on]])
+        outside.append(np.c_[r["roti_tecu_min"][~on], r["roti_d_tecu_min"][~on]])
+    med_in = np.nanmedian(np.concatenate(inside), axis=0)
+    med_out = np.nanmedian(np.concatenate(outside), axis=0)
+    assert med_in[0] > 3 * med_out[0]
+    assert 0.8 < med_in[1] / med_out[1] < 1.25
