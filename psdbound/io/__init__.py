@@ -9,7 +9,8 @@ Public surface:
 * :func:`orbit_coverage` -> :class:`OrbitCoverage`: does an orbit cover the
   observed satellites and epochs, and if not why
 * :func:`satellite_azel`, :func:`azimuth_elevation`, :func:`ecef_to_geodetic`
-* :func:`find_arcs` -> :class:`ArcSet` of :class:`Arc`
+* :func:`find_arcs` -> :class:`ArcSet` of :class:`Arc`; :func:`add_third_carrier` reads a
+  third carrier's phase alongside the pair (:data:`THIRD_SIGNALS`)
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
     from psdbound.io.options import ArcOptions
     from psdbound.io.orbits import read_orbit
     from psdbound.io.sp3 import PreciseOrbit, read_sp3
+    from psdbound.io.third import THIRD_SIGNALS, add_third_carrier
 
 __all__ = [
     "ArcOptions",
@@ -42,6 +44,8 @@ __all__ = [
     "PreciseOrbit",
     "SystemBlock",
     "SystemCoverage",
+    "THIRD_SIGNALS",
+    "add_third_carrier",
     "azimuth_elevation",
     "ecef_to_geodetic",
     "find_arcs",
@@ -78,6 +82,8 @@ _EXPORTS = {
     "read_orbit": ("psdbound.io.orbits", "read_orbit"),
     "PreciseOrbit": ("psdbound.io.sp3", "PreciseOrbit"),
     "read_sp3": ("psdbound.io.sp3", "read_sp3"),
+    "THIRD_SIGNALS": ("psdbound.io.third", "THIRD_SIGNALS"),
+    "add_third_carrier": ("psdbound.io.third", "add_third_carrier"),
 }
 
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

@@ -40,7 +40,7 @@ from psdbound.errors import InputError, NoDataError
 from psdbound.io.coverage import OrbitCoverage, orbit_coverage
 from psdbound.io.obs import Observations
 
-__all__ = ["Arc", "ArcSet", "find_arcs", "DEFAULT_SIGNALS"]
+__all__ = ["Arc", "ArcSet", "find_arcs", "detect_slips", "DEFAULT_SIGNALS"]
 
 #: Default signal pair per system for dual-frequency work.
 DEFAULT_SIGNALS: dict[str, tuple[str, str]] = {
@@ -81,6 +81,12 @@ class Arc:
         Why the arc starts where it does (``"first epoch"``, ``"gap"``,
         ``"loss of lock"``, ``"cycle slip"``, ``"power failure"``,
         ``"elevation mask"``).
+    third_m : ndarray of float64 or None
+        Carrier phase of a third signal at the arc's epochs, metres
+        (:func:`psdbound.io.third.add_third_carrier`): NaN where it is missing
+        and at the first epoch after each of its losses of lock or cycle
+        slips, so that no difference of consecutive samples spans one; None
+        without a third signal.
     """
 
     sat: str
@@ -92,6 +98,7 @@ class Arc:
     elevation_deg: NDArray[np.float64] | None
     azimuth_deg: NDArray[np.float64] | None
     start_reason: str
+    third_m: NDArray[np.float64] | None = None
 
     @property
     def n(self) -> int:
@@ -149,6 +156,9 @@ class ArcSet:
         Number of (satellite, epoch) samples with a phase on each signal.
     coverage : OrbitCoverage or None
         The orbit's coverage of the observations (None without an orbit).
+    third_signal : str or None
+        Phase code of the third signal the arcs carry in
+        :attr:`Arc.third_m` (None: none; :func:`psdbound.io.third.add_third_carrier`).
     samples : dict of str to int
         (Satellite, epoch) samples with both phases (``"both_signals"``), of
         them without an orbit position (``"without_orbit"``) and below the
@@ -178,6 +188,7 @@ class ArcSet:
     coverage: OrbitCoverage | None = None
     glonass_channels: dict[str, int] = field(default_factory=dict)
     samples: dict[str, int] = field(default_factory=dict)
+    third_signal: str | None = None
 
     def __len__(self) -> int:
         return len(self.arcs)
@@ -279,8 +290,8 @@ class ArcSet:
         return text
 
 
-def _slips(gf_m: NDArray[np.float64], threshold_m: float) -> NDArray[np.bool_]:
-    """Boolean per epoch: a slip between the previous epoch and this one.
+def detect_slips(gf_m: NDArray[np.float64], threshold_m: float) -> NDArray[np.bool_]:
+    """Return a boolean per epoch: a slip between the previous epoch and this one.
 
     The jump ``d - median(d)`` must exceed ``threshold_m`` and ``_NOISE_K``
     robust standard deviations of the local jumps (running median of
@@ -467,7 +478,7 @@ def find_arcs(
             m = np.flatnonzero((seg_id == s) & ~low)
             if m.size < 3:
                 continue
-            slip = _slips(gf[m], slip_threshold_m)
+            slip = detect_slips(gf[m], slip_threshold_m)
             reason[m[slip]] = "cycle slip"
         keep = ~low
         if not keep.any():

@@ -10,6 +10,10 @@ mean; the ionospheric term, slower than multipath, is removed by a zero-phase
 high-pass filter at ``cutoff_hz``; what is left is the difference of two
 independent per-carrier multipath + noise terms, divided by sqrt(2) to
 compare with one signal (thesis appendix B).
+
+Where the arcs carry a third carrier ``c`` (:func:`psdbound.io.add_third_carrier`),
+``L_a - L_c`` is kept unfiltered beside ``L_a - L_b`` (``MultipathSeries.third_m``)
+for the three-frequency screening test; the isolated series itself is unchanged.
 """
 
 from __future__ import annotations
@@ -103,6 +107,7 @@ def isolate_dual_frequency(
             path=arcs.path,
         )
     hp.check_cutoff(cutoff_hz, interval_s)
+    third = arcs.third_signal is not None
     out = []
     too_short = 0
     for arc in arcs:
@@ -123,6 +128,8 @@ def isolate_dual_frequency(
                 "unfiltered_m": d[keep],
             }
         )
+        if third:
+            out[-1]["third_m"] = _third_gf(arc.phase_m[:, 0], arc.third_m)[keep]
     if not out:
         raise NoDataError(
             f"no arc long enough after trimming filter edges ({too_short} arcs shorter than "
@@ -140,6 +147,9 @@ def isolate_dual_frequency(
         "has_elevation": all(a.elevation_deg is not None for a in arcs),
         "scaling_note": "DF difference divided by sqrt(2): two independent per-carrier terms",
     }
+    if third:
+        meta["third_signal"] = arcs.third_signal
+        meta["arcs_with_third"] = sum(bool(np.isfinite(a["third_m"]).any()) for a in out)
     return MultipathSeries.from_arcs(
         "DF",
         out,
@@ -148,4 +158,13 @@ def isolate_dual_frequency(
         interval_s=interval_s,
         cutoff_hz=cutoff_hz,
         meta=meta,
+        third_signal=arcs.third_signal,
     )
+
+
+def _third_gf(l_a: np.ndarray, l_c: np.ndarray | None) -> np.ndarray:
+    """``L_a - L_c`` of one arc with its mean removed, metres (all NaN without a third phase)."""
+    if l_c is None or not np.isfinite(l_c).any():
+        return np.full(l_a.size, np.nan)
+    g = l_a - l_c
+    return g - np.nanmean(g)

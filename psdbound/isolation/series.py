@@ -29,6 +29,9 @@ class ArcView:
     unfiltered_m : ndarray or None
         Dual-frequency difference after mean removal, before the high-pass
         filter and before scaling (metres); None for dual-antenna series.
+    third_m : ndarray or None
+        ``L_a - L_c`` with a third carrier ``c`` (metres, unfiltered; NaN
+        where there is none); None when the series has no third carrier.
     """
 
     arc_id: int
@@ -37,6 +40,7 @@ class ArcView:
     value_m: NDArray[np.float64]
     elevation_deg: NDArray[np.float64]
     unfiltered_m: NDArray[np.float64] | None
+    third_m: NDArray[np.float64] | None = None
 
     @property
     def rms_m(self) -> float:
@@ -88,6 +92,14 @@ class MultipathSeries:
     meta : dict
         Provenance: source files, filter design and edge handling,
         reference-satellite choices, counts of dropped arcs, etc.
+    third_m : ndarray of float64 or None
+        DF with a third carrier ``c`` only: the geometry-free phase ``L_a -
+        L_c`` of the pair's first carrier and the third, metres, unfiltered
+        and unscaled (an arc's mean removed), NaN where the third phase is
+        missing and at the first sample after each of its breaks; for the
+        three-frequency screening test (:mod:`psdbound.screening.threefreq`).
+    third_signal : str or None
+        Phase code of the third carrier (None: no third carrier).
     """
 
     method: str
@@ -102,6 +114,8 @@ class MultipathSeries:
     cutoff_hz: float | None = None
     unfiltered_m: NDArray[np.float64] | None = None
     meta: dict[str, Any] = field(default_factory=dict)
+    third_m: NDArray[np.float64] | None = None
+    third_signal: str | None = None
 
     @property
     def n_arcs(self) -> int:
@@ -123,6 +137,7 @@ class MultipathSeries:
             value_m=self.value_m[lo:hi],
             elevation_deg=self.elevation_deg[lo:hi],
             unfiltered_m=None if self.unfiltered_m is None else self.unfiltered_m[lo:hi],
+            third_m=None if self.third_m is None else self.third_m[lo:hi],
         )
 
     def arcs(self) -> Iterator[ArcView]:
@@ -178,7 +193,7 @@ class MultipathSeries:
             ``"DF"`` or ``"DA"``.
         arcs : list of dict
             Each with keys ``sats``, ``t_gps_s``, ``value_m``, ``elevation_deg``
-            and optionally ``unfiltered_m``.
+            and optionally ``unfiltered_m`` and ``third_m``.
         **kwargs
             The remaining :class:`MultipathSeries` fields.
         """
@@ -187,6 +202,8 @@ class MultipathSeries:
             return np.concatenate([a[key] for a in arcs]) if arcs else np.zeros(0)
 
         unfiltered = cat("unfiltered_m") if arcs and "unfiltered_m" in arcs[0] else None
+        if arcs and "third_m" in arcs[0]:
+            kwargs.setdefault("third_m", cat("third_m"))
         arc_id = (
             np.concatenate([np.full(a["t_gps_s"].size, k) for k, a in enumerate(arcs)])
             if arcs

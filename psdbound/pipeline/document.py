@@ -311,11 +311,13 @@ def _screening_section(screened: Screened) -> dict[str, Any]:
         "roti_threshold_rule": _roti_rule(sc),
         "multipath_null": None if sc.null is None else sc.null.as_dict(),
         "false_alarm_per_block": sc.options.false_alarm if sc.null is not None else None,
+        "three_frequency": sc.three_frequency,
         "roti": "5-min blocks of ROT sampled at 30 s (Pi et al. 1997)",
         "options": {"guard_s": sc.guard_s, "ionosphere": sc.options.ionosphere,
                     "plausibility": sc.options.plausibility,
                     "elevation_scaled": sc.options.elevation_scaled,
-                    "multipath_null": sc.options.multipath_null},
+                    "multipath_null": sc.options.multipath_null,
+                    "three_frequency": sc.options.three_frequency},
         "notes": list(sc.notes),
     }  # fmt: skip
 

@@ -111,11 +111,13 @@ def _read_observations(
 
     ``codes``: the only observation codes kept (a dual-frequency run needs its
     phase pair only: a third of the memory of a typical file), with the first
-    carrier's SNR where the file has it.
+    carrier's SNR and the phases that could be a third carrier
+    (:func:`psdbound.io.third.third_candidates`) where the file has them.
     """
+    from psdbound.io.third import third_candidates
     from psdbound.validation.site import snr_signal
 
-    optional = (snr_signal(codes[0]),) if codes else ()
+    optional = (snr_signal(codes[0]), *third_candidates(system, codes)) if codes else ()
     out = []
     for path, label in sources:
         try:

@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 
 from psdbound.errors import InputError, NoDataError
-from psdbound.io import find_arcs
+from psdbound.io import add_third_carrier, find_arcs
 from psdbound.io.options import ArcOptions
 from psdbound.io.signals import wavelength_m
 from psdbound.ionosphere.policy import CutoffChoice, CutoffOptions
@@ -111,6 +111,8 @@ def _isolate_df(inputs: InputData, cutoff: CutoffChoice, arcs_opt: ArcOptions,
         slip_threshold_m=arcs_opt.slip_threshold_m,
         elevation_mask_deg=arcs_opt.elevation_mask_deg,
     )  # fmt: skip
+    arcs = add_third_carrier(arcs, inputs.observations[0],
+                             slip_threshold_m=arcs_opt.slip_threshold_m)  # fmt: skip
     progress(f"dual-frequency isolation (high-pass {cutoff.f_c_hz:.4g} Hz)")
     series = isolate_dual_frequency(arcs, cutoff.f_c_hz, highpass=highpass)
     safety = filter_safety_check(series)
@@ -126,6 +128,8 @@ def _isolate_df(inputs: InputData, cutoff: CutoffChoice, arcs_opt: ArcOptions,
         "short_stretches_dropped_s": arcs.dropped_s,
         "arcs_dropped_after_trim": series.meta["arcs_dropped_after_trim"],
         "offered": _offered(arcs, inputs.interval_s),
+        "third_signal": arcs.third_signal,
+        "arcs_with_third": series.meta.get("arcs_with_third", 0),
         "safety": {
             "removed_below_fc_median": float(np.nanmedian(safety.removed_below)),
             "removed_below_fc_min": float(np.nanmin(safety.removed_below)),

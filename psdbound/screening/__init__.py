@@ -10,6 +10,8 @@ Public surface:
 * ROT/ROTI: :func:`rate_of_tec`, :func:`roti_blocks`,
   :func:`geometry_free_m_per_tecu`
 * the carrier-multipath limit: :func:`multipath_limit_m`
+* three carriers: :func:`triple_combination`, :class:`RatioNull`
+  (:mod:`psdbound.screening.threefreq`)
 """
 
 from __future__ import annotations
@@ -30,11 +32,13 @@ if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
         roti_blocks,
     )
     from psdbound.screening.screen import ExcludedSpan, Screening, screen_series
+    from psdbound.screening.threefreq import RatioNull, triple_combination
 
 __all__ = [
     "ROTI_BLOCK_S",
     "ROT_INTERVAL_S",
     "ExcludedSpan",
+    "RatioNull",
     "RotiBlocks",
     "Screening",
     "ScreeningOptions",
@@ -43,6 +47,7 @@ __all__ = [
     "rate_of_tec",
     "roti_blocks",
     "screen_series",
+    "triple_combination",
 ]
 
 #: Where each public name lives (imported on first use: importing the package stays cheap).
@@ -54,10 +59,12 @@ _EXPORTS = {
     "geometry_free_m_per_tecu": ("psdbound.screening.rot", "geometry_free_m_per_tecu"),
     "rate_of_tec": ("psdbound.screening.rot", "rate_of_tec"),
     "roti_blocks": ("psdbound.screening.rot", "roti_blocks"),
-    "ExcludedSpan": ("psdbound.screening.screen", "ExcludedSpan"),
+    "ExcludedSpan": ("psdbound.screening.spans", "ExcludedSpan"),
     "Screening": ("psdbound.screening.screen", "Screening"),
     "ScreeningOptions": ("psdbound.screening.options", "ScreeningOptions"),
     "screen_series": ("psdbound.screening.screen", "screen_series"),
+    "RatioNull": ("psdbound.screening.threefreq", "RatioNull"),
+    "triple_combination": ("psdbound.screening.threefreq", "triple_combination"),
 }
 
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

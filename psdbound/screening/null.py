@@ -53,6 +53,7 @@ a null hypothesis. Journal of the American Statistical Association 99(465),
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -62,7 +63,8 @@ from scipy import optimize, stats
 
 from psdbound.screening.options import FALSE_ALARM
 
-__all__ = ["FALSE_ALARM", "MEMBER_TAIL", "MIN_BLOCKS", "MultipathNull", "fit_null"]
+__all__ = ["FALSE_ALARM", "MEMBER_TAIL", "MIN_BLOCKS", "MultipathNull", "fit_null", "local_scale",
+           "lower_dof"]
 
 #: Fewest blocks to fit a null; also the neighbours of each local scale.
 MIN_BLOCKS = 40
@@ -88,27 +90,39 @@ def _ratio(nu: float) -> float:
     return float(stats.chi2.ppf(Q_HI, nu) / stats.chi2.ppf(Q_LO, nu))
 
 
-def _dof_of(u: NDArray[np.float64]) -> float:
-    """Return ``nu`` of the scaled chi-square whose quantile ratio matches the sample's."""
+def _dof_of(u: NDArray[np.float64], ratio: Callable[[float], float] = _ratio) -> float:
+    """Return ``nu`` of the family whose ``Q_HI / Q_LO`` quantile ratio matches the sample's."""
     q_lo, q_hi = np.quantile(u, [Q_LO, Q_HI])
     r = q_hi / max(q_lo, 1e-300)
     lo, hi = _NU
-    if r >= _ratio(lo):
+    if r >= ratio(lo):
         return lo
-    if r <= _ratio(hi):
+    if r <= ratio(hi):
         return hi
-    return float(optimize.brentq(lambda v: _ratio(v) - r, lo, hi))
+    return float(optimize.brentq(lambda v: ratio(v) - r, lo, hi))
 
 
-def _dof(u: NDArray[np.float64]) -> float:
+def lower_dof(u: NDArray[np.float64], ratio: Callable[[float], float] = _ratio) -> float:
     """Return a lower confidence limit of ``nu`` (a heavier tail: the stated rate holds).
 
     The far tail is sensitive to ``nu``: its point estimate from a few thousand
     blocks put the realised false-alarm rate at 0.7-3.5 times the stated one.
     The 10th percentile of :data:`N_BOOT` bootstrap estimates (seeded) is used.
+
+    Parameters
+    ----------
+    u : ndarray
+        The blocks' statistic over its local scale (dimensionless).
+    ratio : callable, optional
+        ``nu -> Q_HI / Q_LO`` quantile ratio of the family (default: chi-square).
+
+    Returns
+    -------
+    float
+        ``nu``, within :data:`_NU`.
     """
     rng = np.random.default_rng(0)
-    boot = [_dof_of(u[rng.integers(0, u.size, u.size)]) for _ in range(N_BOOT)]
+    boot = [_dof_of(u[rng.integers(0, u.size, u.size)], ratio) for _ in range(N_BOOT)]
     return float(np.quantile(boot, 0.1))
 
 
@@ -243,18 +257,47 @@ def fit_null(roti_tecu_min: ArrayLike, elevation_deg: ArrayLike, *,
         None with fewer than ``min_blocks`` usable blocks.
     """
     r = np.asarray(roti_tecu_min, dtype=float)
+    scale = local_scale(r**2, elevation_deg, min_blocks=min_blocks)
+    if scale is None:
+        return None
+    grid, q, u = scale
+    return MultipathNull(grid, q, lower_dof(u), u.size)
+
+
+def local_scale(values: ArrayLike, elevation_deg: ArrayLike, *, min_blocks: int = MIN_BLOCKS
+                ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]] | None:
+    """Return the local ``Q_HI`` quantile of ``values`` in elevation, and the scaled values.
+
+    Parameters
+    ----------
+    values : array_like
+        A positive statistic per block (NaN or <= 0: left out), any unit.
+    elevation_deg : array_like
+        Mean elevation of every block, degrees.
+    min_blocks : int, default 40
+        Fewest usable blocks; each local quantile is taken over the
+        ``max(min_blocks, n / 12)`` blocks nearest in elevation.
+
+    Returns
+    -------
+    tuple of ndarray or None
+        The elevations of the tabulated scale (deg, increasing), the local
+        quantile there (the unit of ``values``) and every usable block's
+        value over its interpolated local quantile; None with fewer than
+        ``min_blocks`` usable blocks.
+    """
+    x = np.asarray(values, dtype=float)
     el = np.asarray(elevation_deg, dtype=float)
-    ok = np.isfinite(r) & np.isfinite(el) & (r > 0)
+    ok = np.isfinite(x) & np.isfinite(el) & (x > 0)
     n = int(ok.sum())
     if n < min_blocks:
         return None
     order = np.argsort(el[ok])
-    e_s, x_s = el[ok][order], r[ok][order] ** 2
+    e_s, x_s = el[ok][order], x[ok][order]
     half = max(min_blocks, n // 12) // 2  # a local quantile of >= 40 blocks, 1/12 of them
     centres = np.unique(np.linspace(0, n - 1, min(_N_GRID, n)).astype(int))
     q = np.array([np.quantile(x_s[max(0, c - half):min(n, c + half + 1)], Q_HI) for c in centres])
     grid = e_s[centres]
     grid, first = np.unique(grid, return_index=True)
     q = q[first]
-    u = x_s / np.interp(e_s, grid, q)
-    return MultipathNull(grid, q, _dof(u), n)
+    return grid, q, x_s / np.interp(e_s, grid, q)

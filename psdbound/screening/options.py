@@ -45,6 +45,9 @@ class ScreeningOptions:
         fixed threshold (``elevation_scaled``, ``roti_cap_tecu_min``).
     false_alarm : float, default 1e-3
         False-alarm probability per 5-min block under multipath alone.
+    three_frequency : bool, default True
+        Where the series has a third carrier, apply the three-frequency test
+        (:mod:`psdbound.screening.threefreq`; with the multipath null only).
 
     Raises
     ------
@@ -66,6 +69,7 @@ class ScreeningOptions:
     plausibility: bool = option(True, Boolean())
     multipath_null: bool = option(True, Boolean())
     false_alarm: float = option(FALSE_ALARM, Number(lo=0.0, hi=0.5, lo_open=True))
+    three_frequency: bool = option(True, Boolean())
 
     def __post_init__(self) -> None:
         check_fields(self)

@@ -7,6 +7,10 @@ For every arc, consecutive 5-min blocks are tested:
 * **implausible**: any sample of the isolated series beyond the physical
   carrier-multipath limit (:mod:`psdbound.screening.plausibility`).
 
+Where a third carrier exists, the three-frequency test
+(:mod:`psdbound.screening.threefreq`) names blocks ionosphere or multipath,
+flags the first and keeps ROTI-flagged blocks it names multipath.
+
 Flagged blocks are merged into spans, widened by a guard on each side and
 cut out of the arc. The guard is the memory of the high-pass filter: the
 isolated value at time t is the filter's response to the geometry-free phase
@@ -56,8 +60,8 @@ longer the default.
 
 Measured with the defaults (``psdbound fit``): the quiet mid-latitude ESBC day
 (2020-06-25, 30 s) has 5 blocks flagged (0.45 % of the data excluded, the
-bound within 1.5 % of the fixed threshold's); NYA1 (78.9 N, 2024-05-03) has a
-disturbed null (dof 1.9) and 20.6 % excluded (19.1 % with the fixed
+bound within 1.5 % of the fixed threshold's; L5Q keeps one of them: 0.35 %);
+NYA1 (78.9 N, 2024-05-03) has a disturbed null (dof 1.9) and 20.6 % excluded (19.1 % with the fixed
 threshold); a simulated 12-h day with 6 mm / 30 s zenith multipath and no
 ionosphere (``psdbound simulate --preset demo --single-antenna --duration-h
 12 --interval-s 30 --multipath sigma_gm_m=0.006,tau_s=30,sigma_wn_m=0.001,
@@ -93,6 +97,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from psdbound.errors import InputError
 from psdbound.io.signals import carrier_frequency_hz, wavelength_m
 from psdbound.isolation import MultipathSeries
 from psdbound.screening.coherence import coherent_blocks
@@ -105,52 +110,26 @@ from psdbound.screening.rot import (
     rate_of_tec,
     roti_blocks,
 )
+from psdbound.screening.spans import ExcludedSpan, block_spans, excluded_span, kept_pieces
+from psdbound.screening.threefreq import (
+    POOL_BLOCKS,
+    RATIO_MAX,
+    RatioNull,
+    ThreeFrequencyTest,
+    TripleCombination,
+    block_rates,
+    empty_names,
+    fit_ratio_null,
+    pooled_ratio,
+    summary,
+    triple_combination,
+)
 
 __all__ = ["ExcludedSpan", "N_TESTS", "Screening", "ScreeningOptions", "screen_series"]
 
 #: Tests of the multipath null that share the false-alarm probability (Bonferroni): the block
 #: alone, the 15-min persistence and the coherence across satellites.
 N_TESTS = 3
-
-
-@dataclass(frozen=True)
-class ExcludedSpan:
-    """A stretch of one arc left out of the bound, and why.
-
-    Attributes
-    ----------
-    sat : str
-        Satellite (or satellite pair for double differences).
-    start_gps_s, stop_gps_s : float
-        First and last excluded sample, GPS seconds.
-    reason : str
-        E.g. ``"ionosphere: ROTI 1.30 TECU/min > 0.5"``.
-    kind : {"ionosphere", "implausible", "short remainder"}
-    statistic : float
-        Largest ROTI (TECU/min), largest absolute value (m) or the
-        remainder's length (s).
-    threshold : float
-        The limit it was compared with, same unit.
-    """
-
-    sat: str
-    start_gps_s: float
-    stop_gps_s: float
-    reason: str
-    kind: str
-    statistic: float
-    threshold: float
-
-    @property
-    def duration_s(self) -> float:
-        """Length of the span, s."""
-        return self.stop_gps_s - self.start_gps_s
-
-    def to_dict(self) -> dict[str, Any]:
-        """Return the entry of ``screening.excluded`` in result.json."""
-        return {"sat": self.sat, "start_gps_s": self.start_gps_s, "stop_gps_s": self.stop_gps_s,
-                "reason": self.reason, "kind": self.kind, "statistic": self.statistic,
-                "threshold": self.threshold}  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -178,6 +157,12 @@ class Screening:
     null : MultipathNull or None
         The ROTI of multipath alone per elevation band the test used (None:
         the fixed threshold).
+    three_frequency : dict or None
+        What the three-frequency test did (:func:`psdbound.screening.threefreq.summary`;
+        None: the series has no third carrier). Where the test ran, the figure
+        entries of ``roti`` also carry ``ratio_3f`` (the block's ratio),
+        ``named_3f`` (its name) and ``roti_d_tecu_min`` (the RMS 30-s rate of the
+        ionosphere-free combination D, TECU/min-equivalent).
     """
 
     series: MultipathSeries
@@ -190,6 +175,7 @@ class Screening:
     notes: tuple[str, ...] = ()
     guard_s: float = 0.0
     null: MultipathNull | None = None
+    three_frequency: dict[str, Any] | None = None
 
     @property
     def excluded_fraction(self) -> float:
@@ -214,21 +200,11 @@ def _limit(series: MultipathSeries, channels: Mapping[str, int] | None = None) -
     return multipath_limit_m(lams, series.scaling)
 
 
-def _spans(flags: NDArray[np.bool_], start: NDArray[np.float64], stop: NDArray[np.float64]):
-    """Merge consecutive flagged blocks into (first block, last block) index pairs."""
-    idx = np.flatnonzero(flags)
-    if idx.size == 0:
-        return []
-    breaks = np.flatnonzero(np.diff(idx) > 1)
-    firsts = np.r_[idx[0], idx[breaks + 1]]
-    lasts = np.r_[idx[breaks], idx[-1]]
-    return list(zip(firsts.tolist(), lasts.tolist(), strict=True))
-
-
 def _arc_blocks(t: NDArray[np.float64], v: NDArray[np.float64], el: NDArray[np.float64],
-                gf: NDArray[np.float64] | None,
-                m_per_tecu: float | None) -> dict[str, Any]:  # fmt: skip
-    """Per 5-min block of one arc: limits, ROTI, mean elevation and largest |value|."""
+                gf: NDArray[np.float64] | None, m_per_tecu: float | None,
+                third: NDArray[np.float64] | None = None,
+                comb: TripleCombination | None = None) -> dict[str, Any]:  # fmt: skip
+    """Per 5-min block of one arc: limits, ROTI, mean elevation, largest |value|, 3F ratio."""
     t0, t1 = float(t[0]), float(t[-1])
     n_blocks = max(1, int(np.ceil((t1 - t0) / ROTI_BLOCK_S - 1e-9)))
     start = t0 + ROTI_BLOCK_S * np.arange(n_blocks)
@@ -242,12 +218,31 @@ def _arc_blocks(t: NDArray[np.float64], v: NDArray[np.float64], el: NDArray[np.f
         tm, rot = rate_of_tec(t, gf, m_per_tecu)
         roti = roti_blocks(tm, rot, t0_gps_s=t0, t1_gps_s=max(t1, t0 + 1.0)).roti_tecu_min
         roti = np.r_[roti, np.full(max(0, n_blocks - roti.size), np.nan)][:n_blocks]
+    roti_d = ratio = np.full(n_blocks, np.nan)
+    if gf is not None and third is not None and comb is not None and np.isfinite(third).any():
+        roti_i, roti_d = block_rates(t, gf, third, comb, n_blocks=n_blocks)
+        ratio = pooled_ratio(roti_i, roti_d, blocks=POOL_BLOCKS)
     return {"start": start, "stop": start + ROTI_BLOCK_S, "roti": roti, "el": el_mean,
-            "vmax": vmax}  # fmt: skip
+            "vmax": vmax, "ratio": ratio, "roti_d": roti_d,
+            "named": empty_names(n_blocks)}  # fmt: skip
+
+
+def _combination(series: MultipathSeries, sats: str,
+                 channels: Mapping[str, int] | None) -> TripleCombination | None:  # fmt: skip
+    """Return the three-frequency combinations of an arc's satellite (None: no third carrier)."""
+    if series.method != "DF" or series.third_m is None or series.third_signal is None:
+        return None
+    sat = sats.split("-")[0]
+    try:
+        fa, fb, fc = (carrier_frequency_hz(sat, c, channels)
+                      for c in (*series.signals[:2], series.third_signal))  # fmt: skip
+    except InputError:
+        return None
+    return triple_combination(fa, fb, fc)
 
 
 def _threshold(el_mean: NDArray[np.float64], opt: ScreeningOptions, mapping: Any,
-               null: MultipathNull | None) -> NDArray[np.float64]:  # fmt: skip
+               null: MultipathNull | None, share: float) -> NDArray[np.float64]:  # fmt: skip
     """ROTI threshold per block, TECU/min: the null's quantile and the base, or the scaled base."""
     base = np.full(el_mean.size, opt.roti_threshold_tecu_min)
     scaled = base
@@ -257,7 +252,7 @@ def _threshold(el_mean: NDArray[np.float64], opt: ScreeningOptions, mapping: Any
             scaled = np.minimum(scaled, opt.roti_cap_tecu_min)
     if null is None:
         return scaled
-    thr = np.maximum(base, null.threshold(el_mean, _share(opt, null)))
+    thr = np.maximum(base, null.threshold(el_mean, share))
     return thr if null.trusted else np.minimum(thr, np.maximum(base, scaled))
 
 
@@ -269,40 +264,113 @@ def _series_null(blocks: list[dict[str, Any]], opt: ScreeningOptions) -> Multipa
                     np.concatenate([b["el"] for b in blocks]))  # fmt: skip
 
 
-def _share(opt: ScreeningOptions, null: MultipathNull) -> float:
+def _ratio_null(blocks: list[dict[str, Any]], opt: ScreeningOptions,
+                null: MultipathNull | None) -> RatioNull | None:  # fmt: skip
+    """Return the null of the three-frequency ratio (None: no third carrier or not asked for)."""
+    if null is None or not opt.three_frequency or not blocks:
+        return None
+    return fit_ratio_null(np.concatenate([b["ratio"] for b in blocks]),
+                          np.concatenate([b["el"] for b in blocks]))  # fmt: skip
+
+
+def _share(opt: ScreeningOptions, null: MultipathNull, three: bool = False) -> float:
     """False-alarm probability of each test of the null: ``p`` split between those applied.
 
     A trusted null runs :data:`N_TESTS` tests (block, persistence, coherence); an untrusted
-    one only the block test.
+    one only the block test; the three-frequency test, where it runs, is one more.
     """
-    return opt.false_alarm / (N_TESTS if null.trusted else 1)
+    return opt.false_alarm / ((N_TESTS if null.trusted else 1) + int(three))
 
 
 def _coherent(blocks: list[dict[str, Any]], opt: ScreeningOptions,
-              null: MultipathNull | None) -> list[NDArray[np.bool_]]:  # fmt: skip
+              null: MultipathNull | None, share: float) -> list[NDArray[np.bool_]]:  # fmt: skip
     """Blocks flagged by the coherence test across satellites (none without a trusted null)."""
     if not opt.ionosphere or null is None or not null.trusted:
         return [np.zeros(b["roti"].size, bool) for b in blocks]
     return coherent_blocks([0.5 * (b["start"] + b["stop"]) for b in blocks],
                            [b["roti"] for b in blocks], [b["el"] for b in blocks], null,
-                           false_alarm=_share(opt, null),
+                           false_alarm=share,
                            floor_tecu_min=opt.roti_threshold_tecu_min)  # fmt: skip
 
 
-def _iono_reason(roti: NDArray, thr: NDArray, persist: NDArray, opt: ScreeningOptions,
-                 b0: int, b1: int) -> tuple[str, float, float]:  # fmt: skip
-    """Why a span of blocks is ionosphere: the test that flagged it, its statistic and limit."""
-    ratio = roti[b0:b1 + 1] / thr[b0:b1 + 1]
-    j = b0 + int(np.nanargmax(ratio))
-    stat, th = float(roti[j]), float(thr[j])
-    if stat > th:
-        return f"ROTI {stat:.2f} TECU/min > {th:.2f}", stat, th
-    if np.any(persist[b0:b1 + 1]):
-        return (f"ROTI up to {stat:.2f} TECU/min over 15 min, improbable under this series' "
-                f"multipath (false-alarm probability {opt.false_alarm:g})"), stat, th
-    return (f"ROTI up to {stat:.2f} TECU/min on several satellites in the same 5 min, "
-            f"improbable under this series' multipath, which is satellite-specific "
-            f"(false-alarm probability {opt.false_alarm:g})"), stat, th
+def _arc_flags(bk: dict[str, Any], coherent: NDArray[np.bool_], ctx: dict[str, Any]
+               ) -> tuple[NDArray, NDArray, NDArray, NDArray]:  # fmt: skip
+    """One arc's ionosphere flags: threshold, ROTI tests' flags, persistence, final flags."""
+    opt, null, tf = ctx["opt"], ctx["null"], ctx["tf"]
+    roti = bk["roti"]
+    thr = _threshold(bk["el"], opt, ctx["mapping"], null, ctx["share"])
+    iono = (roti > thr) & ~np.isnan(roti) if opt.ionosphere else np.zeros(roti.size, bool)
+    persist = np.zeros(roti.size, bool)
+    if opt.ionosphere and null is not None and null.trusted:
+        persist = null.persistent(roti, bk["el"], false_alarm=ctx["share"],
+                                  floor_tecu_min=opt.roti_threshold_tecu_min)  # fmt: skip
+    flagged = iono | persist | coherent
+    if tf is None or not opt.ionosphere:
+        return thr, flagged, persist, flagged
+    bk["named"] = tf.name(bk["ratio"], bk["el"], roti)
+    return thr, flagged, persist, tf.decide(flagged, bk["named"])
+
+
+def _screen_arc(series: MultipathSeries, lo: int, hi: int, k: int, bk: dict[str, Any],
+                coherent: NDArray[np.bool_], ctx: dict[str, Any]) -> dict[str, Any]:  # fmt: skip
+    """Screen one arc: its flags, excluded spans, kept pieces and figure entry."""
+    sats, t = series.arc_sats[k], series.t_gps_s[lo:hi]
+    arc = {"sats": sats, "t_gps_s": t, "value_m": series.value_m[lo:hi],
+           "elevation_deg": series.elevation_deg[lo:hi]}  # fmt: skip
+    for key in ("unfiltered_m", "third_m"):
+        if getattr(series, key) is not None:
+            arc[key] = getattr(series, key)[lo:hi]
+    start, stop = bk["start"], bk["stop"]
+    thr, flagged, persist, iono = _arc_flags(bk, coherent, ctx)
+    opt = ctx["opt"]
+    implaus = (bk["vmax"] > ctx["limit"]) if opt.plausibility else np.zeros(start.size, bool)
+    keep = np.ones(t.size, bool)
+    excluded = []
+    for b0, b1 in block_spans(iono | implaus, start, stop):
+        sel = (t >= start[b0] - ctx["guard_s"]) & (t < stop[b1] + ctx["guard_s"])
+        keep &= ~sel
+        flags = (thr, flagged, persist, iono, implaus)
+        excluded.append(excluded_span(t, sats, sel, bk, flags, b0, b1, ctx))
+    kept, short, used = kept_pieces(t, keep, arc, ctx)
+    blk = np.clip(((t - t[0]) // ROTI_BLOCK_S).astype(int), 0, start.size - 1)
+    fig = {"sats": sats, "t_gps_s": 0.5 * (start + stop), "roti_tecu_min": bk["roti"],
+           "threshold_tecu_min": thr, "value_max_m": bk["vmax"],
+           "excluded": np.bincount(blk, weights=~used, minlength=start.size) > 0}  # fmt: skip
+    if ctx["tf"] is not None:
+        fig.update(ratio_3f=bk["ratio"], named_3f=bk["named"], roti_d_tecu_min=bk["roti_d"])
+    return {"kept": kept, "excluded": excluded + short, "fig": fig, "flagged": flagged,
+            "input_s": t.size * ctx["dt"]}  # fmt: skip
+
+
+def _m_per_tecu(series: MultipathSeries, channels: Mapping[str, int] | None) -> float | None:
+    """Metres of the series' geometry-free phase per TECU (None: no ionosphere test)."""
+    if series.method != "DF" or series.unfiltered_m is None:
+        return None
+    sat = series.arc_sats[0] if series.arc_sats else "G01"
+    fa, fb = (carrier_frequency_hz(sat, s, channels) for s in series.signals[:2])
+    return geometry_free_m_per_tecu(fa, fb)
+
+
+def _notes(m_per_tecu: float | None, null: MultipathNull | None,
+           rnull: RatioNull | None, tf: ThreeFrequencyTest | None) -> tuple[str, ...]:  # fmt: skip
+    """Return the notes: no ionosphere test, a disturbed null, no three-frequency test."""
+    notes = () if m_per_tecu is not None else (
+        "no ionosphere test: dual-antenna differences cancel the ionosphere of a short baseline",
+    )  # fmt: skip
+    if null is not None and not null.trusted:
+        notes += (f"the ROTI of multipath alone could not be told from the data: its fitted "
+                  f"shape is heavy-tailed (dof {null.dof:.2g} < {NU_DISTURBED:g}), so much of "
+                  f"the day is disturbed; the elevation-scaled threshold applies as well",)
+    if rnull is not None and tf is None:
+        med = rnull.median()
+        notes += (f"no three-frequency test: the rate of the ionosphere combination over that of "
+                  f"the ionosphere-free one is {med.min():.2g}-{med.max():.2g} in the median "
+                  f"block (multipath alone: about 1 or less, at most {RATIO_MAX:g}), its shape's "
+                  f"dof {rnull.dof:.2g} (heavy-tailed below {NU_DISTURBED:g}): "
+                  + ("the typical block holds ionosphere, so the three carriers name the day "
+                     "disturbed" if med.max() > RATIO_MAX else "the null is heavy-tailed")
+                  + "; no block is kept or flagged by it",)  # fmt: skip
+    return notes
 
 
 def screen_series(
@@ -319,7 +387,8 @@ def screen_series(
     ----------
     series : MultipathSeries
         Isolated multipath (DF series carry the unfiltered geometry-free
-        phase used for ROTI; DA series get the plausibility test only).
+        phase used for ROTI, and ``L_a - L_c`` where a third carrier exists;
+        DA series get the plausibility test only).
     options : ScreeningOptions, optional
         Threshold, guard and which tests to run.
     min_length_s : float, default 600
@@ -341,94 +410,52 @@ def screen_series(
     guard_s = opt.guard_s
     if guard_s is None:
         guard_s = 0.5 / series.cutoff_hz if series.cutoff_hz else 0.0
-    limit = _limit(series, glonass_channels)
-    dt = series.interval_s
-    m_per_tecu = None
-    if series.method == "DF" and series.unfiltered_m is not None:
-        sat = series.arc_sats[0] if series.arc_sats else "G01"
-        fa, fb = (carrier_frequency_hz(sat, s, glonass_channels) for s in series.signals[:2])
-        m_per_tecu = geometry_free_m_per_tecu(fa, fb)
-    kept: list[dict[str, Any]] = []
-    excluded: list[ExcludedSpan] = []
-    roti_fig: list[dict[str, Any]] = []
-    input_s = 0.0
+    m_per_tecu = _m_per_tecu(series, glonass_channels)
     bounds = series.arc_bounds()
     blocks = [_arc_blocks(series.t_gps_s[lo:hi], series.value_m[lo:hi],
-                          series.elevation_deg[lo:hi],
-                          None if series.unfiltered_m is None else series.unfiltered_m[lo:hi],
-                          m_per_tecu) for lo, hi in bounds]  # fmt: skip
+                          series.elevation_deg[lo:hi], _part(series.unfiltered_m, lo, hi),
+                          m_per_tecu, _part(series.third_m, lo, hi),
+                          _combination(series, series.arc_sats[k], glonass_channels))
+              for k, (lo, hi) in enumerate(bounds)]  # fmt: skip
     null = _series_null(blocks, opt) if m_per_tecu is not None else None
-    coherent = _coherent(blocks, opt, null)
-    for k, (lo, hi) in enumerate(bounds):
-        sats = series.arc_sats[k]
-        t, v = series.t_gps_s[lo:hi], series.value_m[lo:hi]
-        gf = None if series.unfiltered_m is None else series.unfiltered_m[lo:hi]
-        input_s += t.size * dt
-        el = series.elevation_deg[lo:hi]
-        bk = blocks[k]
-        start, stop, roti, vmax = bk["start"], bk["stop"], bk["roti"], bk["vmax"]
-        thr = _threshold(bk["el"], opt, mapping, null)
-        iono = (roti > thr) & ~np.isnan(roti) if opt.ionosphere else np.zeros(roti.size, bool)
-        persist = np.zeros(roti.size, bool)
-        if opt.ionosphere and null is not None and null.trusted:
-            persist = null.persistent(roti, bk["el"], false_alarm=_share(opt, null),
-                                      floor_tecu_min=opt.roti_threshold_tecu_min)  # fmt: skip
-        iono |= persist | coherent[k]
-        implaus = (vmax > limit) if opt.plausibility else np.zeros(roti.size, bool)
-        keep = np.ones(t.size, bool)
-        for b0, b1 in _spans(iono | implaus, start, stop):
-            s0, s1 = start[b0] - guard_s, stop[b1] + guard_s
-            sel = (t >= s0) & (t < s1)
-            keep &= ~sel
-            if np.any(implaus[b0:b1 + 1]) and not np.any(iono[b0:b1 + 1]):
-                stat = float(vmax[b0:b1 + 1].max())
-                e = ExcludedSpan(sats, float(t[sel][0]), float(t[sel][-1]),
-                                 f"implausible: {100 * stat:.1f} cm > {100 * limit:.1f} cm "
-                                 "carrier-multipath limit", "implausible", stat, limit)  # fmt: skip
-            else:
-                why, stat, th = _iono_reason(roti, thr, persist, opt, b0, b1)
-                if np.any(implaus[b0:b1 + 1]):  # a disturbance drives the series off limits too
-                    why += (f"; values up to {100 * float(vmax[b0:b1 + 1].max()):.1f} cm beyond "
-                            f"the {100 * limit:.1f} cm carrier-multipath limit")
-                e = ExcludedSpan(sats, float(t[sel][0]), float(t[sel][-1]),
-                                 f"ionosphere: {why}", "ionosphere", stat, th)  # fmt: skip
-            excluded.append(e)
-        # kept pieces; remainders too short for a window are excluded with that reason
-        edges = np.flatnonzero(np.diff(np.r_[0, keep.astype(np.int8), 0]))
-        used = np.zeros(t.size, bool)
-        for p0, p1 in zip(edges[::2], edges[1::2], strict=True):
-            dur = (p1 - p0) * dt
-            if keep.all() or dur >= min_length_s:
-                piece = {"sats": sats, "t_gps_s": t[p0:p1], "value_m": v[p0:p1],
-                         "elevation_deg": el[p0:p1]}  # fmt: skip
-                if gf is not None:
-                    piece["unfiltered_m"] = gf[p0:p1]
-                kept.append(piece)
-                used[p0:p1] = True
-            else:
-                excluded.append(ExcludedSpan(
-                    sats, float(t[p0]), float(t[p1 - 1]),
-                    f"short remainder: {dur / 60:.1f} min between excluded spans < "
-                    f"{min_length_s / 60:g} min window", "short remainder", dur, min_length_s,
-                ))  # fmt: skip
-        blk = np.clip(((t - t[0]) // ROTI_BLOCK_S).astype(int), 0, start.size - 1)
-        roti_fig.append({"sats": sats, "t_gps_s": 0.5 * (start + stop), "roti_tecu_min": roti,
-                         "threshold_tecu_min": thr, "value_max_m": vmax,
-                         "excluded": np.bincount(blk, weights=~used, minlength=start.size) > 0})
-    excluded_s = input_s - sum(p["t_gps_s"].size for p in kept) * dt
+    rnull = _ratio_null(blocks, opt, null)
+    three = rnull is not None and rnull.trusted
+    share = _share(opt, null, three) if null is not None else opt.false_alarm
+    tf = ThreeFrequencyTest(rnull, share, opt.roti_threshold_tecu_min) if three else None
+    ctx = {"opt": opt, "null": null, "tf": tf, "share": share, "mapping": mapping,
+           "limit": _limit(series, glonass_channels), "guard_s": guard_s,
+           "dt": series.interval_s, "min_length_s": min_length_s}  # fmt: skip
+    coherent = _coherent(blocks, opt, null, share)
+    arcs = [_screen_arc(series, lo, hi, k, blocks[k], coherent[k], ctx)
+            for k, (lo, hi) in enumerate(bounds)]  # fmt: skip
+    kept = [p for a in arcs for p in a["kept"]]
+    input_s = float(sum(a["input_s"] for a in arcs))
+    excluded_s = input_s - sum(p["t_gps_s"].size for p in kept) * series.interval_s
     meta = dict(series.meta)
-    meta["screening"] = {"limit_m": limit, "roti_threshold_tecu_min": opt.roti_threshold_tecu_min,
-                         "guard_s": guard_s}  # fmt: skip
+    meta["screening"] = {"limit_m": ctx["limit"], "guard_s": guard_s,
+                         "roti_threshold_tecu_min": opt.roti_threshold_tecu_min}  # fmt: skip
     out = MultipathSeries.from_arcs(
         series.method, kept, signals=series.signals, scaling=series.scaling,
-        interval_s=dt, cutoff_hz=series.cutoff_hz, meta=meta,
+        interval_s=series.interval_s, cutoff_hz=series.cutoff_hz, meta=meta,
+        third_signal=series.third_signal,
     )  # fmt: skip
-    notes = () if m_per_tecu is not None else (
-        "no ionosphere test: dual-antenna differences cancel the ionosphere of a short baseline",
-    )  # fmt: skip
-    if null is not None and not null.trusted:
-        notes += (f"the ROTI of multipath alone could not be told from the data: its fitted "
-                  f"shape is heavy-tailed (dof {null.dof:.2g} < {NU_DISTURBED:g}), so much of "
-                  f"the day is disturbed; the elevation-scaled threshold applies as well",)
-    return Screening(out, tuple(excluded), limit, input_s, excluded_s, roti_fig, opt, notes,
-                     guard_s, null)  # fmt: skip
+    three_freq = None
+    if rnull is not None or (null is not None and series.third_m is not None):
+        three_freq = summary(tf, rnull, series.third_signal, len(bounds),
+                             sum(bool(np.isfinite(b["ratio"]).any()) for b in blocks), blocks,
+                             [a["flagged"] for a in arcs])  # fmt: skip
+    notes = _notes(m_per_tecu, null, rnull, tf)
+    if tf is not None and three_freq is not None:
+        f = three_freq
+        notes += (f"three-frequency test ({f['signal']} on {f['arcs_with_third']} of "
+                  f"{f['arcs']} arcs): {f['kept_as_multipath']} blocks flagged by ROTI kept as "
+                  f"multipath, {f['confirmed']} confirmed and {f['added']} added as ionosphere "
+                  "(screening.three_frequency)",)  # fmt: skip
+    return Screening(out, tuple(e for a in arcs for e in a["excluded"]), ctx["limit"], input_s,
+                     excluded_s, [a["fig"] for a in arcs], opt, notes, guard_s, null,
+                     three_freq)  # fmt: skip
+
+
+def _part(a: NDArray[np.float64] | None, lo: int, hi: int) -> NDArray[np.float64] | None:
+    """``a[lo:hi]``, or None."""
+    return None if a is None else a[lo:hi]
