@@ -35,11 +35,12 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from psdbound.constants import OMEGA_E_RAD_S
 from psdbound.io.kepler import KeplerEphemerides
 
 __all__ = [
     "GM_M3_S2",
-    "OMEGA_E_RAD_S",
+    "OMEGA_E_BY_SYSTEM_RAD_S",
     "MAX_AGE_S",
     "HALF_WEEK_S",
     "solve_kepler",
@@ -53,7 +54,8 @@ __all__ = [
 #: Gravitational constant times Earth mass used by each system's ICD, m^3/s^2.
 GM_M3_S2 = {"G": 3.986005e14, "J": 3.986005e14, "E": 3.986004418e14, "C": 3.986004418e14}
 #: Earth rotation rate used by each system's ICD, rad/s.
-OMEGA_E_RAD_S = {"G": 7.2921151467e-5, "J": 7.2921151467e-5, "E": 7.2921151467e-5, "C": 7.292115e-5}
+OMEGA_E_BY_SYSTEM_RAD_S = {"G": OMEGA_E_RAD_S, "J": OMEGA_E_RAD_S, "E": OMEGA_E_RAD_S,
+                           "C": 7.292115e-5}  # fmt: skip
 #: Largest |t - toe| for which a record is used, s.
 MAX_AGE_S = {"G": 4 * 3600.0, "J": 4 * 3600.0, "E": 4 * 3600.0, "C": 4 * 3600.0}
 #: Half a week, s (time-from-ephemeris crossover wrap).
@@ -268,7 +270,7 @@ def kepler_positions_ecef_m(
     r = a * (1.0 - e * np.cos(big_e)) + eph.crs_m[idx] * s2 + eph.crc_m[idx] * c2
     inc = eph.i0_rad[idx] + eph.cis_rad[idx] * s2 + eph.cic_rad[idx] * c2 + eph.idot_rad_s[idx] * tk
     xp, yp = r * np.cos(u), r * np.sin(u)
-    we = OMEGA_E_RAD_S[system]
+    we = OMEGA_E_BY_SYSTEM_RAD_S[system]
     node = eph.omega0_rad[idx] + (eph.omega_dot_rad_s[idx] - we) * tk - we * eph.toe_sow_s[idx]
     cn, sn, ci = np.cos(node), np.sin(node), np.cos(inc)
     out[ok, 0] = xp * cn - yp * ci * sn

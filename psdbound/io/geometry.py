@@ -12,6 +12,8 @@ from typing import Protocol, runtime_checkable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from psdbound.constants import OMEGA_E_RAD_S
+
 __all__ = [
     "WGS84_A_M",
     "WGS84_F",
@@ -32,8 +34,6 @@ WGS84_A_M = 6378137.0
 WGS84_F = 1.0 / 298.257223563
 #: Speed of light in vacuum, m/s.
 SPEED_OF_LIGHT_M_S = 299792458.0
-#: Earth rotation rate (WGS84 / IS-GPS-200), rad/s.
-OMEGA_E_RAD_S = 7.2921151467e-5
 
 _E2 = WGS84_F * (2.0 - WGS84_F)
 _B_M = WGS84_A_M * (1.0 - WGS84_F)

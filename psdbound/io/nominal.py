@@ -45,8 +45,8 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from psdbound.constants import OMEGA_E_RAD_S, SIDEREAL_DAY_S
 from psdbound.io.ephemeris import GM_M3_S2
-from psdbound.io.geometry import OMEGA_E_RAD_S
 from psdbound.io.kepler import KeplerEphemerides
 from psdbound.io.navigation import Navigation
 from psdbound.io.timescales import SECONDS_PER_WEEK, calendar_to_gps_s
@@ -60,8 +60,6 @@ __all__ = [
     "nominal_navigation",
 ]
 
-#: Sidereal day (Earth rotation period relative to the stars), s: 2 pi / omega_E.
-SIDEREAL_DAY_S = 2.0 * np.pi / OMEGA_E_RAD_S
 
 #: GPS SPS PS (2008) table 3.2-1: (slot, RAAN deg, argument of latitude deg) at the epoch.
 GPS_SLOTS = (

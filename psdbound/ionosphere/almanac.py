@@ -42,13 +42,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from psdbound.common import atomic_write_text
+from psdbound.constants import OMEGA_E_RAD_S
 from psdbound.errors import InputError
 from psdbound.io.timescales import SECONDS_PER_WEEK
 
 __all__ = ["Almanac", "read_yuma", "write_yuma", "almanac_from_navigation"]
 
 _MU_GPS = 3.986005e14
-_OMEGA_E_GPS = 7.2921151467e-5
 _FIELDS = {
     "id": "prn",
     "health": "health",
@@ -159,8 +159,8 @@ class Almanac:
         )
         node = (
             self.omega0_rad[j]
-            + (self.omega_dot_rad_s[j] - _OMEGA_E_GPS) * tk
-            - _OMEGA_E_GPS * toa_sow
+            + (self.omega_dot_rad_s[j] - OMEGA_E_RAD_S) * tk
+            - OMEGA_E_RAD_S * toa_sow
         )
         xp, yp = r * np.cos(phi), r * np.sin(phi)
         ci, si = np.cos(self.i0_rad[j]), np.sin(self.i0_rad[j])

@@ -32,6 +32,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from psdbound.constants import SIDEREAL_DAY_S
 from psdbound.errors import InputError
 from psdbound.periodogram._ls_astropy import lombscargle_astropy
 from psdbound.periodogram._ls_gridfft import grid_indices, lombscargle_gridfft
@@ -46,10 +47,6 @@ __all__ = [
 
 #: Lomb-Scargle implementations.
 LS_METHODS = ("auto", "gridfft", "astropy")
-#: Default replication period: one sidereal day, s (2 pi / omega_E, WGS 84
-#: omega_E = 7.2921151467e-5 rad/s; the value of
-#: :data:`psdbound.ionosphere.SIDEREAL_DAY_S`, which this package cannot import).
-SIDEREAL_DAY_S = 2.0 * np.pi / 7.2921151467e-5
 
 
 def frequency_grid(

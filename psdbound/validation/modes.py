@@ -35,6 +35,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from psdbound.constants import SIDEREAL_DAY_S
 from psdbound.errors import InputError
 
 __all__ = [
@@ -48,8 +49,6 @@ __all__ = [
     "resolve_rate",
 ]
 
-#: Sidereal day, s.
-SIDEREAL_DAY_S = 86164.0905
 
 #: Geometry rates of a static antenna: one over the orbital period, Hz.
 #: GPS: 2 revolutions per sidereal day; Galileo 17 in 10; GLONASS 17 in 8;

@@ -10,7 +10,7 @@ from conftest import ESBC_NAV, ESBC_SP3, shared_file
 
 from psdbound.io.ephemeris import (
     GM_M3_S2,
-    OMEGA_E_RAD_S,
+    OMEGA_E_BY_SYSTEM_RAD_S,
     kepler_positions_ecef_m,
     satellite_clock_s,
     select_records,
@@ -66,7 +66,7 @@ def test_circular_equatorial_orbit(sat):
 
 def test_module_constants():
     assert GM_M3_S2 == MU
-    assert OMEGA_E_RAD_S == OMEGA_E
+    assert OMEGA_E_BY_SYSTEM_RAD_S == OMEGA_E
 
 
 def test_system_constants_differ():

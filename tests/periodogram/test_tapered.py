@@ -13,7 +13,7 @@ import psdbound.periodogram as pg
 from psdbound.ionosphere import SIDEREAL_DAY_S
 from psdbound.periodogram._ls_gridfft import lombscargle_gridfft
 
-ALLOWED = ("psdbound.errors", "psdbound.common", "psdbound.periodogram")
+ALLOWED = ("psdbound.errors", "psdbound.common", "psdbound.constants", "psdbound.periodogram")
 
 
 def test_tapered_lomb_scargle_is_hann_times_series_without_mean_fit():
