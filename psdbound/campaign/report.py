@@ -12,6 +12,7 @@ from typing import Any
 
 from psdbound.campaign.run import CampaignResult
 from psdbound.errors import InputError
+from psdbound.results.headline import check_line
 
 __all__ = ["CAMPAIGN_FILES", "station_lines", "write_campaign"]
 
@@ -76,8 +77,7 @@ def station_lines(st: dict[str, Any]) -> list[str]:
     if st.get("comparison_note"):
         lines.append(st["comparison_note"])
     lines.append("rules applied to the pooled bound:")
-    lines += [f"  {c['rule']}: {c['measured']} ({c['limit']}) {'pass' if c['passed'] else 'FAIL'}"
-              for c in st["verdict_checks"]]  # fmt: skip
+    lines += [f"  {check_line(c)}" for c in st["verdict_checks"]]
     return lines
 
 

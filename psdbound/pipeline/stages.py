@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 
 from psdbound.errors import InputError, NoDataError
-from psdbound.io import add_third_carrier, find_arcs
+from psdbound.io import ArcSet, add_third_carrier, find_arcs
 from psdbound.io.options import ArcOptions
 from psdbound.io.signals import wavelength_m
 from psdbound.ionosphere.policy import CutoffChoice, CutoffOptions
@@ -87,13 +87,13 @@ def _xyz(rx: tuple[float, float, float] | None) -> np.ndarray | None:
     return None if rx is None else np.asarray(rx, dtype=float)
 
 
-def _offered(arcs: Any, interval_s: float) -> dict[str, float] | None:
+def _offered(arcs: ArcSet, interval_s: float) -> dict[str, float] | None:
     """Return what the data offered before arcs were formed (both phases, above the mask).
 
     Samples without an orbit position count as offered (and lost): a navigation
     file that covers part of the day loses the rest.
     """
-    n = getattr(arcs, "samples", None)
+    n = arcs.samples
     if not n:
         return None
     offered = n["both_signals"] - n["below_mask"]

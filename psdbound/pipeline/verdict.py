@@ -101,6 +101,7 @@ from typing import Any
 import numpy as np
 
 from psdbound.common.options import Choice, Number, check_fields, option
+from psdbound.results.headline import check_line
 from psdbound.spectra.names import POLICIES
 
 __all__ = ["VerdictCheck", "VerdictOptions", "judge", "judge_pooled", "pooled_checks",
@@ -195,7 +196,7 @@ class VerdictCheck:
 
     def line(self) -> str:
         """Return ``rule: measured (limit) pass|FAIL``, the line every output prints."""
-        return f"{self.rule}: {self.measured} ({self.limit}) {'pass' if self.passed else 'FAIL'}"
+        return check_line(self.as_dict())
 
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready form (an entry of ``verdict_checks`` in result.json)."""
@@ -223,11 +224,16 @@ def _degenerate(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
     ]  # fmt: skip
 
 
+def _covered(d: dict[str, Any]) -> float:
+    """Time in the bound's windows, s: given (a campaign pool), or from the windows' spans."""
+    if d.get("covered_s") is not None:
+        return float(d["covered_s"])
+    return _covered_s(d["windows"]["per_window"], d["sampling"]["interval_s"])
+
+
 def _data_for_tau(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
     b = d["bound"]
-    covered = d.get("covered_s")
-    if covered is None:
-        covered = _covered_s(d["windows"]["per_window"], d["sampling"]["interval_s"])
+    covered = _covered(d)
     need = opt.min_tau_multiple * b["tau_s"]
     ok = b["sigma_gm_m"] <= 0 or covered >= need
     return [_check("data for tau", ok, f"{covered / 3600:.2f} h in windows",
@@ -284,7 +290,7 @@ def _data_used(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
     offered = ((d.get("isolation") or {}).get("offered") or {}).get("offered_s")
     if not offered:
         return []
-    used = _covered_s(d["windows"]["per_window"], d["sampling"]["interval_s"]) / offered
+    used = _covered(d) / offered
     lim = opt.min_used_fraction
     return [_check("data used", used >= lim, f"{100 * used:.1f} % of {offered / 3600:.1f} h",
                    f">= {100 * lim:g} %",

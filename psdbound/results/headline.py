@@ -21,9 +21,10 @@ thesis's.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import Any
 
-__all__ = ["DO_NOT_USE", "headline"]
+__all__ = ["DO_NOT_USE", "check_line", "headline"]
 
 #: What a not-bounded result says first, in every output.
 DO_NOT_USE = "do not use this bound: no trustworthy bound can be given from these data"
@@ -35,12 +36,27 @@ def _verdict_line(d: dict[str, Any]) -> str:
     return f"VERDICT: NOT-BOUNDED - {DO_NOT_USE}"
 
 
+def check_line(check: Mapping[str, Any]) -> str:
+    """Return ``rule: measured (limit) pass|FAIL``: one verdict rule as every output prints it.
+
+    Parameters
+    ----------
+    check : mapping
+        An entry of ``verdict_checks`` (``rule``, ``measured``, ``limit``, ``passed``).
+
+    Returns
+    -------
+    str
+    """
+    verdict = "pass" if check["passed"] else "FAIL"
+    return f"{check['rule']}: {check['measured']} ({check['limit']}) {verdict}"
+
+
 def _rule_lines(d: dict[str, Any]) -> list[str]:
     checks = d.get("verdict_checks") or []
     n_pass = sum(bool(c["passed"]) for c in checks)
     lines = [f"rules: {n_pass} of {len(checks)} passed"]
-    lines += [f"  {c['rule']}: {c['measured']} ({c['limit']}) {'pass' if c['passed'] else 'FAIL'}"
-              for c in checks]  # fmt: skip
+    lines += [f"  {check_line(c)}" for c in checks]
     return lines + [f"reason: {x}" for x in d.get("verdict_reasons") or []]
 
 
