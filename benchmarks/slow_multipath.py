@@ -380,7 +380,8 @@ def reflection_truth(truth_json: Path, result: dict[str, Any], dt_s: float,
     info : dict
         ``n_arcs``, ``hours``, ``mean_inv_m2``, ``refl_rms_mm``, ``max_twin_diff_m``.
     """
-    from psdbound.io.signals import SPEED_OF_LIGHT_M_S, carrier_frequency_hz
+    from psdbound.constants import SPEED_OF_LIGHT_M_S
+    from psdbound.io.signals import carrier_frequency_hz
 
     files = json.loads(truth_json.read_text())["files"]
     with_r = read_truth_csv(truth_json.parent / files["truth"])

@@ -1,5 +1,7 @@
 """Physical constants used across the stages: one definition each.
 
+``tests/test_structure.py`` checks that no other module writes these numbers.
+
 Every stage that needs the Earth's rotation or the sidereal day imports it
 from here, at the bottom of the import graph (this module imports nothing).
 
@@ -20,9 +22,60 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["OMEGA_E_RAD_S", "SIDEREAL_DAY_S"]
+__all__ = [
+    "F_L1_HZ",
+    "F_L2_HZ",
+    "F_L5_HZ",
+    "GLONASS_A_E_M",
+    "GLONASS_GM_M3_S2",
+    "GLONASS_J2",
+    "GLONASS_OMEGA_E_RAD_S",
+    "GM_BEIDOU_GALILEO_M3_S2",
+    "GM_GPS_M3_S2",
+    "OMEGA_E_BEIDOU_RAD_S",
+    "OMEGA_E_RAD_S",
+    "SIDEREAL_DAY_S",
+    "SPEED_OF_LIGHT_M_S",
+    "WGS84_A_M",
+    "WGS84_F",
+]
 
 #: Earth rotation rate (WGS-84, GPS/Galileo/QZSS), rad/s.
 OMEGA_E_RAD_S = 7.2921151467e-5
 #: Earth rotation period relative to the stars, 2 pi / OMEGA_E_RAD_S, s.
 SIDEREAL_DAY_S = 2.0 * math.pi / OMEGA_E_RAD_S
+
+#: Earth rotation rate of BeiDou's interface document (BDS-SIS-ICD-B1I), rad/s.
+OMEGA_E_BEIDOU_RAD_S = 7.292115e-5
+
+#: Earth's gravitational constant GM of the GPS and QZSS interface documents
+#: (IS-GPS-200, IS-QZSS), m^3/s^2.
+GM_GPS_M3_S2 = 3.986005e14
+#: GM of the Galileo (OS SIS ICD) and BeiDou interface documents, m^3/s^2.
+GM_BEIDOU_GALILEO_M3_S2 = 3.986004418e14
+
+#: Speed of light in vacuum, m/s (exact, SI).
+SPEED_OF_LIGHT_M_S = 299792458.0
+
+#: WGS-84 semi-major axis, m (NIMA TR8350.2).
+WGS84_A_M = 6378137.0
+#: WGS-84 flattening (NIMA TR8350.2).
+WGS84_F = 1.0 / 298.257223563
+
+#: GPS L1 (also Galileo E1, BeiDou B1C, QZSS, SBAS L1) carrier frequency, Hz (IS-GPS-200).
+F_L1_HZ = 1575.42e6
+#: GPS L2 carrier frequency, Hz (IS-GPS-200).
+F_L2_HZ = 1227.60e6
+#: GPS L5 (also Galileo E5a, BeiDou B2a) carrier frequency, Hz (IS-GPS-705).
+F_L5_HZ = 1176.45e6
+
+#: GLONASS (PZ-90.11) gravitational constant times Earth mass, m^3/s^2 (GLONASS ICD).
+GLONASS_GM_M3_S2 = 398600.4418e9
+#: GLONASS second zonal harmonic J2 = -C20 (PZ-90.11, unnormalised), dimensionless.
+GLONASS_J2 = 1082.62575e-6
+#: GLONASS (PZ-90.11) Earth equatorial radius, m.
+GLONASS_A_E_M = 6378136.0
+#: Earth rotation rate used for GLONASS orbit integration, rad/s (the WGS-84
+#: value, as before this module held it; the GLONASS ICD's PZ-90 value
+#: 7.292115e-5 differs by 2e-14 rad/s, under a millimetre over an integration).
+GLONASS_OMEGA_E_RAD_S = 7.2921151467e-5

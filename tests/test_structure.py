@@ -140,3 +140,27 @@ def test_cli_modules_do_no_numerical_work():
                 if n.split(".")[0] in NUMERIC:
                     bad.append(f"{path}:{node.lineno} imports {n}")
     assert not bad, "CLI modules only parse and print:\n" + "\n".join(bad)
+
+
+def _constant_values() -> dict[float, str]:
+    """Every float constant of psdbound/constants.py (evaluated: some are expressions)."""
+    import psdbound.constants as c
+
+    return {float(getattr(c, n)): n for n in c.__all__ if isinstance(getattr(c, n), float)}
+
+
+def test_one_definition_of_each_physical_constant():
+    # a physical constant is written once, in psdbound/constants.py; any other
+    # module that spells its value defines it a second time
+    values = _constant_values()
+    bad = []
+    for mod, path in MODULES.items():
+        if mod == "psdbound.constants":
+            continue
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Constant) and type(node.value) is float and node.value:
+                hit = values.get(node.value)
+                if hit is not None:
+                    bad.append(f"{path}:{node.lineno} writes {node.value!r}: use "
+                               f"psdbound.constants.{hit}")
+    assert not bad, "constants defined twice:\n" + "\n".join(bad)

@@ -35,7 +35,12 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from psdbound.constants import OMEGA_E_RAD_S
+from psdbound.constants import (
+    GM_BEIDOU_GALILEO_M3_S2,
+    GM_GPS_M3_S2,
+    OMEGA_E_BEIDOU_RAD_S,
+    OMEGA_E_RAD_S,
+)
 from psdbound.io.kepler import KeplerEphemerides
 
 __all__ = [
@@ -52,10 +57,11 @@ __all__ = [
 ]
 
 #: Gravitational constant times Earth mass used by each system's ICD, m^3/s^2.
-GM_M3_S2 = {"G": 3.986005e14, "J": 3.986005e14, "E": 3.986004418e14, "C": 3.986004418e14}
+GM_M3_S2 = {"G": GM_GPS_M3_S2, "J": GM_GPS_M3_S2, "E": GM_BEIDOU_GALILEO_M3_S2,
+            "C": GM_BEIDOU_GALILEO_M3_S2}  # fmt: skip
 #: Earth rotation rate used by each system's ICD, rad/s.
 OMEGA_E_BY_SYSTEM_RAD_S = {"G": OMEGA_E_RAD_S, "J": OMEGA_E_RAD_S, "E": OMEGA_E_RAD_S,
-                           "C": 7.292115e-5}  # fmt: skip
+                           "C": OMEGA_E_BEIDOU_RAD_S}  # fmt: skip
 #: Largest |t - toe| for which a record is used, s.
 MAX_AGE_S = {"G": 4 * 3600.0, "J": 4 * 3600.0, "E": 4 * 3600.0, "C": 4 * 3600.0}
 #: Half a week, s (time-from-ephemeris crossover wrap).

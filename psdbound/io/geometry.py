@@ -12,13 +12,9 @@ from typing import Protocol, runtime_checkable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from psdbound.constants import OMEGA_E_RAD_S
+from psdbound.constants import OMEGA_E_RAD_S, SPEED_OF_LIGHT_M_S, WGS84_A_M, WGS84_F
 
 __all__ = [
-    "WGS84_A_M",
-    "WGS84_F",
-    "SPEED_OF_LIGHT_M_S",
-    "OMEGA_E_RAD_S",
     "OrbitSource",
     "ecef_to_geodetic",
     "geodetic_to_ecef",
@@ -27,13 +23,6 @@ __all__ = [
     "satellite_azel",
     "signal_path",
 ]
-
-#: WGS84 semi-major axis, m.
-WGS84_A_M = 6378137.0
-#: WGS84 flattening.
-WGS84_F = 1.0 / 298.257223563
-#: Speed of light in vacuum, m/s.
-SPEED_OF_LIGHT_M_S = 299792458.0
 
 _E2 = WGS84_F * (2.0 - WGS84_F)
 _B_M = WGS84_A_M * (1.0 - WGS84_F)

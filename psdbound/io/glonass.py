@@ -16,8 +16,8 @@ the last step shorter; its error is far below a millimetre over the 15-30
 minutes a record is used, well under the metre-level error of the broadcast
 state itself.
 
-Constants are those of PZ-90.11 (:data:`GLONASS_GM_M3_S2`,
-:data:`GLONASS_J2`, :data:`GLONASS_A_E_M`, :data:`GLONASS_OMEGA_E_RAD_S`).
+Constants are those of PZ-90.11 (``GLONASS_GM_M3_S2``, ``GLONASS_J2``,
+``GLONASS_A_E_M``, ``GLONASS_OMEGA_E_RAD_S`` of :mod:`psdbound.constants`).
 PZ-90.11 and WGS84 (G1762) agree to a few centimetres; the difference is
 neglected and the positions are used as WGS84 coordinates.
 
@@ -42,14 +42,11 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from psdbound.constants import GLONASS_A_E_M, GLONASS_GM_M3_S2, GLONASS_J2, GLONASS_OMEGA_E_RAD_S
 from psdbound.io.kepler import RecordTable
 
 __all__ = [
-    "GLONASS_A_E_M",
-    "GLONASS_GM_M3_S2",
-    "GLONASS_J2",
     "GLONASS_MAX_AGE_S",
-    "GLONASS_OMEGA_E_RAD_S",
     "INTEGRATION_STEP_S",
     "GlonassEphemerides",
     "glonass_acceleration",
@@ -59,14 +56,6 @@ __all__ = [
     "select_glonass_records",
 ]
 
-#: PZ-90.11 gravitational constant times Earth mass, m^3/s^2.
-GLONASS_GM_M3_S2 = 398600.4418e9
-#: Second zonal harmonic J2 = -C20 (PZ-90.11, unnormalised), dimensionless.
-GLONASS_J2 = 1082.62575e-6
-#: PZ-90.11 Earth equatorial radius, m.
-GLONASS_A_E_M = 6378136.0
-#: PZ-90.11 Earth rotation rate, rad/s.
-GLONASS_OMEGA_E_RAD_S = 7.2921151467e-5
 #: Largest |t - tb| for which a record is used, s.
 GLONASS_MAX_AGE_S = 1800.0
 #: Runge-Kutta step of the orbit integration, s.

@@ -53,8 +53,6 @@ from psdbound.io.timescales import SECONDS_PER_WEEK, calendar_to_gps_s
 
 __all__ = [
     "GPS_SLOTS",
-    "OMEGA_E_RAD_S",
-    "SIDEREAL_DAY_S",
     "NominalElements",
     "nominal_elements",
     "nominal_navigation",

@@ -63,7 +63,6 @@ if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
         station_cutoffs,
     )
     from psdbound.ionosphere.constellation import (
-        SIDEREAL_DAY_S,
         NominalConstellation,
         nominal_constellation,
     )
@@ -122,7 +121,6 @@ __all__ = [
     "FREQUENCIES_HZ",
     "MAP_STATIONS",
     "SETTING_OPTIONS",
-    "SIDEREAL_DAY_S",
     "THESIS_CHICAGO_2020_HZ",
     "THESIS_CUTOFF_HZ",
     "Almanac",
@@ -184,7 +182,6 @@ _EXPORTS = {
     "map_cutoffs": ("psdbound.ionosphere.batch", "map_cutoffs"),
     "select_days": ("psdbound.ionosphere.batch", "select_days"),
     "station_cutoffs": ("psdbound.ionosphere.batch", "station_cutoffs"),
-    "SIDEREAL_DAY_S": ("psdbound.ionosphere.constellation", "SIDEREAL_DAY_S"),
     "NominalConstellation": ("psdbound.ionosphere.constellation", "NominalConstellation"),
     "nominal_constellation": ("psdbound.ionosphere.constellation", "nominal_constellation"),
     "CRITERIA": ("psdbound.ionosphere.cutoff", "CRITERIA"),

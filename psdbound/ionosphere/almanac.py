@@ -42,13 +42,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from psdbound.common import atomic_write_text
-from psdbound.constants import OMEGA_E_RAD_S
+from psdbound.constants import GM_GPS_M3_S2, OMEGA_E_RAD_S
 from psdbound.errors import InputError
+from psdbound.io.ephemeris import solve_kepler
 from psdbound.io.timescales import SECONDS_PER_WEEK
 
 __all__ = ["Almanac", "read_yuma", "write_yuma", "almanac_from_navigation"]
 
-_MU_GPS = 3.986005e14
 _FIELDS = {
     "id": "prn",
     "health": "health",
@@ -144,13 +144,11 @@ class Almanac:
         if j is None or self.health[j] != 0:
             return np.full((t.shape[0], 3), np.nan)
         a = self.sqrt_a[j] ** 2
-        n0 = np.sqrt(_MU_GPS / a**3)
+        n0 = np.sqrt(GM_GPS_M3_S2 / a**3)
         tk = t - self.toa_gps_s[j]
         m = self.m0_rad[j] + n0 * tk
         ecc = self.e[j]
-        ea = m.copy()
-        for _ in range(10):
-            ea = ea - (ea - ecc * np.sin(ea) - m) / (1.0 - ecc * np.cos(ea))
+        ea = solve_kepler(m, ecc)
         nu = np.arctan2(np.sqrt(1.0 - ecc * ecc) * np.sin(ea), np.cos(ea) - ecc)
         phi = nu + self.omega_rad[j]
         r = a * (1.0 - ecc * np.cos(ea))
@@ -359,8 +357,8 @@ def almanac_from_navigation(nav, t_gps_s: float, *, system: str = "G") -> Almana
         if idx.size:
             rows.append(idx[np.argmin(np.abs(eph.toe_gps_s[idx] - t_gps_s))])
     r = np.array(rows)
-    n = np.sqrt(_MU_GPS / eph.sqrt_a[r] ** 6) + eph.delta_n_rad_s[r]
-    sqrt_a = (_MU_GPS / n**2) ** (1.0 / 6.0)
+    n = np.sqrt(GM_GPS_M3_S2 / eph.sqrt_a[r] ** 6) + eph.delta_n_rad_s[r]
+    sqrt_a = (GM_GPS_M3_S2 / n**2) ** (1.0 / 6.0)
     return Almanac(
         sats=tuple(str(s) for s in eph.sat[r]),
         toa_gps_s=eph.toe_gps_s[r].astype(np.float64),

@@ -21,11 +21,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from psdbound.io.geometry import OMEGA_E_RAD_S
-from psdbound.io.nominal import GPS_SLOTS, SIDEREAL_DAY_S, NominalElements, nominal_elements
+from psdbound.constants import OMEGA_E_RAD_S
+from psdbound.io.nominal import GPS_SLOTS, NominalElements, nominal_elements
 
 __all__ = [
-    "SIDEREAL_DAY_S",
     "GPS_SLOTS",
     "NominalConstellation",
     "nominal_constellation",

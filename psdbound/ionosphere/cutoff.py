@@ -39,8 +39,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from psdbound.constants import SIDEREAL_DAY_S
 from psdbound.errors import InputError
-from psdbound.ionosphere.constellation import SIDEREAL_DAY_S
 from psdbound.ionosphere.envelope import Envelope, fit_envelope
 from psdbound.periodogram import frequency_grid, lomb_scargle, to_one_sided_density
 

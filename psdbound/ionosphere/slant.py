@@ -41,10 +41,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from psdbound.constants import F_L1_HZ, F_L2_HZ, F_L5_HZ, SIDEREAL_DAY_S
 from psdbound.errors import InputError, NoDataError
 from psdbound.io.geometry import OrbitSource, geodetic_to_ecef, satellite_azel
 from psdbound.io.timescales import calendar_to_gps_s, utc_to_gps_s
-from psdbound.ionosphere.constellation import SIDEREAL_DAY_S, nominal_constellation
+from psdbound.ionosphere.constellation import nominal_constellation
 from psdbound.ionosphere.iri import (
     DEFAULT_F107_SFU,
     DEFAULT_UT_STEP_H,
@@ -77,11 +78,11 @@ DEFAULT_SHELL_HEIGHT_KM = 350.0
 DEFAULT_MARGIN_S = 12 * 3600.0
 #: Carrier frequencies by name, Hz.
 FREQUENCIES_HZ = {
-    "L1": 1575.42e6,
-    "L2": 1227.60e6,
-    "L5": 1176.45e6,
-    "E1": 1575.42e6,
-    "E5a": 1176.45e6,
+    "L1": F_L1_HZ,
+    "L2": F_L2_HZ,
+    "L5": F_L5_HZ,
+    "E1": F_L1_HZ,
+    "E5a": F_L5_HZ,
     "E5b": 1207.14e6,
 }
 #: Line-of-sight integration methods.

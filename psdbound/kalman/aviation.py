@@ -32,6 +32,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 from scipy.stats import norm
 
+from psdbound.constants import F_L1_HZ, F_L5_HZ
 from psdbound.errors import InputError
 
 __all__ = [
@@ -53,8 +54,6 @@ __all__ = [
     "smoothing_variance_factor",
 ]
 
-F_L1_HZ = 1575.42e6
-F_L5_HZ = 1176.45e6
 SMOOTHING_RATIO_FORMULAS = ("exact", "seed", "steady_state")
 
 

@@ -27,7 +27,6 @@ if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
     from psdbound.periodogram._ls_astropy import replicate_series
     from psdbound.periodogram.lombscargle import (
         LS_METHODS,
-        SIDEREAL_DAY_S,
         frequency_grid,
         lomb_scargle,
         to_one_sided_density,
@@ -36,7 +35,6 @@ if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
 
 __all__ = [
     "LS_METHODS",
-    "SIDEREAL_DAY_S",
     "frequency_grid",
     "hann_taper",
     "lomb_scargle",
@@ -50,7 +48,6 @@ __all__ = [
 _EXPORTS = {
     "replicate_series": ("psdbound.periodogram._ls_astropy", "replicate_series"),
     "LS_METHODS": ("psdbound.periodogram.lombscargle", "LS_METHODS"),
-    "SIDEREAL_DAY_S": ("psdbound.periodogram.lombscargle", "SIDEREAL_DAY_S"),
     "frequency_grid": ("psdbound.periodogram.lombscargle", "frequency_grid"),
     "lomb_scargle": ("psdbound.periodogram.lombscargle", "lomb_scargle"),
     "to_one_sided_density": ("psdbound.periodogram.lombscargle", "to_one_sided_density"),

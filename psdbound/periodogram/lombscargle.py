@@ -39,7 +39,6 @@ from psdbound.periodogram._ls_gridfft import grid_indices, lombscargle_gridfft
 
 __all__ = [
     "LS_METHODS",
-    "SIDEREAL_DAY_S",
     "frequency_grid",
     "lomb_scargle",
     "to_one_sided_density",

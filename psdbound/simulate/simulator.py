@@ -46,12 +46,13 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.signal import lfilter
 
+from psdbound.constants import SPEED_OF_LIGHT_M_S
 from psdbound.errors import InputError
 from psdbound.io.geometry import azimuth_elevation, enu_rotation, geodetic_to_ecef, signal_path
 from psdbound.io.nav import Navigation, read_nav
 from psdbound.io.nominal import nominal_navigation
 from psdbound.io.obs import SYSTEM_NAMES, Observations, ObsHeader, SystemBlock
-from psdbound.io.signals import SPEED_OF_LIGHT_M_S, carrier_frequency_hz, wavelength_m
+from psdbound.io.signals import carrier_frequency_hz, wavelength_m
 from psdbound.io.write import format_nav_v3, write_obs_v3
 from psdbound.screening.plausibility import multipath_limit_m
 from psdbound.simulate.scenario import MultipathModel, Scenario

@@ -22,7 +22,7 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from psdbound.periodogram.lombscargle import SIDEREAL_DAY_S
+from psdbound.constants import SIDEREAL_DAY_S
 
 __all__ = ["cluster_labels", "overlap_correlation", "reference_clusters", "repeat_clusters"]
 

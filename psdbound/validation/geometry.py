@@ -38,6 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from psdbound.constants import F_L1_HZ, SPEED_OF_LIGHT_M_S
 from psdbound.errors import InputError
 
 __all__ = [
@@ -51,7 +52,7 @@ __all__ = [
 ]
 
 #: GPS L1 carrier wavelength, m (c / 1575.42 MHz).
-GPS_L1_WAVELENGTH_M = 299792458.0 / 1575.42e6
+GPS_L1_WAVELENGTH_M = SPEED_OF_LIGHT_M_S / F_L1_HZ
 
 #: Phase conventions, see the module docstring.
 CONVENTIONS = ("thesis", "physical")

@@ -43,7 +43,6 @@ __all__ = [
     "DynamicMode",
     "ORBIT_RATES_HZ",
     "RateSource",
-    "SIDEREAL_DAY_S",
     "load_modes",
     "mode_table",
     "resolve_rate",

@@ -6,11 +6,8 @@ import numpy as np
 import pytest
 from conftest import ESBC_NAV, ESBC_SP3, shared_file
 
+from psdbound.constants import OMEGA_E_RAD_S, SPEED_OF_LIGHT_M_S, WGS84_A_M, WGS84_F
 from psdbound.io.geometry import (
-    OMEGA_E_RAD_S,
-    SPEED_OF_LIGHT_M_S,
-    WGS84_A_M,
-    WGS84_F,
     OrbitSource,
     azimuth_elevation,
     ecef_to_geodetic,

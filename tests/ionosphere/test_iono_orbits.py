@@ -6,12 +6,12 @@ import numpy as np
 import pytest
 from conftest import ESBC_NAV, ESBC_SP3, shared_file
 
+from psdbound.constants import SIDEREAL_DAY_S
 from psdbound.errors import InputError
 from psdbound.io.geometry import geodetic_to_ecef, satellite_azel
 from psdbound.io.timescales import calendar_to_gps_s
 from psdbound.ionosphere import (
     CHICAGO,
-    SIDEREAL_DAY_S,
     almanac_from_navigation,
     nominal_constellation,
     read_yuma,

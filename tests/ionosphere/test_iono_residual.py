@@ -17,10 +17,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from psdbound.constants import SIDEREAL_DAY_S
 from psdbound.errors import InputError
 from psdbound.io.geometry import geodetic_to_ecef, satellite_azel
 from psdbound.ionosphere import (
-    SIDEREAL_DAY_S,
     nominal_constellation,
     one_day_series,
     residual_cutoff,

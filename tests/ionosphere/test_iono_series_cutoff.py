@@ -13,9 +13,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from psdbound.constants import SIDEREAL_DAY_S
 from psdbound.errors import InputError
 from psdbound.ionosphere import (
-    SIDEREAL_DAY_S,
     fit_envelope,
     local_maxima,
     series_cutoff,

@@ -10,11 +10,10 @@ import pytest
 from conftest import UPC1_OBS, UPC2_OBS, UPC_NAV, shared_file
 
 import psdbound.isolation.dual_antenna as da_mod
+from psdbound.constants import OMEGA_E_RAD_S, SPEED_OF_LIGHT_M_S
 from psdbound.errors import InputError, NoDataError
 from psdbound.io import ObsHeader, read_obs, read_orbit
 from psdbound.io.geometry import (
-    OMEGA_E_RAD_S,
-    SPEED_OF_LIGHT_M_S,
     azimuth_elevation,
     enu_rotation,
     geodetic_to_ecef,

@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from psdbound.constants import SIDEREAL_DAY_S
 from psdbound.errors import InputError
 from psdbound.periodogram import (
-    SIDEREAL_DAY_S,
     frequency_grid,
     lomb_scargle,
     to_one_sided_density,

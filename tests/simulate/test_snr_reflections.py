@@ -14,8 +14,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from psdbound.constants import SPEED_OF_LIGHT_M_S
 from psdbound.io import read_obs, read_orbit
-from psdbound.io.signals import SPEED_OF_LIGHT_M_S, carrier_frequency_hz
+from psdbound.io.signals import carrier_frequency_hz
 from psdbound.simulate import Reflection, preset, simulate
 from psdbound.validation import reflector_heights
 

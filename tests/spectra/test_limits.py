@@ -138,7 +138,7 @@ def test_reference_clusters_and_their_correlation() -> None:
 
 
 def test_sidereal_repeats_are_one_cluster() -> None:
-    from psdbound.periodogram import SIDEREAL_DAY_S
+    from psdbound.constants import SIDEREAL_DAY_S
     from psdbound.spectra.dependence import repeat_clusters
 
     t0 = np.array([1000.0, 1000.0 + SIDEREAL_DAY_S + 120.0, 1000.0 + 0.5 * SIDEREAL_DAY_S])
