@@ -26,6 +26,7 @@ from psdbound.isolation import MultipathSeries
 from psdbound.pipeline import stages
 from psdbound.pipeline.config import FitConfig
 from psdbound.pipeline.products import Screened
+from psdbound.pipeline.runner import run_stages
 
 DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "rinex"
 DAYS = {
@@ -54,7 +55,8 @@ def _half(series: MultipathSeries, first: bool) -> MultipathSeries:
 def _bound(cfg: FitConfig, screened: Screened, cutoff, **changes):
     spectra = replace(cfg.spectra, **{k: v for k, v in changes.items() if k == "estimator"})
     bound_opt = replace(cfg.bound, **{k: v for k, v in changes.items() if k == "rule"})
-    windowed = stages.window(screened, mapping=cfg.mapping, options=cfg.stationarity)
+    mapping = stages.map_elevation(screened.series, cfg.mapping)
+    windowed = stages.window(screened, mapping=mapping, options=cfg.stationarity)
     return stages.bound(windowed, spectra=spectra, options=bound_opt, cutoff=cutoff,
                         highpass=cfg.filter).bound  # fmt: skip
 
@@ -63,13 +65,8 @@ def run_day(name: str) -> dict[str, float]:
     """Run the comparisons on one day; print a table; return the ratios."""
     obs, nav = DAYS[name]
     cfg = FitConfig().updated("inputs", obs=(str(DATA / obs),), nav=str(DATA / nav))
-    inputs = stages.read_inputs(cfg.inputs)
-    cutoff = stages.choose_cutoff(inputs, cfg.cutoff)
-    iso = stages.isolate(inputs, cutoff, arcs=cfg.arcs, highpass=cfg.filter, options=cfg.inputs)
-    screened = stages.screen(iso, options=cfg.screening, mapping=cfg.mapping,
-                             min_length_s=cfg.stationarity.min_window_s)  # fmt: skip
-    whole = stages.window(screened, mapping=cfg.mapping, options=cfg.stationarity)
-    m = whole.mapping
+    run = run_stages(cfg, until="windowed")
+    screened, cutoff, m = run.screened, run.cutoff, run.windowed.mapping
     cfg = cfg.updated("mapping", kind="fixed", a=m.a, b=m.b, c_deg=m.c_deg)
     rows = {}
     rows["whole"] = _bound(cfg, screened, cutoff)

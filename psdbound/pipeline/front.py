@@ -1,8 +1,9 @@
 """The library's front door: ``psdbound.fit`` -> :class:`FitResults`, ``psdbound.load``.
 
 statsmodels-style: :func:`fit` runs the stage chain of
-:mod:`psdbound.pipeline.stages` and returns a results object with the stage
-products, the result document, :meth:`FitResults.summary`,
+:mod:`psdbound.pipeline.stages` (through
+:func:`~psdbound.pipeline.runner.run_stages`) and returns a results object
+with the stage products, the result document, :meth:`FitResults.summary`,
 :meth:`FitResults.to_json` and :meth:`FitResults.report`. :func:`load`
 reads a ``result.json`` back into a :class:`FitResults` (document only).
 
@@ -24,13 +25,11 @@ from pathlib import Path
 from typing import Any
 
 from psdbound.errors import InputError
-from psdbound.pipeline import stages
-from psdbound.pipeline.code_stage import code_overbound
 from psdbound.pipeline.config import FitConfig
 from psdbound.pipeline.document import build_document
+from psdbound.pipeline.runner import run_stages
 from psdbound.results import read_document, write_document
 from psdbound.results.headline import headline
-from psdbound.stationarity import MappingOptions
 
 __all__ = ["FitResults", "fit", "load"]
 
@@ -362,7 +361,7 @@ def fit(
     --------
     load : Read a ``result.json`` back as the same results object.
     psdbound.pipeline.FitConfig : Every option, with its default, unit and checks.
-    psdbound.pipeline.stages : The same pipeline one stage at a time.
+    psdbound.pipeline.runner.run_stages : The same stages, up to any one of them.
 
     References
     ----------
@@ -387,32 +386,12 @@ def fit(
     """
     cfg = _config_from(obs, nav, config, options)
     cfg.check()  # conflicting options and ignored files are errors before anything is read
-    say = progress or (lambda msg: None)
     t0 = time.perf_counter()
-    inputs = stages.read_inputs(cfg.inputs, progress=say, extra_codes=cfg.code_multipath.codes)
-    cfg = cfg.updated("inputs", method=inputs.method)  # the effective method (auto resolved)
-    if inputs.demo is not None and cfg.mapping == MappingOptions():
-        # the demo's data follow the simulator's mapping: fit with it (known truth)
-        mp = inputs.demo["scenario"]["multipath"]
-        cfg = cfg.updated("mapping", kind="fixed", a=mp["a"], b=mp["b"], c_deg=mp["c_deg"])
-    code = code_overbound(inputs, options=cfg.code_multipath, arcs=cfg.arcs,
-                          system=cfg.inputs.system, progress=say)  # fmt: skip
-    cutoff = stages.choose_cutoff(inputs, cfg.cutoff)
-    isolated = stages.isolate(inputs, cutoff, arcs=cfg.arcs, highpass=cfg.filter,
-                              options=cfg.inputs, progress=say)  # fmt: skip
-    screened = stages.screen(isolated, options=cfg.screening, mapping=cfg.mapping,
-                             min_length_s=cfg.stationarity.min_window_s, progress=say)
-    windowed = stages.window(screened, mapping=cfg.mapping, options=cfg.stationarity,
-                             progress=say)  # fmt: skip
-    bounded = stages.bound(windowed, spectra=cfg.spectra, options=cfg.bound, cutoff=cutoff,
-                           highpass=cfg.filter, progress=say)  # fmt: skip
-    validated = stages.validate(cutoff, inputs=inputs, isolated=isolated, arcs=cfg.arcs,
-                                options=cfg.validation, highpass=cfg.filter, progress=say)
-    products = dict(inputs=inputs, cutoff=cutoff, isolated=isolated, screened=screened,
-                    windowed=windowed, bounded=bounded, validated=validated,
-                    code=code)  # fmt: skip
-    document = build_document(config=cfg, run_time_s=time.perf_counter() - t0, **products)
-    return FitResults(document, config=cfg, **products)
+    run = run_stages(cfg, progress=progress)
+    products = run.products()
+    document = build_document(config=run.config, run_time_s=time.perf_counter() - t0,
+                              **products)  # fmt: skip
+    return FitResults(document, config=run.config, **products)
 
 
 def load(path: str | os.PathLike[str]) -> FitResults:

@@ -95,10 +95,16 @@ class Screened:
     ----------
     screening : Screening
         Kept series, excluded spans with reasons, the plausibility limit.
+    mapping : ElevationMapping or None
+        The provisional elevation mapping the screening scaled its fixed
+        threshold with (fitted on the series before screening; the bound's
+        mapping is fitted again on what the screening kept, see
+        :class:`Windowed`).
     warnings : tuple of str
     """
 
     screening: Screening
+    mapping: ElevationMapping | None = None
     warnings: tuple[str, ...] = ()
 
     @property

@@ -7,14 +7,21 @@ per-day stages as Dask tasks) and carries its warnings::
     read_inputs -> InputData
     choose_cutoff(InputData) -> CutoffChoice | None        (None: dual-antenna)
     isolate(InputData, CutoffChoice) -> Isolated           (DF and DA differ only here)
-    screen(Isolated) -> Screened                          (residual ionosphere, plausibility)
-    window(Screened) -> Windowed
+    map_elevation(series) -> ElevationMapping              (provisional: before screening)
+    screen(Isolated, ElevationMapping) -> Screened         (residual ionosphere, plausibility)
+    map_elevation(series) -> ElevationMapping              (the bound's: on the kept data)
+    window(Screened, ElevationMapping) -> Windowed
     bound(Windowed) -> BoundResults
     validate(CutoffChoice) -> Validated
     code_overbound(InputData) -> CodeOverbound | None     (optional: psdbound.pipeline.code_stage)
 
-:func:`psdbound.fit` composes them. Every stage calls only the public
-surface of its stage package.
+:func:`psdbound.pipeline.runner.run_stages` composes them, for
+:func:`psdbound.fit`, the campaign's tasks and the tests alike. The
+elevation mapping is estimated twice on purpose: the screening needs one
+before it can run, and residual ionosphere in the unscreened series biases it
+(NYA1, 2024: c = 40 deg unscreened, 31 deg screened), so the bound's mapping
+is fitted again on what the screening kept. Every stage calls only the
+public surface of its stage package.
 """
 
 from __future__ import annotations
@@ -44,6 +51,7 @@ from psdbound.screening import ScreeningOptions, screen_series
 from psdbound.spectra import BoundModel, BoundResults
 from psdbound.spectra.options import BoundOptions, SpectraOptions
 from psdbound.stationarity import find_stationary_windows, min_samples
+from psdbound.stationarity.mapping import ElevationMapping
 from psdbound.stationarity.options import MappingOptions, StationarityOptions, choose_mapping
 from psdbound.validation.options import ValidationOptions
 
@@ -56,6 +64,7 @@ __all__ = [
     "bound",
     "choose_cutoff",
     "isolate",
+    "map_elevation",
     "read_inputs",
     "screen",
     "validate",
@@ -219,11 +228,28 @@ def isolate(
     return _isolate_da(inputs, arcs, options, progress)
 
 
+def map_elevation(series: Any, options: MappingOptions) -> ElevationMapping:
+    """Return the multipath elevation mapping the options ask for, fitted on a series.
+
+    Parameters
+    ----------
+    series : MultipathSeries
+        The isolated (or screened) multipath, m, with its elevations, deg.
+    options : MappingOptions
+        ``fit`` (fitted here), ``thesis`` or ``fixed``.
+
+    Returns
+    -------
+    ElevationMapping
+    """
+    return choose_mapping(options, series.value_m, series.elevation_deg)
+
+
 def screen(
     isolated: Isolated,
     *,
     options: ScreeningOptions,
-    mapping: MappingOptions,
+    mapping: ElevationMapping,
     min_length_s: float,
     progress: Progress = quiet,
 ) -> Screened:
@@ -234,8 +260,9 @@ def screen(
     isolated : Isolated
     options : ScreeningOptions
         ROTI threshold, guard, which tests.
-    mapping : MappingOptions
-        The multipath elevation mapping (scales the ROTI threshold).
+    mapping : ElevationMapping
+        The provisional multipath elevation mapping (:func:`map_elevation`
+        of the isolated series; scales the fixed ROTI threshold).
     min_length_s : float
         Remainders shorter than this (the minimum window, s) are excluded.
     progress : callable, optional
@@ -251,9 +278,8 @@ def screen(
     """
     progress("screening (ROTI of the geometry-free phase, carrier-multipath limit)")
     s = isolated.series
-    m = choose_mapping(mapping, s.value_m, s.elevation_deg)
     channels = isolated.arcs.glonass_channels if isolated.arcs is not None else None
-    sc = screen_series(s, options, min_length_s=min_length_s, mapping=m,
+    sc = screen_series(s, options, min_length_s=min_length_s, mapping=mapping,
                        glonass_channels=channels)  # fmt: skip
     if sc.series.n_arcs == 0:
         raise NoDataError(
@@ -267,7 +293,7 @@ def screen(
             f"screening excluded {sc.excluded_s / 3600:.2f} h ({100 * sc.excluded_fraction:.1f} %"
             f" of the data; {counts}): see screening.excluded",
         )
-    return Screened(sc, warnings + sc.notes)
+    return Screened(sc, mapping, warnings + sc.notes)
 
 
 def _check_min_window(options: StationarityOptions, interval_s: float) -> str:
@@ -299,7 +325,7 @@ def _check_min_window(options: StationarityOptions, interval_s: float) -> str:
 def window(
     screened: Screened,
     *,
-    mapping: MappingOptions,
+    mapping: ElevationMapping,
     options: StationarityOptions,
     progress: Progress = quiet,
 ) -> Windowed:
@@ -308,7 +334,8 @@ def window(
     Parameters
     ----------
     screened : Screened
-    mapping : MappingOptions
+    mapping : ElevationMapping
+        The bound's elevation mapping (:func:`map_elevation` of the screened series).
     options : StationarityOptions
     progress : callable, optional
 
@@ -325,7 +352,7 @@ def window(
     test = "Levene, then K-S" if options.test == "thesis" else "spectral homogeneity"
     progress(f"elevation mapping and stationarity windows ({test}, {options.windows})")
     raised = _check_min_window(options, series.interval_s)
-    m = choose_mapping(mapping, series.value_m, series.elevation_deg)
+    m = mapping
     windows = find_stationary_windows(
         series, mapping=m, alpha=options.alpha, p_slide=options.p_slide,
         p_trim=options.p_trim, min_length_s=options.min_window_s, center=options.levene_center,

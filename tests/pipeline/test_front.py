@@ -13,6 +13,7 @@ import psdbound
 from psdbound.errors import InputError
 from psdbound.pipeline import FitConfig, stages
 from psdbound.pipeline.front import _config_from
+from psdbound.pipeline.runner import run_stages
 
 VOLATILE = ("created_utc", "run_time_s")
 
@@ -70,20 +71,22 @@ def test_stage_products_pickle(demo_fit):
 
 
 def test_stages_compose_like_fit(demo_fit):
+    # the runner stops where asked, and the stages run by hand give fit's products
     cfg = demo_fit.config
-    inputs = stages.read_inputs(cfg.inputs)
-    cutoff = stages.choose_cutoff(inputs, cfg.cutoff)
-    assert cutoff.f_c_hz == demo_fit.document["cutoff"]["f_c_hz"]
-    iso = stages.isolate(inputs, cutoff, arcs=cfg.arcs, highpass=cfg.filter, options=cfg.inputs)
-    scr = stages.screen(iso, options=cfg.screening, mapping=cfg.mapping,
-                        min_length_s=cfg.stationarity.min_window_s)
-    win = stages.window(scr, mapping=cfg.mapping, options=cfg.stationarity)
-    res = stages.bound(win, spectra=cfg.spectra, options=cfg.bound, cutoff=cutoff,
+    run = run_stages(cfg, until="screened")
+    assert run.windowed is None and run.bounded is None
+    assert run.cutoff.f_c_hz == demo_fit.document["cutoff"]["f_c_hz"]
+    mapping = stages.map_elevation(run.screened.series, cfg.mapping)
+    assert mapping == demo_fit.windowed.mapping
+    win = stages.window(run.screened, mapping=mapping, options=cfg.stationarity)
+    res = stages.bound(win, spectra=cfg.spectra, options=cfg.bound, cutoff=run.cutoff,
                        highpass=cfg.filter)
     assert res.bound.sigma_gm_m == demo_fit.bound.sigma_gm_m
-    val = stages.validate(cutoff, inputs=inputs, isolated=iso, arcs=cfg.arcs,
+    val = stages.validate(run.cutoff, inputs=run.inputs, isolated=run.isolated, arcs=cfg.arcs,
                           options=cfg.validation)
     assert val.summary["max_removed_rms_m"] == demo_fit.validation["max_removed_rms_m"]
+    with pytest.raises(InputError, match="unknown stage 'bound'"):
+        run_stages(cfg, until="bound")
 
 
 def test_options_by_section_or_unique_name():
