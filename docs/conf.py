@@ -31,6 +31,7 @@ extensions = [
     "sphinx.ext.mathjax",
     "numpydoc",
     "psdbound_docs",
+    "psdbound_architecture",
 ]
 
 templates_path = ["_templates"]

@@ -30,5 +30,23 @@ def test_sphinx_html_build_has_no_warnings(tmp_path):
         assert page in pages, page
     cli = (out / "reference" / "cli.html").read_text()
     assert "--pair" in cli and "psdbound campaign" in cli
+    arch = (out / "reference" / "architecture.html").read_text()
+    assert "<svg" in arch and ">pipeline</text>" in arch and ">constants</text>" in arch
     ref = (out / "reference" / "result_json.html").read_text()
     assert "bound.sigma_gm_m" in ref and "n_wn_two_sided_m2_hz" in ref
+
+
+def test_architecture_graph_is_the_code_s_imports():
+    # the diagram's graph is read from the sources: the runner's imports appear, and
+    # the layers put every package above what it imports
+    sys.path.insert(0, str(DOCS / "_ext"))
+    try:
+        import psdbound_architecture as arch
+    finally:
+        sys.path.pop(0)
+    graph = arch.package_graph()
+    layer = arch.layers(graph)
+    assert {"spectra", "screening", "stationarity"} <= graph["pipeline"]
+    assert graph["constants"] == set() and layer["constants"] == 0
+    assert all(layer[p] > layer[d] for p, deps in graph.items() for d in deps)
+    assert arch.svg(graph).count("<rect") == len(graph)
