@@ -17,7 +17,7 @@ ground (eqs. 16, 18, 19, derived again below)
     not print its GAD_mp / GAD_n curves).
 airborne (eq. 21)
     ``xi(tau_air)^2 k_f^2 (sigma_mp,air^2 + sigma_n,air^2)``, AAD-A curves of
-    :mod:`psdbound.kalman.aviation`.
+    :mod:`psdbound.aviation.airborne`.
 ionosphere (eqs. 22-27)
     single frequency: ``sqrt((F_pp s_vig (x + 2 tau_air v))^2 + (2 s_rate
     |tau_gnd - tau_air|)^2)``; divergence free ``F_pp s_vig x``; iono free 0;
@@ -29,7 +29,7 @@ troposphere (eqs. 28-30)
 
 ``k_f`` is 1 (L1-based), 0.7 (L5-based, seed 004 Table 2), or the iono-free
 multiplier (:func:`iono_free_multiplier`, 2.4267 for L1/L5 with the Table 2
-ratio). ``xi`` is :func:`psdbound.kalman.aviation.smoothing_time_ratio`.
+ratio). ``xi`` is :func:`psdbound.aviation.smoothing.smoothing_time_ratio`.
 
 The VPL (eq. 10, with the square root the seed's print omits) is
 ``K_ffmd sqrt(sum S_vert,i^2 sigma_i^2)``, ``S`` the weighted-least-squares
@@ -46,14 +46,15 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from psdbound.errors import InputError
-from psdbound.kalman.aviation import (
+from psdbound.aviation.airborne import (
     F_L1_HZ,
     F_L5_HZ,
     sigma_multipath_airborne_m,
     sigma_noise_airborne_m,
-    smoothing_time_ratio,
 )
+from psdbound.aviation.smoothing import smoothing_time_ratio
+from psdbound.aviation.standards import GAD_PARAMETERS, K_FFMD, K_MD, L5_TO_L1_SIGMA
+from psdbound.errors import InputError
 
 __all__ = [
     "GAD_PARAMETERS",
@@ -72,18 +73,6 @@ __all__ = [
 ]
 
 PROCESSES = ("SF", "DF", "IF")
-L5_TO_L1_SIGMA = 0.7  # seed 004 Table 2
-#: GAD curve parameters (a0 m, a1 m, theta0 deg, a2 m), RTCA DO-245A / ICAO Annex 10;
-#: GAD-C switches to a flat 0.24 m below 35 deg (multipath-limiting antenna).
-GAD_PARAMETERS: dict[str, tuple[float, float, float, float]] = {
-    "A": (0.50, 1.65, 14.3, 0.08),
-    "B": (0.16, 1.07, 15.5, 0.08),
-    "C": (0.15, 0.84, 15.5, 0.04),
-}
-#: Fault-free and missed-detection multipliers by number of reference receivers M
-#: (RTCA DO-253 / DO-245A values for precision approach).
-K_FFMD: dict[int, float] = {2: 5.762, 3: 5.810, 4: 5.847}
-K_MD: dict[int, float] = {2: 2.935, 3: 2.898, 4: 2.878}
 R_EARTH_M = 6378136.3
 H_IONO_M = 350e3
 
@@ -146,7 +135,9 @@ def obliquity_factor(elevation_deg: ArrayLike) -> NDArray[np.float64]:
 
 
 def iono_free_multiplier(
-    sigma_ratio_y_to_x: float = L5_TO_L1_SIGMA, f_x_hz: float = F_L1_HZ, f_y_hz: float = F_L5_HZ
+    sigma_ratio_y_to_x: float = L5_TO_L1_SIGMA.value,
+    f_x_hz: float = F_L1_HZ,
+    f_y_hz: float = F_L5_HZ,
 ) -> float:
     """Iono-free noise multiplier ``sqrt((1 - 1/a)^2 + r^2 / a^2)``, ``a = 1 - f_x^2 / f_y^2``.
 
@@ -285,7 +276,7 @@ def error_budget(
     tau_corr_s : float, default 30
         Code-error correlation time in ``xi``, seconds.
     xi_formula : str, default "seed"
-        Passed to :func:`~psdbound.kalman.aviation.smoothing_time_ratio`.
+        Passed to :func:`~psdbound.aviation.smoothing.smoothing_time_ratio`.
     gad : {"A", "B", "C"}, default "B"
     n_receivers : int, default 3
         Reference receivers ``M``.
@@ -325,7 +316,7 @@ def error_budget(
     if process == "IF":
         k_f, k_iono = iono_free_multiplier(), 0.0
     elif base_frequency == "L5":
-        k_f, k_iono = L5_TO_L1_SIGMA, (F_L1_HZ / F_L5_HZ) ** 2
+        k_f, k_iono = L5_TO_L1_SIGMA.value, (F_L1_HZ / F_L5_HZ) ** 2
     else:
         k_f, k_iono = 1.0, 1.0
     xi_g, xi_a = _xi(float(tau_gnd_s), float(tau_air_s), float(tau_corr_s), xi_formula)

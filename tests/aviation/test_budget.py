@@ -6,16 +6,18 @@ import numpy as np
 import pytest
 
 from psdbound.aviation import (
+    F_L1_HZ,
+    F_L5_HZ,
     error_budget,
     ground_sigma_pr_m,
     iono_free_multiplier,
     los_from_az_el,
     obliquity_factor,
     projection_matrix,
+    smoothing_time_ratio,
     vpl,
 )
 from psdbound.errors import InputError
-from psdbound.kalman.aviation import F_L1_HZ, F_L5_HZ, smoothing_time_ratio
 
 EL = np.array([12.0, 25.0, 38.0, 47.0, 60.0, 75.0, 85.0])
 AZ = np.array([10.0, 80.0, 150.0, 200.0, 260.0, 320.0, 45.0])
