@@ -29,6 +29,9 @@
   Hatch filter variance and the smoothing-time ratio ``xi(tau)`` (seeds 000,
   001, 004);
 * :mod:`~psdbound.aviation.qq` -- the Q-Q criterion of seed 001;
+* :mod:`~psdbound.aviation.paired` -- the paired overbound (bias and sigma);
+  :mod:`~psdbound.aviation.sample_size` -- effective sample size of a
+  correlated series and tail probabilities with confidence;
 * :mod:`~psdbound.aviation.standards` -- the constants of the standards and
   seeds, each with its source.
 """
@@ -50,6 +53,7 @@ if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
     )
     from psdbound.aviation.bias import (
         BiasResponse,
+        bias_bound_response,
         bias_response,
         fault_threshold,
         kalman_gains,
@@ -95,7 +99,9 @@ if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
         samples_in_full_bins,
         two_step_overbound,
     )
+    from psdbound.aviation.paired import paired_overbound
     from psdbound.aviation.qq import gaussian_overbound_sigma, qq_ratio
+    from psdbound.aviation.sample_size import effective_sample_size
     from psdbound.aviation.smoothing import (
         SMOOTHING_RATIO_FORMULAS,
         alpha_for_inflation,
@@ -109,6 +115,8 @@ if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
     from psdbound.aviation.standards import GAD_PARAMETERS, K_FFMD, K_MD, Sourced, sources
 
 __all__ = [
+    "effective_sample_size",
+    "paired_overbound",
     "F_L1_HZ",
     "F_L5_HZ",
     "iono_free_factor",
@@ -141,6 +149,7 @@ __all__ = [
     "OverboundResult",
     "Sky",
     "VplSeries",
+    "bias_bound_response",
     "bias_response",
     "budget_document",
     "budget_report",
@@ -172,6 +181,8 @@ __all__ = [
 
 #: Where each public name lives (imported on first use: importing the package stays cheap).
 _EXPORTS = {
+    "effective_sample_size": ("psdbound.aviation.sample_size", "effective_sample_size"),
+    "paired_overbound": ("psdbound.aviation.paired", "paired_overbound"),
     "F_L1_HZ": ("psdbound.aviation.airborne", "F_L1_HZ"),
     "F_L5_HZ": ("psdbound.aviation.airborne", "F_L5_HZ"),
     "iono_free_factor": ("psdbound.aviation.airborne", "iono_free_factor"),
@@ -194,6 +205,7 @@ _EXPORTS = {
     "Sourced": ("psdbound.aviation.standards", "Sourced"),
     "sources": ("psdbound.aviation.standards", "sources"),
     "BiasResponse": ("psdbound.aviation.bias", "BiasResponse"),
+    "bias_bound_response": ("psdbound.aviation.bias", "bias_bound_response"),
     "bias_response": ("psdbound.aviation.bias", "bias_response"),
     "fault_threshold": ("psdbound.aviation.bias", "fault_threshold"),
     "kalman_gains": ("psdbound.aviation.bias", "kalman_gains"),
