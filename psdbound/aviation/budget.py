@@ -526,7 +526,7 @@ def budget_document(
     k_ffmd: float | None = None,
     **options: object,
 ) -> dict[str, Any]:
-    """Return the budget of one geometry as a JSON-ready dict (``psdbound budget --sat ... --out``).
+    """Return the budget of one geometry as a JSON-ready dict (``budget.json`` of the CLI).
 
     Parameters
     ----------

@@ -1,6 +1,8 @@
 """Gaussian overbounds of sample error distributions, per elevation bin.
 
-Two constructions, both computed from the empirical CDF ``F_n`` of the
+The default is the paired overbound (:mod:`psdbound.aviation.paired`: a bias
+and a sigma, every point constrained, valid through convolution for any
+independent errors). Two further constructions, both computed from the empirical CDF ``F_n`` of the
 samples of one bin (``n`` samples, sorted ``x_(1) <= ... <= x_(n)``):
 
 CDF overbound (DeCleene 2000, [DeCleene2000]_), optionally paired with a bias
@@ -21,15 +23,17 @@ Two-step overbound (named in seed 000, which cites [BlanchWalterEnge2019]_ for i
     ``T(d) = max(P(x - m >= d), P(x - m <= -d))`` -- the tail function of a
     symmetric distribution about ``m`` that overbounds the sample in the
     CDF sense on both sides. Step 2 finds the smallest zero-mean Gaussian
-    whose tail ``Q(d / s)`` lies above ``T(d)`` for every ``d``; a Gaussian is
-    symmetric and unimodal, so the result ``N(m, s)`` keeps the convolution
-    property of symmetric unimodal CDF overbounds (DeCleene). Seed 000 only
+    whose tail ``Q(d / s)`` lies above ``T(d)`` for every ``d``. The result
+    ``N(m, s)`` carries over to sums of errors by DeCleene's theorem only when
+    the *true* error distributions are symmetric and unimodal; that the bound
+    is a Gaussian does not make it so (for other errors use the paired
+    overbound). Seed 000 only
     names the method and its two properties (stable through convolution like
     paired overbounding, biases close to the sample distribution's); this is
     our construction with those properties, documented in
     ``docs/method/aviation.rst``.
 
-Both ignore the core of the distribution where ``Phi^-1(1 - tail) <
+These two (not the paired overbound) ignore the core of the distribution where ``Phi^-1(1 - tail) <
 min_abs_z`` (default 0.25: the central 20 % of probability). A finite
 sample cannot be bounded there at all: its empirical tail reaches 1/2 at a
 non-zero distance from the centre (the atoms of ``F_n``), which no Gaussian
@@ -38,7 +42,9 @@ noise divided by a near-zero ``z``. Pass ``min_abs_z=0`` to constrain every
 point (the sigma is then ``inf`` whenever such a point exists).
 
 The inflation factor of a bin is ``sigma_overbound / std(samples)`` (1 for
-an exactly Gaussian sample, larger for heavier tails).
+an exactly Gaussian sample, larger for heavier tails). Every bin also has its
+effective sample size and the overbound at a confidence level
+(:mod:`psdbound.aviation.sample_size`).
 """
 
 from __future__ import annotations
