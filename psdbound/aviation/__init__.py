@@ -23,8 +23,17 @@
 * :mod:`~psdbound.aviation.options` -- :class:`CodeMultipathOptions`, the
   ``[code_multipath]`` section of a fit.
 
-The airborne sigma curves, smoothing ratios and the Q-Q overbound of seeds
-000, 001 and 004 live in :mod:`psdbound.kalman.aviation` and are used here.
+* :mod:`~psdbound.aviation.airborne` -- airborne (AAD-A) sigma curves and the
+  iono-free factor (seeds 000, 001);
+* :mod:`~psdbound.aviation.smoothing` -- carrier-smoothing inflation, the
+  Hatch filter variance and the smoothing-time ratio ``xi(tau)`` (seeds 000,
+  001, 004);
+* :mod:`~psdbound.aviation.qq` -- the Q-Q criterion of seed 001;
+* :mod:`~psdbound.aviation.paired` -- the paired overbound (bias and sigma);
+  :mod:`~psdbound.aviation.sample_size` -- effective sample size of a
+  correlated series and tail probabilities with confidence;
+* :mod:`~psdbound.aviation.standards` -- the constants of the standards and
+  seeds, each with its source.
 """
 
 from __future__ import annotations
@@ -34,24 +43,32 @@ from typing import TYPE_CHECKING
 from psdbound.common.lazy import lazy_exports
 
 if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
+    from psdbound.aviation.airborne import (
+        F_L1_HZ,
+        F_L5_HZ,
+        iono_free_factor,
+        sigma_air_m,
+        sigma_multipath_airborne_m,
+        sigma_noise_airborne_m,
+    )
     from psdbound.aviation.bias import (
         BiasResponse,
+        bias_bound_response,
         bias_response,
         fault_threshold,
         kalman_gains,
         prob_horizontal_exceeds,
     )
     from psdbound.aviation.budget import (
-        GAD_PARAMETERS,
-        K_FFMD,
-        K_MD,
         PROCESSES,
         BudgetTerms,
+        budget_document,
         budget_report,
         error_budget,
         ground_sigma_pr_m,
         iono_free_multiplier,
         los_from_az_el,
+        multipliers,
         obliquity_factor,
         projection_matrix,
         vpl,
@@ -82,12 +99,46 @@ if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
         samples_in_full_bins,
         two_step_overbound,
     )
+    from psdbound.aviation.paired import paired_overbound
+    from psdbound.aviation.qq import gaussian_overbound_sigma, qq_ratio
+    from psdbound.aviation.sample_size import effective_sample_size
+    from psdbound.aviation.smoothing import (
+        SMOOTHING_RATIO_FORMULAS,
+        alpha_for_inflation,
+        alpha_from_tau,
+        hatch_filter_variance,
+        running_mean_variance,
+        smoothing_sigma_factor,
+        smoothing_time_ratio,
+        smoothing_variance_factor,
+    )
+    from psdbound.aviation.standards import GAD_PARAMETERS, K_FFMD, K_MD, Sourced, sources
 
 __all__ = [
-    "DEFAULT_MIN_ABS_Z",
+    "effective_sample_size",
+    "paired_overbound",
+    "F_L1_HZ",
+    "F_L5_HZ",
+    "iono_free_factor",
+    "sigma_air_m",
+    "sigma_multipath_airborne_m",
+    "sigma_noise_airborne_m",
+    "gaussian_overbound_sigma",
+    "qq_ratio",
+    "SMOOTHING_RATIO_FORMULAS",
+    "alpha_for_inflation",
+    "alpha_from_tau",
+    "hatch_filter_variance",
+    "running_mean_variance",
+    "smoothing_sigma_factor",
+    "smoothing_time_ratio",
+    "smoothing_variance_factor",
     "GAD_PARAMETERS",
     "K_FFMD",
     "K_MD",
+    "Sourced",
+    "sources",
+    "DEFAULT_MIN_ABS_Z",
     "METHODS",
     "PROCESSES",
     "SEED004_START_GPS_S",
@@ -98,8 +149,11 @@ __all__ = [
     "OverboundResult",
     "Sky",
     "VplSeries",
+    "bias_bound_response",
     "bias_response",
+    "budget_document",
     "budget_report",
+    "multipliers",
     "cdf_overbound_sigma",
     "code_multipath_from_files",
     "describe_code_series",
@@ -127,17 +181,40 @@ __all__ = [
 
 #: Where each public name lives (imported on first use: importing the package stays cheap).
 _EXPORTS = {
+    "effective_sample_size": ("psdbound.aviation.sample_size", "effective_sample_size"),
+    "paired_overbound": ("psdbound.aviation.paired", "paired_overbound"),
+    "F_L1_HZ": ("psdbound.aviation.airborne", "F_L1_HZ"),
+    "F_L5_HZ": ("psdbound.aviation.airborne", "F_L5_HZ"),
+    "iono_free_factor": ("psdbound.aviation.airborne", "iono_free_factor"),
+    "sigma_air_m": ("psdbound.aviation.airborne", "sigma_air_m"),
+    "sigma_multipath_airborne_m": ("psdbound.aviation.airborne", "sigma_multipath_airborne_m"),
+    "sigma_noise_airborne_m": ("psdbound.aviation.airborne", "sigma_noise_airborne_m"),
+    "gaussian_overbound_sigma": ("psdbound.aviation.qq", "gaussian_overbound_sigma"),
+    "qq_ratio": ("psdbound.aviation.qq", "qq_ratio"),
+    "SMOOTHING_RATIO_FORMULAS": ("psdbound.aviation.smoothing", "SMOOTHING_RATIO_FORMULAS"),
+    "alpha_for_inflation": ("psdbound.aviation.smoothing", "alpha_for_inflation"),
+    "alpha_from_tau": ("psdbound.aviation.smoothing", "alpha_from_tau"),
+    "hatch_filter_variance": ("psdbound.aviation.smoothing", "hatch_filter_variance"),
+    "running_mean_variance": ("psdbound.aviation.smoothing", "running_mean_variance"),
+    "smoothing_sigma_factor": ("psdbound.aviation.smoothing", "smoothing_sigma_factor"),
+    "smoothing_time_ratio": ("psdbound.aviation.smoothing", "smoothing_time_ratio"),
+    "smoothing_variance_factor": ("psdbound.aviation.smoothing", "smoothing_variance_factor"),
+    "GAD_PARAMETERS": ("psdbound.aviation.standards", "GAD_PARAMETERS"),
+    "K_FFMD": ("psdbound.aviation.standards", "K_FFMD"),
+    "K_MD": ("psdbound.aviation.standards", "K_MD"),
+    "Sourced": ("psdbound.aviation.standards", "Sourced"),
+    "sources": ("psdbound.aviation.standards", "sources"),
     "BiasResponse": ("psdbound.aviation.bias", "BiasResponse"),
+    "bias_bound_response": ("psdbound.aviation.bias", "bias_bound_response"),
     "bias_response": ("psdbound.aviation.bias", "bias_response"),
     "fault_threshold": ("psdbound.aviation.bias", "fault_threshold"),
     "kalman_gains": ("psdbound.aviation.bias", "kalman_gains"),
     "prob_horizontal_exceeds": ("psdbound.aviation.bias", "prob_horizontal_exceeds"),
-    "GAD_PARAMETERS": ("psdbound.aviation.budget", "GAD_PARAMETERS"),
-    "K_FFMD": ("psdbound.aviation.budget", "K_FFMD"),
-    "K_MD": ("psdbound.aviation.budget", "K_MD"),
     "PROCESSES": ("psdbound.aviation.budget", "PROCESSES"),
     "BudgetTerms": ("psdbound.aviation.budget", "BudgetTerms"),
+    "budget_document": ("psdbound.aviation.budget", "budget_document"),
     "budget_report": ("psdbound.aviation.budget", "budget_report"),
+    "multipliers": ("psdbound.aviation.budget", "multipliers"),
     "error_budget": ("psdbound.aviation.budget", "error_budget"),
     "ground_sigma_pr_m": ("psdbound.aviation.budget", "ground_sigma_pr_m"),
     "iono_free_multiplier": ("psdbound.aviation.budget", "iono_free_multiplier"),

@@ -36,6 +36,7 @@ from psdbound.errors import InputError
 
 __all__ = [
     "BiasResponse",
+    "bias_bound_response",
     "bias_response",
     "fault_threshold",
     "kalman_gains",
@@ -172,6 +173,55 @@ def bias_response(
         e = (np.eye(nx) - gains[k] @ hm) @ (fm @ e) - gains[k] @ bk
         out[k] = e
     return BiasResponse(out, posts)
+
+
+def bias_bound_response(
+    f: ArrayLike,
+    q: ArrayLike,
+    h: ArrayLike,
+    r: ArrayLike,
+    bias_bound_m: ArrayLike,
+    *,
+    n_steps: int,
+    p0: ArrayLike | None = None,
+) -> NDArray[np.float64]:
+    """Worst-case mean error of each state for biases known only by a bound ``|b_i| <= B_i``.
+
+    The paired overbound of a range error gives a bias bound ``B_i`` of
+    unknown sign ([Rife2006]_). The mean error is linear in the biases,
+    ``E[e_l] = sum_i M_l[:, i] b_i`` (``M_l[:, i]``: the response to a unit
+    bias on measurement ``i``, :func:`bias_response`), so its largest value
+    per state is ``sum_i |M_l[:, i]| B_i`` -- the filter's counterpart of the
+    ``sum |S_vert,i| b_i`` added to a snapshot VPL
+    (:func:`psdbound.aviation.budget.vpl`).
+
+    Parameters
+    ----------
+    f, q, h, r : array_like
+        The filter model (see :func:`kalman_gains`).
+    bias_bound_m : array_like, shape (m,)
+        Bias bound of each measurement, >= 0, measurement units.
+    n_steps : int
+        Number of updates.
+    p0 : array_like, optional
+        A-priori covariance; default a diffuse ``1e8 I``.
+
+    Returns
+    -------
+    ndarray, shape (n_steps, nx)
+        ``sum_i |M_l[j, i]| B_i`` per update ``l`` and state ``j``, state units.
+    """
+    hm = np.atleast_2d(np.asarray(h, dtype=float))
+    bound = np.asarray(bias_bound_m, dtype=float).reshape(-1)
+    if bound.size != hm.shape[0] or not (np.isfinite(bound).all() and (bound >= 0).all()):
+        raise InputError(f"bias_bound_m must hold {hm.shape[0]} finite values >= 0")
+    out = np.zeros((n_steps, hm.shape[1]))
+    for i in np.flatnonzero(bound > 0):
+        unit = np.zeros(bound.size)
+        unit[i] = 1.0
+        resp = bias_response(f, q, hm, r, unit, n_steps=n_steps, p0=p0).mean_error
+        out += np.abs(resp) * bound[i]
+    return out
 
 
 def prob_horizontal_exceeds(mean_m: ArrayLike, cov_m2: ArrayLike, alert_limit_m: float) -> float:

@@ -17,7 +17,7 @@ ground (eqs. 16, 18, 19, derived again below)
     not print its GAD_mp / GAD_n curves).
 airborne (eq. 21)
     ``xi(tau_air)^2 k_f^2 (sigma_mp,air^2 + sigma_n,air^2)``, AAD-A curves of
-    :mod:`psdbound.kalman.aviation`.
+    :mod:`psdbound.aviation.airborne`.
 ionosphere (eqs. 22-27)
     single frequency: ``sqrt((F_pp s_vig (x + 2 tau_air v))^2 + (2 s_rate
     |tau_gnd - tau_air|)^2)``; divergence free ``F_pp s_vig x``; iono free 0;
@@ -29,61 +29,65 @@ troposphere (eqs. 28-30)
 
 ``k_f`` is 1 (L1-based), 0.7 (L5-based, seed 004 Table 2), or the iono-free
 multiplier (:func:`iono_free_multiplier`, 2.4267 for L1/L5 with the Table 2
-ratio). ``xi`` is :func:`psdbound.kalman.aviation.smoothing_time_ratio`.
+ratio). ``xi`` is :func:`psdbound.aviation.smoothing.smoothing_time_ratio`
+(exact by default; ``xi_formula="seed"`` reproduces seed 004 Table 1).
 
 The VPL (eq. 10, with the square root the seed's print omits) is
 ``K_ffmd sqrt(sum S_vert,i^2 sigma_i^2)``, ``S`` the weighted-least-squares
 projection ``(G^T W G)^-1 G^T W``, ``W = diag(sigma_i^-2)``; the ephemeris
-VPL (eqs. 11-12) is ``max_k |S_vert,k| x P_k + K_md sqrt(...)``.
+VPL (eqs. 11-12) is ``max_k |S_vert,k| x P_k + K_md_e sqrt(...)``, with the
+ephemeris multiplier ``K_md_e`` a required input (broadcast by the ground
+station; not the H1 ``K_md`` table). Paired-overbound biases add ``sum
+|S_vert,i| b_i`` to both. Constants and their sources:
+:mod:`psdbound.aviation.standards`.
 """
 
 from __future__ import annotations
 
 import functools
+import inspect
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+from scipy.stats import norm
 
-from psdbound.errors import InputError
-from psdbound.kalman.aviation import (
+from psdbound.aviation.airborne import (
     F_L1_HZ,
     F_L5_HZ,
     sigma_multipath_airborne_m,
     sigma_noise_airborne_m,
-    smoothing_time_ratio,
 )
+from psdbound.aviation.smoothing import smoothing_time_ratio
+from psdbound.aviation.standards import (
+    GAD_PARAMETERS,
+    K_FFMD,
+    K_MD_E_SOURCE,
+    K_TABLE_SOURCE,
+    L5_TO_L1_SIGMA,
+    P_EPH,
+    sources,
+)
+from psdbound.errors import InputError
 
 __all__ = [
-    "GAD_PARAMETERS",
-    "K_FFMD",
-    "K_MD",
     "PROCESSES",
     "BudgetTerms",
+    "budget_document",
     "budget_report",
     "error_budget",
     "ground_sigma_pr_m",
     "iono_free_multiplier",
     "los_from_az_el",
+    "multipliers",
     "obliquity_factor",
     "projection_matrix",
     "vpl",
 ]
 
 PROCESSES = ("SF", "DF", "IF")
-L5_TO_L1_SIGMA = 0.7  # seed 004 Table 2
-#: GAD curve parameters (a0 m, a1 m, theta0 deg, a2 m), RTCA DO-245A / ICAO Annex 10;
-#: GAD-C switches to a flat 0.24 m below 35 deg (multipath-limiting antenna).
-GAD_PARAMETERS: dict[str, tuple[float, float, float, float]] = {
-    "A": (0.50, 1.65, 14.3, 0.08),
-    "B": (0.16, 1.07, 15.5, 0.08),
-    "C": (0.15, 0.84, 15.5, 0.04),
-}
-#: Fault-free and missed-detection multipliers by number of reference receivers M
-#: (RTCA DO-253 / DO-245A values for precision approach).
-K_FFMD: dict[int, float] = {2: 5.762, 3: 5.810, 4: 5.847}
-K_MD: dict[int, float] = {2: 2.935, 3: 2.898, 4: 2.878}
 R_EARTH_M = 6378136.3
 H_IONO_M = 350e3
 
@@ -146,7 +150,9 @@ def obliquity_factor(elevation_deg: ArrayLike) -> NDArray[np.float64]:
 
 
 def iono_free_multiplier(
-    sigma_ratio_y_to_x: float = L5_TO_L1_SIGMA, f_x_hz: float = F_L1_HZ, f_y_hz: float = F_L5_HZ
+    sigma_ratio_y_to_x: float = L5_TO_L1_SIGMA.value,
+    f_x_hz: float = F_L1_HZ,
+    f_y_hz: float = F_L5_HZ,
 ) -> float:
     """Iono-free noise multiplier ``sqrt((1 - 1/a)^2 + r^2 / a^2)``, ``a = 1 - f_x^2 / f_y^2``.
 
@@ -252,7 +258,7 @@ def error_budget(
     tau_gnd_s: float = 100.0,
     tau_air_s: float = 100.0,
     tau_corr_s: float = 30.0,
-    xi_formula: str = "seed",
+    xi_formula: str = "exact",
     gad: str = "B",
     n_receivers: int = 3,
     rho: float = 0.1,
@@ -284,8 +290,11 @@ def error_budget(
         Ground and airborne smoothing time constants, seconds.
     tau_corr_s : float, default 30
         Code-error correlation time in ``xi``, seconds.
-    xi_formula : str, default "seed"
-        Passed to :func:`~psdbound.kalman.aviation.smoothing_time_ratio`.
+    xi_formula : {"exact", "seed", "steady_state"}, default "exact"
+        Passed to :func:`~psdbound.aviation.smoothing.smoothing_time_ratio`:
+        ``"exact"`` is the variance of the truncated smoother seed 004 defines;
+        ``"seed"`` its eq. (A6) as printed (double-counts the off-diagonal
+        terms, up to 1.6 % low here), selectable to reproduce its Table 1.
     gad : {"A", "B", "C"}, default "B"
     n_receivers : int, default 3
         Reference receivers ``M``.
@@ -325,7 +334,7 @@ def error_budget(
     if process == "IF":
         k_f, k_iono = iono_free_multiplier(), 0.0
     elif base_frequency == "L5":
-        k_f, k_iono = L5_TO_L1_SIGMA, (F_L1_HZ / F_L5_HZ) ** 2
+        k_f, k_iono = L5_TO_L1_SIGMA.value, (F_L1_HZ / F_L5_HZ) ** 2
     else:
         k_f, k_iono = 1.0, 1.0
     xi_g, xi_a = _xi(float(tau_gnd_s), float(tau_air_s), float(tau_corr_s), xi_formula)
@@ -350,60 +359,140 @@ def error_budget(
     return BudgetTerms(el, ground, air, np.broadcast_to(iono, el.shape).copy(), trop)
 
 
+def multipliers(
+    *, n_receivers: int = 3, k_ffmd: float | None = None, k_md_e: float | None
+) -> dict[str, dict[str, Any]]:
+    """Return the VPL multipliers used, each with its value and source.
+
+    Parameters
+    ----------
+    n_receivers : int, default 3
+        Reference receivers ``M`` (selects the tabulated ``K_ffmd``).
+    k_ffmd : float, optional
+        User value of the fault-free multiplier (default: the table).
+    k_md_e : float
+        Ephemeris missed-detection multiplier, user-supplied (> 0).
+
+    Returns
+    -------
+    dict
+        ``{"k_ffmd": {"value", "source"}, "k_md_e": {"value", "source",
+        "p_md_e_two_sided_gaussian"}}``; the last is ``2 Q(K_md_e)``, the
+        missed-detection probability a zero-mean Gaussian test statistic
+        would give (stated for orientation, not a derivation of the standard).
+
+    Raises
+    ------
+    InputError
+        No ``k_md_e``, a multiplier <= 0, or no tabulated ``K_ffmd`` for ``M``.
+    """
+    if k_md_e is None:
+        raise InputError(
+            "k_md_e (CLI --k-md-e) is required: the ephemeris missed-detection multiplier is "
+            "broadcast by the ground station (Message Type 2) and no standard fixes its value; "
+            "give the value of the station you analyse"
+        )
+    if not (math.isfinite(k_md_e) and k_md_e > 0):
+        raise InputError(f"k_md_e must be a number > 0, got {k_md_e}")
+    if k_ffmd is None:
+        if n_receivers not in K_FFMD:
+            raise InputError(f"no tabulated K_ffmd for M = {n_receivers} reference receivers "
+                             f"(table: M = {sorted(K_FFMD)}); pass k_ffmd")  # fmt: skip
+        kf: dict[str, Any] = {
+            "value": K_FFMD[n_receivers],
+            "source": f"table for M = {n_receivers}: {K_TABLE_SOURCE}",
+        }
+    elif not (math.isfinite(k_ffmd) and k_ffmd > 0):
+        raise InputError(f"k_ffmd must be a number > 0, got {k_ffmd}")
+    else:
+        kf = {"value": float(k_ffmd), "source": "user-supplied"}
+    p_md = float(2.0 * norm.sf(k_md_e))
+    return {"k_ffmd": kf, "k_md_e": {"value": float(k_md_e), "source": K_MD_E_SOURCE,
+                                     "p_md_e_two_sided_gaussian": p_md}}  # fmt: skip
+
+
 def vpl(
     los_enu: ArrayLike,
     sigma_m: ArrayLike,
     *,
+    k_md_e: float | None,
     n_receivers: int = 3,
     k_ffmd: float | None = None,
-    k_md: float | None = None,
     x_air_m: float = 0.0,
-    p_eph: float = 0.00018,
+    p_eph: float = P_EPH.value,
+    bias_m: ArrayLike | None = None,
 ) -> tuple[float, float]:
     """Fault-free and ephemeris vertical protection levels, metres.
+
+    ``VPL_H0 = K_ffmd sigma_v + B`` and ``VPL_eph = max_k |S_vert,k| x_air P_k
+    + K_md_e sigma_v + B`` with ``sigma_v = sqrt(sum S_vert,i^2 sigma_i^2)``
+    and ``B = sum |S_vert,i| b_i`` the worst-case vertical shift of paired-
+    overbound biases ``b_i`` (0 without ``bias_m``; [Rife2006]_: the position
+    error of a linear estimator is paired-overbounded by ``N(+-B, sigma_v)``).
 
     Parameters
     ----------
     los_enu : array_like, shape (n, 3)
         Unit line-of-sight vectors (ENU).
     sigma_m : array_like, shape (n,)
-        Total range sigmas, metres.
+        Total range sigmas (overbounding sigmas), metres.
+    k_md_e : float
+        Ephemeris missed-detection multiplier ``K_md_e`` (required: broadcast
+        by the ground station, no standard value; see
+        :data:`~psdbound.aviation.standards.K_MD_E_SOURCE`).
     n_receivers : int, default 3
-        Selects ``K_ffmd`` and ``K_md`` from :data:`K_FFMD`, :data:`K_MD`.
-    k_ffmd, k_md : float, optional
-        Override the multipliers.
+        Selects ``K_ffmd`` from :data:`~psdbound.aviation.standards.K_FFMD`.
+    k_ffmd : float, optional
+        Override the tabulated ``K_ffmd``.
     x_air_m : float, default 0
         User to reference distance, metres.
     p_eph : float, default 0.00018
         Ephemeris decorrelation parameter, m/m (seed 004).
+    bias_m : array_like, shape (n,), optional
+        Paired-overbound bias ``b_i >= 0`` of each range, metres.
 
     Returns
     -------
     vpl_h0, vpl_eph : float
         Metres; the user applies the larger.
     """
-    kf = K_FFMD.get(n_receivers) if k_ffmd is None else k_ffmd
-    km = K_MD.get(n_receivers) if k_md is None else k_md
-    if kf is None or km is None:
-        raise InputError(f"no tabulated K for M = {n_receivers}; pass k_ffmd and k_md")
+    used = multipliers(n_receivers=n_receivers, k_ffmd=k_ffmd, k_md_e=k_md_e)
+    kf = float(used["k_ffmd"]["value"])
     s = np.asarray(sigma_m, dtype=float).reshape(-1)
     sv = projection_matrix(los_enu, s)[2]
     sd = float(np.sqrt(np.sum(sv**2 * s**2)))
-    eph = float(np.max(np.abs(sv)) * x_air_m * p_eph + km * sd)
-    return kf * sd, eph
+    shift = 0.0
+    if bias_m is not None:
+        b = np.asarray(bias_m, dtype=float).reshape(-1)
+        if b.size != s.size or not (np.isfinite(b).all() and (b >= 0).all()):
+            raise InputError(f"bias_m must hold {s.size} finite values >= 0 m, one per range")
+        shift = float(np.sum(np.abs(sv) * b))
+    km = float(k_md_e)  # type: ignore[arg-type]  # checked by multipliers()
+    eph = float(np.max(np.abs(sv)) * x_air_m * p_eph + km * sd) + shift
+    return kf * sd + shift, eph
 
 
 def budget_report(
-    azimuth_deg: ArrayLike, elevation_deg: ArrayLike, *, n_receivers: int = 3, **options: object
+    azimuth_deg: ArrayLike,
+    elevation_deg: ArrayLike,
+    *,
+    k_md_e: float | None,
+    n_receivers: int = 3,
+    k_ffmd: float | None = None,
+    **options: object,
 ) -> str:
-    """Per-satellite budget table and the two VPLs, as text (for ``psdbound budget``).
+    """Per-satellite budget table, the two VPLs and the multipliers with their sources, as text.
 
     Parameters
     ----------
     azimuth_deg, elevation_deg : array_like, shape (n,)
         Satellite azimuths and elevations, degrees (n >= 4).
+    k_md_e : float
+        Ephemeris missed-detection multiplier (required, see :func:`vpl`).
     n_receivers : int, default 3
         Reference receivers ``M``.
+    k_ffmd : float, optional
+        Override the tabulated ``K_ffmd``.
     **options
         Passed to :func:`error_budget` (``x_air_m`` also to :func:`vpl`).
 
@@ -411,15 +500,72 @@ def budget_report(
     -------
     str
     """
+    doc = budget_document(azimuth_deg, elevation_deg, k_md_e=k_md_e, n_receivers=n_receivers,
+                          k_ffmd=k_ffmd, **options)  # fmt: skip
+    rows = [f"{'el deg':>7} {'gnd m':>8} {'air m':>8} {'iono m':>8} {'trop m':>8} {'total m':>8}"]
+    terms = ("ground_m", "air_m", "iono_m", "trop_m", "total_m")
+    for sat in doc["satellites"]:  # type: ignore[attr-defined]
+        rows.append(f"{sat['elevation_deg']:>7.1f} " + " ".join(f"{sat[k]:>8.4f}" for k in terms))
+    h0, eph = doc["vpl_h0_m"], doc["vpl_eph_m"]
+    rows.append(f"VPL_H0 = {h0:.3f} m, VPL_eph = {eph:.3f} m, VPL = {max(h0, eph):.3f} m")
+    k = doc["multipliers"]
+    rows.append(f"K_ffmd = {k['k_ffmd']['value']:.3f} ({k['k_ffmd']['source']})")
+    ke = k["k_md_e"]
+    rows.append(f"K_md_e = {ke['value']:.3f} (two-sided Gaussian P_md "
+                f"{ke['p_md_e_two_sided_gaussian']:.2g}; {ke['source']})")  # fmt: skip
+    rows.append(f"xi formula: {doc['options']['xi_formula']}")
+    return "\n".join(rows)
+
+
+def budget_document(
+    azimuth_deg: ArrayLike,
+    elevation_deg: ArrayLike,
+    *,
+    k_md_e: float | None,
+    n_receivers: int = 3,
+    k_ffmd: float | None = None,
+    **options: object,
+) -> dict[str, Any]:
+    """Return the budget of one geometry as a JSON-ready dict (``budget.json`` of the CLI).
+
+    Parameters
+    ----------
+    azimuth_deg, elevation_deg : array_like, shape (n,)
+        Satellite azimuths and elevations, degrees (n >= 4).
+    k_md_e : float
+        Ephemeris missed-detection multiplier (required, see :func:`vpl`).
+    n_receivers : int, default 3
+        Reference receivers ``M``.
+    k_ffmd : float, optional
+        Override the tabulated ``K_ffmd``.
+    **options
+        Passed to :func:`error_budget` (``x_air_m`` also to :func:`vpl`).
+
+    Returns
+    -------
+    dict
+        ``satellites`` (per-satellite terms, m), ``vpl_h0_m``, ``vpl_eph_m``,
+        ``vpl_m``, ``multipliers`` (value and source of each), ``options``
+        (every budget option used) and ``sources`` (of the constants).
+    """
     t = error_budget(elevation_deg, n_receivers=n_receivers, **options)  # type: ignore[arg-type]
     x_air = float(options.get("x_air_m", 5000.0))  # type: ignore[arg-type]
-    h0, eph = vpl(los_from_az_el(azimuth_deg, elevation_deg), t.total,
-                  n_receivers=n_receivers, x_air_m=x_air)  # fmt: skip
-    rows = [f"{'el deg':>7} {'gnd m':>8} {'air m':>8} {'iono m':>8} {'trop m':>8} {'total m':>8}"]
-    for i in range(t.elevation_deg.size):
-        rows.append(
-            f"{t.elevation_deg[i]:>7.1f} {t.ground[i]:>8.4f} {t.air[i]:>8.4f} "
-            f"{t.iono[i]:>8.4f} {t.trop[i]:>8.4f} {t.total[i]:>8.4f}"
-        )
-    rows.append(f"VPL_H0 = {h0:.3f} m, VPL_eph = {eph:.3f} m, VPL = {max(h0, eph):.3f} m")
-    return "\n".join(rows)
+    h0, eph = vpl(los_from_az_el(azimuth_deg, elevation_deg), t.total, k_md_e=k_md_e,
+                  n_receivers=n_receivers, k_ffmd=k_ffmd, x_air_m=x_air)  # fmt: skip
+    az = np.asarray(azimuth_deg, dtype=float).reshape(-1)
+    sats = [{"azimuth_deg": float(az[i]), "elevation_deg": float(t.elevation_deg[i]),
+             "ground_m": float(t.ground[i]), "air_m": float(t.air[i]), "iono_m": float(t.iono[i]),
+             "trop_m": float(t.trop[i]), "total_m": float(t.total[i])}
+            for i in range(t.elevation_deg.size)]  # fmt: skip
+    used = {**_DEFAULTS, **options, "n_receivers": n_receivers}
+    return {"satellites": sats, "vpl_h0_m": h0, "vpl_eph_m": eph, "vpl_m": max(h0, eph),
+            "multipliers": multipliers(n_receivers=n_receivers, k_ffmd=k_ffmd, k_md_e=k_md_e),
+            "options": used, "sources": sources()}  # fmt: skip
+
+
+#: Keyword options of :func:`error_budget` and their defaults (reported with every budget).
+_DEFAULTS = {
+    name: p.default
+    for name, p in inspect.signature(error_budget).parameters.items()
+    if p.kind is inspect.Parameter.KEYWORD_ONLY
+}

@@ -115,10 +115,11 @@ def overbound_code_series(
     series: MultipathSeries,
     edges_deg: Sequence[float],
     *,
-    method: str = "two_step",
+    method: str = "paired",
     min_samples: int = 100,
     min_abs_z: float = DEFAULT_MIN_ABS_Z,
     bias: float = 0.0,
+    confidence: float = 0.95,
 ) -> tuple[OverboundResult, list[str]]:
     """Overbound a code-multipath series per elevation bin, skipping (and naming) sparse bins.
 
@@ -132,8 +133,9 @@ def overbound_code_series(
         Code multipath with elevations (metres, degrees).
     edges_deg : sequence of float
         Increasing elevation bin edges, degrees.
-    method, min_abs_z, bias
-        As for :func:`~psdbound.aviation.overbound_by_elevation`.
+    method, min_abs_z, bias, confidence
+        As for :func:`~psdbound.aviation.overbound_by_elevation` (the arcs are
+        the continuous segments of the effective sample size).
     min_samples : int, default 100
         Fewest samples a bin must hold to be overbounded.
 
@@ -157,6 +159,7 @@ def overbound_code_series(
         )
     result = overbound_by_elevation(
         series.value_m[keep], series.elevation_deg[keep], edges_deg=edges_deg, method=method,
-        bias=bias, min_abs_z=min_abs_z, min_samples=min_samples,
+        bias=bias, min_abs_z=min_abs_z, min_samples=min_samples, confidence=confidence,
+        segment_id=series.arc_id[keep],
     )  # fmt: skip
     return result, notes

@@ -89,17 +89,21 @@ def _qq_png(result: OverboundResult) -> bytes:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from psdbound.reports.figures_aviation import overbound_line
+
     fig, ax = plt.subplots(figsize=(6.4, 5.0))
     for b in result.bins:
         x = result.samples[b.label]
         z = norm.ppf((np.arange(1, x.size + 1) - 0.5) / x.size)
-        line = ax.plot(z, x, ".", ms=2, label=f"{b.label}: x{b.inflation:.2f}")[0]
-        ax.plot(z, b.bias + b.sigma * z, "-", lw=0.8, color=line.get_color())
+        label = f"{b.label}: x{b.inflation:.2f}, n {b.n}, n_eff {b.n_eff:.0f}"
+        line = ax.plot(z, x, ".", ms=2, label=label)[0]
+        ax.plot(z, overbound_line(z, b.bias, b.sigma, result.method), "-", lw=0.8,
+                color=line.get_color())  # fmt: skip
     ax.set_xlabel("standard-normal quantile")
     ax.set_ylabel(f"sample quantile ({result.unit})")
     ax.set_title(f"Q-Q plot and Gaussian overbounds ({result.method})")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, title="bin: inflation", title_fontsize=7)
+    ax.legend(fontsize=7, title="bin: inflation, samples n, effective n_eff", title_fontsize=7)
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=120)
     plt.close(fig)

@@ -21,7 +21,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from psdbound.aviation.budget import K_FFMD, error_budget, los_from_az_el, vpl
+from psdbound.aviation.budget import error_budget, los_from_az_el, multipliers, vpl
+from psdbound.aviation.standards import P_EPH
 from psdbound.common.atomic import atomic_write_bytes, atomic_write_text
 from psdbound.errors import InputError
 from psdbound.io.geometry import OrbitSource, satellite_azel
@@ -168,7 +169,8 @@ class VplSeries:
     elevation_mask_deg, source, receiver_xyz_m
         Those of the :class:`Sky`: degrees, the orbit, ECEF metres.
     options : dict
-        Every budget and VPL option used (names carry their units).
+        Every budget and VPL option used (names carry their units), with
+        ``multipliers``: the value and source of ``K_ffmd`` and ``K_md_e``.
     """
 
     t_gps_s: NDArray[np.float64]
@@ -258,8 +260,8 @@ class VplSeries:
         return out
 
 
-def vpl_series(sky: Sky, *, n_receivers: int = 3, x_air_m: float = 5000.0, p_eph: float = 0.00018,
-               k_ffmd: float | None = None, k_md: float | None = None,
+def vpl_series(sky: Sky, *, k_md_e: float | None, n_receivers: int = 3, x_air_m: float = 5000.0,
+               p_eph: float = P_EPH.value, k_ffmd: float | None = None,
                **budget_options: Any) -> VplSeries:  # fmt: skip
     """VPL_H0, VPL_eph and VPL at every epoch of a :class:`Sky` (the budget of its satellites).
 
@@ -272,8 +274,11 @@ def vpl_series(sky: Sky, *, n_receivers: int = 3, x_air_m: float = 5000.0, p_eph
         User to reference distance, metres.
     p_eph : float, default 0.00018
         Ephemeris decorrelation parameter, m/m.
-    k_ffmd, k_md : float, optional
-        Override the tabulated multipliers.
+    k_md_e : float
+        Ephemeris missed-detection multiplier (required; see
+        :func:`~psdbound.aviation.budget.vpl`).
+    k_ffmd : float, optional
+        Override the tabulated fault-free multiplier.
     **budget_options
         Other keyword options of :func:`~psdbound.aviation.budget.error_budget`
         (``process``, ``tau_gnd_s``, ``gad``, ``rho``, ...).
@@ -285,11 +290,10 @@ def vpl_series(sky: Sky, *, n_receivers: int = 3, x_air_m: float = 5000.0, p_eph
     unknown = sorted(set(budget_options) - set(_BUDGET_OPTIONS))
     if unknown:
         raise InputError(f"unknown budget option(s) {unknown}; known: {sorted(_BUDGET_OPTIONS)}")
-    if (k_ffmd is None or k_md is None) and n_receivers not in K_FFMD:
-        raise InputError(f"no tabulated K for M = {n_receivers}; pass k_ffmd and k_md")
+    used_k = multipliers(n_receivers=n_receivers, k_ffmd=k_ffmd, k_md_e=k_md_e)
     opts = {"n_receivers": n_receivers, "x_air_m": x_air_m, **budget_options}
     error_budget([45.0], **opts)  # validate the options once, whatever the geometry
-    kw = dict(n_receivers=n_receivers, k_ffmd=k_ffmd, k_md=k_md, x_air_m=x_air_m, p_eph=p_eph)
+    kw = dict(n_receivers=n_receivers, k_ffmd=k_ffmd, k_md_e=k_md_e, x_air_m=x_air_m, p_eph=p_eph)
     n = sky.n_sats
     h0, eph = np.full(n.size, np.nan), np.full(n.size, np.nan)
     for i in np.flatnonzero(n >= 4):
@@ -298,7 +302,7 @@ def vpl_series(sky: Sky, *, n_receivers: int = 3, x_air_m: float = 5000.0, p_eph
         total = error_budget(el, **opts).total
         with contextlib.suppress(InputError):  # options checked above: a singular geometry
             h0[i], eph[i] = vpl(los_from_az_el(az, el), total, **kw)
-    used = {**_BUDGET_OPTIONS, **opts, "p_eph": p_eph, "k_ffmd": k_ffmd, "k_md": k_md}
+    used = {**_BUDGET_OPTIONS, **opts, "p_eph": p_eph, "multipliers": used_k}
     t, rx, mask = sky.t_gps_s.copy(), sky.receiver_xyz_m.copy(), sky.elevation_mask_deg
     return VplSeries(t, n, h0, eph, np.maximum(h0, eph), mask, sky.source, rx, used)
 

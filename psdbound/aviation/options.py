@@ -15,7 +15,7 @@ from psdbound.common.options import (
 )
 
 #: Gaussian overbound constructions (:mod:`psdbound.aviation.overbound`).
-METHODS = ("two_step", "cdf")
+METHODS = ("paired", "two_step", "cdf")
 #: Default elevation bin edges of the overbounds, deg.
 DEFAULT_EDGES_DEG = (5.0, 15.0, 30.0, 45.0, 60.0, 90.0)
 
@@ -40,8 +40,8 @@ class CodeMultipathOptions:
         files: ``"C1"``, ``"P1"``, ``"P2"`` or the RINEX 3 names).
     edges_deg : tuple of float, default (5, 15, 30, 45, 60, 90)
         Elevation bin edges, degrees, increasing, 0 to 90.
-    method : {"two_step", "cdf"}, default "two_step"
-        Overbound construction.
+    method : {"paired", "two_step", "cdf"}, default "paired"
+        Overbound construction (paired: bias and sigma, no exempted core).
     min_length_s : float, default 600
         Shortest carrier-levelling arc, s (the seeds use 600 s): the arc mean
         is the levelling constant, and a short arc levels poorly.
@@ -66,7 +66,7 @@ class CodeMultipathOptions:
         Tuple(Number(lo=0.0, hi=90.0, unit="deg"), min_len=2, max_len=30, split=",",
               what="increasing elevation edges in degrees such as '5,15,30,60,90'"),
     )  # fmt: skip
-    method: str = option("two_step", Choice(METHODS, noun="overbound method"))
+    method: str = option("paired", Choice(METHODS, noun="overbound method"))
     min_length_s: float = option(600.0, Number(lo=0.0, hi=86400.0, lo_open=True, unit="s"))
     min_samples: int = option(100, Number(lo=10, hi=1e9, integer=True))
 

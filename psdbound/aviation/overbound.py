@@ -1,6 +1,8 @@
 """Gaussian overbounds of sample error distributions, per elevation bin.
 
-Two constructions, both computed from the empirical CDF ``F_n`` of the
+The default is the paired overbound (:mod:`psdbound.aviation.paired`: a bias
+and a sigma, every point constrained, valid through convolution for any
+independent errors). Two further constructions, both computed from the empirical CDF ``F_n`` of the
 samples of one bin (``n`` samples, sorted ``x_(1) <= ... <= x_(n)``):
 
 CDF overbound (DeCleene 2000, [DeCleene2000]_), optionally paired with a bias
@@ -21,15 +23,17 @@ Two-step overbound (named in seed 000, which cites [BlanchWalterEnge2019]_ for i
     ``T(d) = max(P(x - m >= d), P(x - m <= -d))`` -- the tail function of a
     symmetric distribution about ``m`` that overbounds the sample in the
     CDF sense on both sides. Step 2 finds the smallest zero-mean Gaussian
-    whose tail ``Q(d / s)`` lies above ``T(d)`` for every ``d``; a Gaussian is
-    symmetric and unimodal, so the result ``N(m, s)`` keeps the convolution
-    property of symmetric unimodal CDF overbounds (DeCleene). Seed 000 only
+    whose tail ``Q(d / s)`` lies above ``T(d)`` for every ``d``. The result
+    ``N(m, s)`` carries over to sums of errors by DeCleene's theorem only when
+    the *true* error distributions are symmetric and unimodal; that the bound
+    is a Gaussian does not make it so (for other errors use the paired
+    overbound). Seed 000 only
     names the method and its two properties (stable through convolution like
     paired overbounding, biases close to the sample distribution's); this is
     our construction with those properties, documented in
     ``docs/method/aviation.rst``.
 
-Both ignore the core of the distribution where ``Phi^-1(1 - tail) <
+These two (not the paired overbound) ignore the core of the distribution where ``Phi^-1(1 - tail) <
 min_abs_z`` (default 0.25: the central 20 % of probability). A finite
 sample cannot be bounded there at all: its empirical tail reaches 1/2 at a
 non-zero distance from the centre (the atoms of ``F_n``), which no Gaussian
@@ -38,7 +42,9 @@ noise divided by a near-zero ``z``. Pass ``min_abs_z=0`` to constrain every
 point (the sigma is then ``inf`` whenever such a point exists).
 
 The inflation factor of a bin is ``sigma_overbound / std(samples)`` (1 for
-an exactly Gaussian sample, larger for heavier tails).
+an exactly Gaussian sample, larger for heavier tails). Every bin also has its
+effective sample size and the overbound at a confidence level
+(:mod:`psdbound.aviation.sample_size`).
 """
 
 from __future__ import annotations
@@ -53,6 +59,8 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.stats import norm
 
 from psdbound.aviation.options import DEFAULT_EDGES_DEG, METHODS
+from psdbound.aviation.paired import DEFAULT_K_WEIGHT, TailMap, paired_overbound
+from psdbound.aviation.sample_size import effective_sample_size, upper_tail
 from psdbound.common.notices import warn
 from psdbound.errors import InputError
 
@@ -108,8 +116,11 @@ def _clean(samples: ArrayLike, where: str, min_samples: int) -> NDArray[np.float
     return np.sort(x)
 
 
-def _tail_sigma(d: NDArray[np.float64], tail: NDArray[np.float64], min_abs_z: float) -> float:
+def _tail_sigma(d: NDArray[np.float64], tail: NDArray[np.float64], min_abs_z: float,
+                tail_map: TailMap | None = None) -> float:  # fmt: skip
     """Smallest ``s`` with ``Q(d / s) >= tail`` at every constraining point (``d > 0``)."""
+    if tail_map is not None:
+        tail = tail_map(tail)
     if d.size == 0:
         return 0.0
     if min_abs_z <= 0 and ((d > 0) & (tail >= 0.5)).any():
@@ -128,6 +139,7 @@ def cdf_overbound_sigma(
     bias: float = 0.0,
     min_abs_z: float = DEFAULT_MIN_ABS_Z,
     min_samples: int = 2,
+    tail_map: TailMap | None = None,
 ) -> float:
     """Sigma of the smallest CDF (paired, if ``bias > 0``) Gaussian overbound.
 
@@ -143,6 +155,8 @@ def cdf_overbound_sigma(
         constrain ``s``.
     min_samples : int, default 2
         Fewer samples raise :class:`~psdbound.errors.InputError`.
+    tail_map : callable, optional
+        Replaces the empirical tails (e.g. by upper confidence bounds).
 
     Returns
     -------
@@ -156,14 +170,18 @@ def cdf_overbound_sigma(
     i = np.arange(1, n + 1)
     left = x < -bias
     right = x > bias
-    s_left = _tail_sigma(-(x[left] + bias), i[left] / n, min_abs_z)
-    s_right = _tail_sigma(x[right] - bias, (n - i[right] + 1) / n, min_abs_z)
+    s_left = _tail_sigma(-(x[left] + bias), i[left] / n, min_abs_z, tail_map)
+    s_right = _tail_sigma(x[right] - bias, (n - i[right] + 1) / n, min_abs_z, tail_map)
     # a point on the wrong side of the bias (e.g. x in [-b, b]) is always bounded
     return max(s_left, s_right)
 
 
 def two_step_overbound(
-    samples: ArrayLike, *, min_abs_z: float = DEFAULT_MIN_ABS_Z, min_samples: int = 2
+    samples: ArrayLike,
+    *,
+    min_abs_z: float = DEFAULT_MIN_ABS_Z,
+    min_samples: int = 2,
+    tail_map: TailMap | None = None,
 ) -> tuple[float, float]:
     """Two-step Gaussian overbound ``N(m, s)``: median-centred, symmetrised, Gaussian-bounded.
 
@@ -175,6 +193,8 @@ def two_step_overbound(
         As in :func:`cdf_overbound_sigma`.
     min_samples : int, default 2
         Fewer samples raise :class:`~psdbound.errors.InputError`.
+    tail_map : callable, optional
+        Replaces the empirical tails (e.g. by upper confidence bounds).
 
     Returns
     -------
@@ -195,7 +215,7 @@ def two_step_overbound(
     left_at = np.searchsorted(x, m - d, side="right") / n
     tail = np.maximum(tail_own, np.maximum(right_at, left_at))
     off = d > 0
-    return m, _tail_sigma(d[off], tail[off], min_abs_z)
+    return m, _tail_sigma(d[off], tail[off], min_abs_z, tail_map)
 
 
 @dataclass(frozen=True)
@@ -216,6 +236,17 @@ class BinOverbound:
         Overbounding sigma, unit of the samples.
     inflation : float
         ``sigma / std`` (dimensionless).
+    n_eff : float
+        Effective number of independent samples (``n / tau_int``,
+        :func:`~psdbound.aviation.sample_size.effective_sample_size`).
+    tau_int : float
+        Integrated autocorrelation time, samples.
+    confidence : float
+        Confidence level of ``bias_upper``, ``sigma_upper``, ``inflation_upper``.
+    bias_upper, sigma_upper, inflation_upper : float
+        The overbound when every empirical tail is replaced by its upper
+        confidence bound with ``n_eff`` independent samples (unit of the
+        samples; dimensionless).
     """
 
     low_deg: float
@@ -226,6 +257,12 @@ class BinOverbound:
     bias: float
     sigma: float
     inflation: float
+    n_eff: float = math.nan
+    tau_int: float = math.nan
+    confidence: float = math.nan
+    bias_upper: float = math.nan
+    sigma_upper: float = math.nan
+    inflation_upper: float = math.nan
 
     @property
     def label(self) -> str:
@@ -242,6 +279,12 @@ class BinOverbound:
             "bias": self.bias,
             "sigma": self.sigma,
             "inflation": self.inflation,
+            "n_eff": self.n_eff,
+            "tau_int": self.tau_int,
+            "confidence": self.confidence,
+            "bias_upper": self.bias_upper,
+            "sigma_upper": self.sigma_upper,
+            "inflation_upper": self.inflation_upper,
         }
 
 
@@ -252,13 +295,14 @@ class OverboundResult:
     Attributes
     ----------
     method : str
-        ``"two_step"`` or ``"cdf"``.
+        ``"paired"``, ``"two_step"`` or ``"cdf"``.
     bins : tuple of BinOverbound
         One per non-empty elevation bin, in elevation order.
     unit : str
         Unit of the samples (for display).
     min_abs_z : float
-        Core excluded from the bound (see :func:`cdf_overbound_sigma`).
+        Core excluded from the bound (see :func:`cdf_overbound_sigma`; 0 for
+        ``"paired"``, which constrains every point).
     samples : dict
         ``label -> sorted samples`` of each bin (for the Q-Q figure).
     """
@@ -323,20 +367,21 @@ class OverboundResult:
         return out
 
     def summary(self) -> str:
-        """Return a fixed-width table: bin, n, mean, std, bias, sigma, inflation."""
-        head = (
-            f"Gaussian overbound ({self.method}, core |z| < {self.min_abs_z:g} ignored), "
-            f"unit {self.unit}"
-        )
+        """Return a fixed-width table: bin, n, n_eff, std, bias, sigma, inflation and its bound."""
+        core = ("no core exempted" if self.min_abs_z == 0
+                else f"core |z| < {self.min_abs_z:g} ignored")  # fmt: skip
+        conf = next((b.confidence for b in self.bins), math.nan)
         rows = [
-            head,
-            f"{'elevation':>16} {'n':>8} {'mean':>9} {'std':>9} {'bias':>9} "
-            f"{'sigma':>9} {'inflation':>9}",
+            f"Gaussian overbound ({self.method}, {core}), unit {self.unit}; 'upper': every "
+            f"tail at its {100 * conf:g} % upper confidence bound with n_eff samples",
+            f"{'elevation':>16} {'n':>7} {'n_eff':>8} {'std':>8} {'bias':>8} {'sigma':>8} "
+            f"{'inflation':>9} {'bias_up':>8} {'sigma_up':>8} {'infl_up':>8}",
         ]
         for b in self.bins:
             rows.append(
-                f"{b.label:>16} {b.n:>8d} {b.mean:>9.4g} {b.std:>9.4g} {b.bias:>9.4g} "
-                f"{b.sigma:>9.4g} {b.inflation:>9.4f}"
+                f"{b.label:>16} {b.n:>7d} {b.n_eff:>8.1f} {b.std:>8.4g} {b.bias:>8.4g} "
+                f"{b.sigma:>8.4g} {b.inflation:>9.4f} {b.bias_upper:>8.4g} "
+                f"{b.sigma_upper:>8.4g} {b.inflation_upper:>8.4f}"
             )
         return "\n".join(rows)
 
@@ -390,40 +435,90 @@ def samples_in_full_bins(
     return keep, notes
 
 
+def _one_bin(xs: NDArray[np.float64], raw: NDArray[np.float64], seg: NDArray[Any] | None,
+             method: str, opts: dict[str, Any]) -> dict[str, float]:  # fmt: skip
+    """Bias, sigma and their confidence bounds of one bin (``xs`` sorted, ``raw`` in time order)."""
+    n_eff, tau = effective_sample_size(raw, segment_id=seg)
+    conf = float(opts["confidence"])
+
+    def upper(t: NDArray[np.float64]) -> NDArray[np.float64]:
+        return upper_tail(t, n_eff, conf)
+
+    def fit(tail_map: TailMap | None) -> tuple[float, float]:
+        if method == "paired":
+            return paired_overbound(xs, k_weight=opts["k_weight"], tail_map=tail_map)
+        if method == "two_step":
+            return two_step_overbound(xs, min_abs_z=opts["min_abs_z"], tail_map=tail_map)
+        b = float(opts["bias"])
+        return b, cdf_overbound_sigma(xs, bias=b, min_abs_z=opts["min_abs_z"], tail_map=tail_map)
+
+    b, s = fit(None)
+    b_up, s_up = fit(upper)
+    return {"bias": b, "sigma": s, "bias_upper": b_up, "sigma_upper": s_up, "n_eff": n_eff,
+            "tau_int": tau, "confidence": conf}  # fmt: skip
+
+
+def _grid(x: NDArray[np.float64], elevation_deg: ArrayLike | None, edges_deg: Sequence[float]
+          ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:  # fmt: skip
+    """Elevations and edges (one open bin without elevations), checked."""
+    if elevation_deg is None:
+        return np.full(x.size, 0.0), np.array([-math.inf, math.inf])
+    el = np.asarray(elevation_deg, dtype=float).reshape(-1)
+    edges = np.asarray(edges_deg, dtype=float)
+    if el.size != x.size:
+        raise InputError(f"{x.size} samples but {el.size} elevations")
+    _check_elevations(el)
+    if edges.size < 2 or not (np.diff(edges) > 0).all():
+        raise InputError(f"edges_deg must increase, at least 2 values: {list(edges_deg)}")
+    return el, edges
+
+
 def overbound_by_elevation(
     samples: ArrayLike,
     elevation_deg: ArrayLike | None = None,
     *,
     edges_deg: Sequence[float] = DEFAULT_EDGES_DEG,
-    method: str = "two_step",
+    method: str = "paired",
     bias: float = 0.0,
     min_abs_z: float = DEFAULT_MIN_ABS_Z,
     min_samples: int = 100,
     unit: str = "m",
+    confidence: float = 0.95,
+    segment_id: ArrayLike | None = None,
+    k_weight: float = DEFAULT_K_WEIGHT,
 ) -> OverboundResult:
-    """Gaussian overbound of ``samples`` in each elevation bin.
+    """Gaussian overbound of ``samples`` in each elevation bin, with sample sizes and confidence.
 
     Parameters
     ----------
     samples : array_like, shape (n,)
-        Errors (code or carrier multipath, normalised errors, ...), ``unit``.
+        Errors (code or carrier multipath, normalised errors, ...), ``unit``, in
+        time order (the effective sample size reads their autocorrelation).
     elevation_deg : array_like, shape (n,), optional
         Elevation of each sample, degrees. ``None``: one bin for all samples.
     edges_deg : sequence of float, default (5, 15, 30, 45, 60, 90)
         Increasing bin edges, degrees. Samples outside are left out (a
         :class:`~psdbound.common.notices.PsdboundWarning` counts them); empty
         bins are skipped.
-    method : {"two_step", "cdf"}, default "two_step"
-        See the module docstring.
+    method : {"paired", "two_step", "cdf"}, default "paired"
+        See the module docstring and :mod:`psdbound.aviation.paired`.
     bias : float, default 0
-        Paired bias of the ``"cdf"`` method, ``unit``.
+        Bias of the ``"cdf"`` method, ``unit``.
     min_abs_z : float, default 0.25
-        Core excluded from the bound.
+        Core excluded from the ``"two_step"`` and ``"cdf"`` bounds (the
+        ``"paired"`` bound constrains every point and ignores it).
     min_samples : int, default 100
         A non-empty bin with fewer samples raises
         :class:`~psdbound.errors.InputError` naming the bin.
     unit : str, default "m"
         For display only.
+    confidence : float, default 0.95
+        Confidence level of the ``*_upper`` bounds, in (0, 1).
+    segment_id : array_like, shape (n,), optional
+        Continuous pieces of the series (e.g. carrier-levelling arcs): the
+        autocorrelation is never taken across a change. None: one series.
+    k_weight : float, default 5.81
+        Sigma-against-bias weight of the ``"paired"`` construction.
 
     Returns
     -------
@@ -433,23 +528,19 @@ def overbound_by_elevation(
     ------
     InputError
         NaN samples or elevations (the bin is named), a bin with too few
-        samples, mismatched lengths, bad edges or method.
+        samples, mismatched lengths, bad edges, method or confidence.
     """
     if method not in METHODS:
         raise InputError(f"unknown method {method!r}; choose from {METHODS}")
+    if not 0.0 < confidence < 1.0:
+        raise InputError(f"confidence must be in (0, 1), got {confidence}")
     x = np.asarray(samples, dtype=float).reshape(-1)
-    if elevation_deg is None:
-        el = np.full(x.size, 0.0)
-        edges = np.array([-math.inf, math.inf])
-    else:
-        el = np.asarray(elevation_deg, dtype=float).reshape(-1)
-        edges = np.asarray(edges_deg, dtype=float)
-        if el.size != x.size:
-            raise InputError(f"{x.size} samples but {el.size} elevations")
-        _check_elevations(el)
-    if edges.size < 2 or not (np.diff(edges) > 0).all():
-        raise InputError(f"edges_deg must increase, at least 2 values: {list(edges_deg)}")
+    el, edges = _grid(x, elevation_deg, edges_deg)
+    seg = None if segment_id is None else np.asarray(segment_id).reshape(-1)
+    if seg is not None and seg.size != x.size:
+        raise InputError(f"{x.size} samples but {seg.size} segment ids")
     _note_outside(el, edges, elevation_deg is not None)
+    opts = {"confidence": confidence, "k_weight": k_weight, "min_abs_z": min_abs_z, "bias": bias}
     out: list[BinOverbound] = []
     kept: dict[str, NDArray[np.float64]] = {}
     for lo, hi, sel in _bins(el, edges):
@@ -457,23 +548,16 @@ def overbound_by_elevation(
             continue
         where = "all samples" if elevation_deg is None else f"elevation bin [{lo:g}, {hi:g}) deg"
         xs = _clean(x[sel], where, min_samples)
-        if method == "two_step":
-            b, s = two_step_overbound(xs, min_abs_z=min_abs_z, min_samples=min_samples)
-        else:
-            b, s = bias, cdf_overbound_sigma(xs, bias=bias, min_abs_z=min_abs_z)
+        fit = _one_bin(xs, x[sel], None if seg is None else seg[sel], method, opts)
         std = float(np.std(xs, ddof=1))
         ob = BinOverbound(
-            low_deg=lo,
-            high_deg=hi,
-            n=int(xs.size),
-            mean=float(xs.mean()),
-            std=std,
-            bias=float(b),
-            sigma=float(s),
-            inflation=float(s / std) if std > 0 else math.inf,
-        )
+            low_deg=lo, high_deg=hi, n=int(xs.size), mean=float(xs.mean()), std=std,
+            inflation=float(fit["sigma"] / std) if std > 0 else math.inf,
+            inflation_upper=float(fit["sigma_upper"] / std) if std > 0 else math.inf, **fit,
+        )  # fmt: skip
         out.append(ob)
         kept[ob.label] = xs
     if not out:
         raise InputError(f"no sample has an elevation inside the edges {list(edges_deg)} deg")
-    return OverboundResult(method, tuple(out), unit, float(min_abs_z), kept)
+    core = 0.0 if method == "paired" else float(min_abs_z)
+    return OverboundResult(method, tuple(out), unit, core, kept)

@@ -12,6 +12,10 @@ Registered by :mod:`psdbound.cli.main` through :func:`add_parser`. Two modes:
     (:func:`psdbound.aviation.sky_over`), the VPLs per epoch
     (:func:`psdbound.aviation.vpl_series`); prints the summary and, with
     ``--out``, writes ``vpl.json`` and ``vpl.png``.
+
+``--k-md-e`` (the ephemeris missed-detection multiplier of ``VPL_eph``) is
+required: the ground station broadcasts it and no standard fixes it. The
+output names the multipliers used and their sources (``multipliers``).
 """
 
 from __future__ import annotations
@@ -30,7 +34,7 @@ __all__ = ["add_parser", "run"]
 MAX_EPOCHS = 100_000
 _SERIES_OPTIONS = {"position": "--position", "start": "--start", "hours": "--hours",
                    "step_s": "--step-s", "mask_deg": "--mask-deg", "val_m": "--val-m",
-                   "out": "--out", "systems": "--systems"}  # fmt: skip
+                   "systems": "--systems"}  # fmt: skip
 _SYSTEM_NAMES = {"G": "GPS (G)", "E": "Galileo (E)"}
 
 
@@ -111,6 +115,31 @@ def add_parser(subparsers: Any) -> None:
     p.add_argument(
         "--x-air-km", type=float, default=5.0, help="distance to reference, km (default: 5)"
     )
+    p.add_argument(
+        "--k-md-e",
+        type=float,
+        help="ephemeris missed-detection multiplier K_md_e of VPL_eph, dimensionless "
+        "(required: broadcast by the ground station in Message Type 2; no standard value)",
+    )
+    p.add_argument(
+        "--k-ffmd",
+        type=float,
+        help="fault-free multiplier K_ffmd, dimensionless (default: the table for --receivers, "
+        "entered from memory and not verified against the standard; its source is printed)",
+    )
+    p.add_argument(
+        "--xi-formula",
+        choices=("exact", "seed", "steady_state"),
+        default="exact",
+        help="smoothing-time ratio xi: exact variance of seed 004's smoother, the seed's "
+        "printed eq. A6 (reproduces its Table 1), or the converged Hatch filter "
+        "(default: exact)",
+    )
+    p.add_argument(
+        "--out",
+        help="folder for budget.json (--sat) or vpl.json and vpl.png (--nominal, --nav) "
+        "(default: none)",
+    )
     s = p.add_argument_group("over time (--nominal, --nav)")
     s.add_argument(
         "--position",
@@ -138,7 +167,6 @@ def add_parser(subparsers: Any) -> None:
         type=float,
         help="vertical alert limit, m: prints the availability (default: none)",
     )
-    s.add_argument("--out", help="folder for vpl.json and vpl.png (default: none)")
     p.set_defaults(func=run)
 
 
@@ -151,7 +179,28 @@ def _budget_options(args: argparse.Namespace) -> dict[str, Any]:
         "gad": args.gad,
         "rho": args.rho,
         "x_air_m": 1000.0 * args.x_air_km,
+        "xi_formula": args.xi_formula,
     }
+
+
+def _k_options(args: argparse.Namespace) -> dict[str, Any]:
+    """``k_md_e``, ``k_ffmd``, ``n_receivers`` checked once (exit 2 naming the option)."""
+    from psdbound.aviation import multipliers
+
+    if args.k_md_e is None:
+        raise InputError(
+            "--k-md-e is required: the ephemeris missed-detection multiplier K_md_e of VPL_eph "
+            "is broadcast by the ground station (Message Type 2) and no standard fixes its "
+            "value; give the one of the station you analyse (e.g. --k-md-e 5.0)"
+        )
+    if args.receivers < 1:
+        raise InputError(f"--receivers must be >= 1, got {args.receivers}")
+    try:
+        multipliers(n_receivers=args.receivers, k_ffmd=args.k_ffmd, k_md_e=args.k_md_e)
+    except InputError as exc:
+        msg = exc.reason.replace("k_md_e", "--k-md-e").replace("k_ffmd", "--k-ffmd")
+        raise InputError(msg.replace("M = ", "--receivers ")) from None
+    return {"k_md_e": args.k_md_e, "k_ffmd": args.k_ffmd, "n_receivers": args.receivers}
 
 
 def run(args: argparse.Namespace) -> int:
@@ -180,8 +229,7 @@ def run(args: argparse.Namespace) -> int:
     if given:
         verb = "applies" if len(given) == 1 else "apply"
         raise InputError(f"{', '.join(given)} {verb} only to --nominal / --nav, not to --sat")
-    _check_receivers(args.receivers)
-    from psdbound.aviation import budget_report
+    from psdbound.aviation import budget_document, budget_report
 
     az, el = [], []
     for s in args.sat:
@@ -194,17 +242,23 @@ def run(args: argparse.Namespace) -> int:
     if len(el) < 4:
         more = "" if el else ", or --nominal / --nav with --position for the VPL over time"
         raise InputError(f"give at least 4 --sat AZ,EL (got {len(el)}){more}")
-    n_receivers = args.receivers
-    print(budget_report(az, el, n_receivers=n_receivers, **_budget_options(args)))
+    kopts = _k_options(args)
+    if args.out:
+        from psdbound.common.outputs import check_writable_folder
+
+        check_writable_folder(args.out, option="--out")
+    print(budget_report(az, el, **kopts, **_budget_options(args)))
+    if args.out:
+        import json
+        from pathlib import Path
+
+        from psdbound.common.atomic import atomic_write_text
+
+        doc = budget_document(az, el, **kopts, **_budget_options(args))
+        path = atomic_write_text(Path(args.out) / "budget.json",
+                                 json.dumps({"budget": doc}, indent=2) + "\n")  # fmt: skip
+        print(f"wrote {path}")
     return 0
-
-
-def _check_receivers(m: int) -> None:
-    from psdbound.aviation import K_FFMD
-
-    if m not in K_FFMD:
-        raise InputError(f"--receivers {m}: K multipliers are tabulated for M = "
-                         f"{', '.join(map(str, sorted(K_FFMD)))} only")  # fmt: skip
 
 
 def _position(text: str | None) -> tuple[float, float, float]:
@@ -307,7 +361,7 @@ def _run_series(args: argparse.Namespace) -> int:
     from psdbound.io.geometry import geodetic_to_ecef
 
     lat, lon, h = _position(args.position)
-    _check_receivers(args.receivers)
+    kopts = _k_options(args)
     hours = _positive(args.hours, 24.0, "--hours", "h")
     step = _positive(args.step_s, 300.0, "--step-s", "s")
     mask = 5.0 if args.mask_deg is None else args.mask_deg
@@ -340,12 +394,16 @@ def _run_series(args: argparse.Namespace) -> int:
         )
     rx = geodetic_to_ecef(lat, lon, h)
     sky = sky_over(orbit, rx, t, systems=systems, elevation_mask_deg=mask)
-    series = vpl_series(sky, n_receivers=args.receivers, **_budget_options(args))
+    series = vpl_series(sky, **kopts, **_budget_options(args))
     print(
         f"user at {lat:.4f} deg N, {lon:.4f} deg E, {h:g} m; {args.process} "
         f"{args.frequency}, tau {args.tau_gnd:g}/{args.tau_air:g} s, GAD-{args.gad}, "
-        f"M = {args.receivers}, rho = {args.rho:g}, x_air = {args.x_air_km:g} km"
+        f"M = {args.receivers}, rho = {args.rho:g}, x_air = {args.x_air_km:g} km, "
+        f"xi {args.xi_formula}"
     )
+    k = series.options["multipliers"]
+    print(f"K_ffmd = {k['k_ffmd']['value']:.3f} ({k['k_ffmd']['source']})")
+    print(f"K_md_e = {k['k_md_e']['value']:.3f} ({k['k_md_e']['source']})")
     print(series.summary(val_m=args.val_m))
     if args.out:
         for f in write_vpl_series(series, args.out, val_m=args.val_m):

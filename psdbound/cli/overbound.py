@@ -8,7 +8,8 @@ from ``--nav``) -- runs
 :func:`psdbound.aviation.overbound_by_elevation`, prints the summary and,
 with ``--out``, writes ``result.json`` (sigma, bias and inflation factor per
 bin) and ``overbound_qq.png``. Bad input (NaN, too few samples in a bin,
-the bin is named) is exit 2. With ``--code`` a sparse bin is a property of
+the bin is named) is exit 2. Each bin reports ``n``, ``n_eff`` and the
+overbound at ``--confidence`` (``*_upper``). With ``--code`` a sparse bin is a property of
 the station's sky (few satellites above 60 deg at high latitude): it is left
 out and named (``note:`` and ``bins_left_out``); exit 2 only when no bin
 holds ``--min-samples``.
@@ -35,10 +36,12 @@ def add_parser(subparsers: Any) -> None:
     """
     p = subparsers.add_parser(
         "overbound",
-        help="Gaussian overbound (two-step or CDF) of error samples per elevation bin",
+        help="Gaussian overbound (paired, two-step or CDF) of error samples per elevation bin",
         description="Overbound the distribution of error samples (code or carrier "
         "multipath, normalised errors, ...) by a Gaussian in each elevation bin; print "
-        "sigma and the inflation factor sigma/std per bin.",
+        "bias, sigma and the inflation factor sigma/std per bin, the effective sample size "
+        "n_eff of each bin (from the series' autocorrelation; samples in time order) and the "
+        "bounds at --confidence.",
         epilog="examples: psdbound overbound errors.csv --edges 5 15 30 60 90 --out out/ ; "
         "psdbound overbound ESBC.crx.gz --nav ESBC_MN.rnx.gz --code C1C --out out/",
     )
@@ -65,9 +68,18 @@ def add_parser(subparsers: Any) -> None:
     )
     p.add_argument(
         "--method",
-        choices=("two_step", "cdf"),
-        default="two_step",
-        help="overbound construction (default: two_step)",
+        choices=("paired", "two_step", "cdf"),
+        default="paired",
+        help="overbound construction: paired (bias and sigma per bin, every point "
+        "constrained), two_step (about the median; assumes symmetric unimodal true errors) "
+        "or cdf (zero-mean or --bias) (default: paired)",
+    )
+    p.add_argument(
+        "--confidence",
+        type=float,
+        default=0.95,
+        help="confidence level of the upper bounds of bias, sigma and inflation, from the "
+        "effective sample size of each bin, dimensionless in (0, 1) (default: 0.95)",
     )
     p.add_argument(
         "--edges",
@@ -85,9 +97,9 @@ def add_parser(subparsers: Any) -> None:
     p.add_argument(
         "--min-abs-z",
         type=float,
-        default=0.25,
-        help="ignore the core where the normal quantile of the tail is below "
-        "this, dimensionless (default: 0.25)",
+        default=None,
+        help="two_step / cdf only: ignore the core where the normal quantile of the tail "
+        "is below this, dimensionless (default: 0.25; paired constrains every point)",
     )
     p.add_argument(
         "--min-samples",
@@ -123,6 +135,13 @@ def run(args: argparse.Namespace) -> int:
 
     if args.min_samples < 2:
         raise InputError(f"--min-samples must be >= 2, got {args.min_samples}")
+    if not 0.0 < args.confidence < 1.0:
+        raise InputError(f"--confidence must be in (0, 1), got {args.confidence}")
+    if args.method == "paired" and args.min_abs_z is not None:
+        raise InputError("--min-abs-z applies to --method two_step / cdf: the paired overbound "
+                         "exempts no core")  # fmt: skip
+    if args.min_abs_z is None:
+        args.min_abs_z = 0.25
     if args.out:
         check_writable_folder(args.out, option="--out")
     if args.code:
@@ -142,6 +161,7 @@ def run(args: argparse.Namespace) -> int:
                 min_abs_z=args.min_abs_z,
                 min_samples=args.min_samples,
                 unit=args.unit,
+                confidence=args.confidence,
             )
         except InputError as exc:
             raise InputError(exc.reason, path=args.samples) from None
@@ -174,7 +194,7 @@ def _code_overbound(args: argparse.Namespace) -> tuple[Any, dict[str, Any]]:
     try:
         res, sparse = overbound_code_series(
             series, args.edges, method=args.method, min_samples=args.min_samples,
-            min_abs_z=args.min_abs_z, bias=args.bias,
+            min_abs_z=args.min_abs_z, bias=args.bias, confidence=args.confidence,
         )  # fmt: skip
     except InputError as exc:
         raise InputError(exc.reason, path=args.samples) from None

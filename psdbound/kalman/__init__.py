@@ -16,7 +16,9 @@ Modules: :mod:`~psdbound.kalman.bound` (the bound and its state-space
 export), :mod:`~psdbound.kalman.augment`, :mod:`~psdbound.kalman.covariance`
 (the analysis front), :mod:`~psdbound.kalman.process` and
 :mod:`~psdbound.kalman.truth` (true errors), :mod:`~psdbound.kalman.analysis`
-(the result), :mod:`~psdbound.kalman.aviation`.
+(the result). The aviation models of the seeds (airborne sigma curves,
+carrier-smoothing inflation, ``xi(tau)``, the Q-Q criterion) live in
+:mod:`psdbound.aviation`.
 
 * :class:`GaussMarkovSet` -> :meth:`~GaussMarkovSet.design` ->
   :class:`UncertainGMBound` -- a design model safe for every Gauss-Markov
@@ -29,9 +31,6 @@ export), :mod:`~psdbound.kalman.augment`, :mod:`~psdbound.kalman.covariance`
   its design position covariance (:func:`predict_position_covariance`) and
   a Monte Carlo run on given multipath series
   (:func:`monte_carlo_position_covariance`)
-* aviation utilities (:mod:`psdbound.kalman.aviation`): airborne sigma curves,
-  iono-free factor, carrier-smoothing inflation, ``xi(tau)``, Gaussian
-  overbound
 """
 
 from __future__ import annotations
@@ -43,23 +42,6 @@ from psdbound.common.lazy import lazy_exports
 if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
     from psdbound.kalman.analysis import CovarianceAnalysis
     from psdbound.kalman.augment import AugmentedModel, augment_gm_states
-    from psdbound.kalman.aviation import (
-        F_L1_HZ,
-        F_L5_HZ,
-        alpha_for_inflation,
-        alpha_from_tau,
-        gaussian_overbound_sigma,
-        hatch_filter_variance,
-        iono_free_factor,
-        qq_ratio,
-        running_mean_variance,
-        sigma_air_m,
-        sigma_multipath_airborne_m,
-        sigma_noise_airborne_m,
-        smoothing_sigma_factor,
-        smoothing_time_ratio,
-        smoothing_variance_factor,
-    )
     from psdbound.kalman.bound import WHITE_NOISE_MODES, GaussMarkovBound, GMStateSpace
     from psdbound.kalman.covariance import analyze_covariance
     from psdbound.kalman.error_model import Component, ErrorModel, ErrorStateSpace
@@ -81,8 +63,6 @@ if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
     )
 
 __all__ = [
-    "F_L1_HZ",
-    "F_L5_HZ",
     "WHITE_NOISE_MODES",
     "AugmentedModel",
     "Component",
@@ -99,25 +79,12 @@ __all__ = [
     "SampledPSD",
     "UncertainGMBound",
     "UncertainGMStateSpace",
-    "alpha_for_inflation",
-    "alpha_from_tau",
     "analyze_covariance",
     "augment_gm_states",
-    "gaussian_overbound_sigma",
-    "hatch_filter_variance",
-    "iono_free_factor",
     "minimum_initial_variance_m2",
     "monte_carlo_position_covariance",
     "predict_position_covariance",
     "pvt_model",
-    "qq_ratio",
-    "running_mean_variance",
-    "sigma_air_m",
-    "sigma_multipath_airborne_m",
-    "sigma_noise_airborne_m",
-    "smoothing_sigma_factor",
-    "smoothing_time_ratio",
-    "smoothing_variance_factor",
     "verify_design",
 ]
 
@@ -126,21 +93,6 @@ _EXPORTS = {
     "CovarianceAnalysis": ("psdbound.kalman.analysis", "CovarianceAnalysis"),
     "AugmentedModel": ("psdbound.kalman.augment", "AugmentedModel"),
     "augment_gm_states": ("psdbound.kalman.augment", "augment_gm_states"),
-    "F_L1_HZ": ("psdbound.kalman.aviation", "F_L1_HZ"),
-    "F_L5_HZ": ("psdbound.kalman.aviation", "F_L5_HZ"),
-    "alpha_for_inflation": ("psdbound.kalman.aviation", "alpha_for_inflation"),
-    "alpha_from_tau": ("psdbound.kalman.aviation", "alpha_from_tau"),
-    "gaussian_overbound_sigma": ("psdbound.kalman.aviation", "gaussian_overbound_sigma"),
-    "hatch_filter_variance": ("psdbound.kalman.aviation", "hatch_filter_variance"),
-    "iono_free_factor": ("psdbound.kalman.aviation", "iono_free_factor"),
-    "qq_ratio": ("psdbound.kalman.aviation", "qq_ratio"),
-    "running_mean_variance": ("psdbound.kalman.aviation", "running_mean_variance"),
-    "sigma_air_m": ("psdbound.kalman.aviation", "sigma_air_m"),
-    "sigma_multipath_airborne_m": ("psdbound.kalman.aviation", "sigma_multipath_airborne_m"),
-    "sigma_noise_airborne_m": ("psdbound.kalman.aviation", "sigma_noise_airborne_m"),
-    "smoothing_sigma_factor": ("psdbound.kalman.aviation", "smoothing_sigma_factor"),
-    "smoothing_time_ratio": ("psdbound.kalman.aviation", "smoothing_time_ratio"),
-    "smoothing_variance_factor": ("psdbound.kalman.aviation", "smoothing_variance_factor"),
     "WHITE_NOISE_MODES": ("psdbound.kalman.bound", "WHITE_NOISE_MODES"),
     "GaussMarkovBound": ("psdbound.kalman.bound", "GaussMarkovBound"),
     "GMStateSpace": ("psdbound.kalman.bound", "GMStateSpace"),

@@ -9,7 +9,32 @@ from matplotlib.figure import Figure
 
 from psdbound.reports.figures_base import HALF_PAGE_H_IN, finish, new_figure
 
-__all__ = ["fig_code_qq"]
+__all__ = ["fig_code_qq", "overbound_line"]
+
+
+def overbound_line(z: np.ndarray, bias: float, sigma: float, method: str) -> np.ndarray:
+    """Quantiles of the overbound on a Q-Q plot, unit of the samples.
+
+    Paired: the left bound ``-b + s z`` for ``z < 0`` and the right bound
+    ``+b + s z`` for ``z > 0``; otherwise the single Gaussian ``b + s z``.
+
+    Parameters
+    ----------
+    z : ndarray
+        Standard-normal quantiles (dimensionless).
+    bias, sigma : float
+        The bin's overbound, unit of the samples.
+    method : str
+        ``"paired"``, ``"two_step"`` or ``"cdf"``.
+
+    Returns
+    -------
+    ndarray
+    """
+    z = np.asarray(z, dtype=float)
+    if method == "paired":
+        return np.where(z < 0, -bias, bias) + sigma * z
+    return bias + sigma * z
 
 
 def fig_code_qq(r: dict[str, Any]) -> Figure | None:
@@ -43,19 +68,24 @@ def fig_code_qq(r: dict[str, Any]) -> Figure | None:
         if pts is None:
             continue
         z, x = np.asarray(pts["z"]), np.asarray(pts["x"])
-        line = ax.plot(z, x, ".", ms=2.5, label=f"{label}: x{b['inflation']:.2f}")[0]
-        ax.plot(z, b["bias"] + b["sigma"] * z, "-", lw=0.9, color=line.get_color())
+        neff = b.get("n_eff")
+        size = f", n {b['n']}" + (f", n_eff {neff:.0f}" if neff is not None else "")
+        line = ax.plot(z, x, ".", ms=2.5, label=f"{label}: x{b['inflation']:.2f}{size}")[0]
+        ax.plot(z, overbound_line(z, b["bias"], b["sigma"], ob["method"]), "-", lw=0.9,
+                color=line.get_color())  # fmt: skip
     ax.set_xlabel("standard-normal quantile [-]")
     ax.set_ylabel("code multipath quantile [m]")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, title="bin: inflation sigma/std", title_fontsize=7, loc="upper left")
+    ax.legend(fontsize=6.5, title="bin: inflation sigma/std, samples n, effective n_eff",
+              title_fontsize=6.5, loc="upper left")  # fmt: skip
     mid = [0.5 * sum(b["elevation_deg"]) for b in ob["bins"]]
     width = [0.8 * (b["elevation_deg"][1] - b["elevation_deg"][0]) for b in ob["bins"]]
     ax2.bar(mid, [b["sigma"] for b in ob["bins"]], width=width, color="0.75",
             label="overbound sigma")  # fmt: skip
     ax2.plot(mid, [b["std"] for b in ob["bins"]], "ko", ms=4, label="sample std")
     for m, b in zip(mid, ob["bins"], strict=True):
-        ax2.annotate(f"x{b['inflation']:.2f}\nn={b['n']}", (m, b["sigma"]), fontsize=6.5,
+        neff = f"\nn_eff={b['n_eff']:.0f}" if b.get("n_eff") is not None else ""
+        ax2.annotate(f"x{b['inflation']:.2f}\nn={b['n']}{neff}", (m, b["sigma"]), fontsize=6,
                      ha="center", va="bottom")  # fmt: skip
     ax2.set_xlabel("elevation [deg]")
     ax2.set_ylabel("sigma [m]")

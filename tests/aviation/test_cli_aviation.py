@@ -58,6 +58,8 @@ def test_budget_prints_vpl(capsys):
     sats = ["10,12", "80,25", "150,38", "200,47", "260,60", "320,75"]
     argv = [
         "budget",
+        "--k-md-e",
+        "5",
         *[a for s in sats for a in ("--sat", s)],
         "--tau-gnd",
         "30",

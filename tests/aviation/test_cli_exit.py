@@ -40,6 +40,6 @@ def test_overbound_too_few_samples_in_a_bin_exits_2_naming_it(tmp_path, capsys):
 
 def test_budget_prints_vpl(capsys):
     sats = ["0,80", "60,45", "120,30", "180,60", "240,25", "300,40", "30,15"]
-    args = ["budget"] + [a for s in sats for a in ("--sat", s)]
+    args = ["budget", "--k-md-e", "5"] + [a for s in sats for a in ("--sat", s)]
     assert main(args) == 0
     assert "VPL" in capsys.readouterr().out

@@ -17,13 +17,24 @@ from psdbound.aviation import (
     projection_matrix,
     sky_over,
     vpl,
-    vpl_series,
     write_vpl_series,
+)
+from psdbound.aviation import (
+    vpl_series as _vpl_series,
 )
 from psdbound.errors import InputError
 from psdbound.io import read_orbit
 from psdbound.io.geometry import geodetic_to_ecef
 from psdbound.io.timescales import calendar_to_gps_s
+
+#: A test value of the ephemeris multiplier (the old H1 number, so the seed-statement checks
+#: keep their meaning); real runs take the station's broadcast K_md_e.
+K_MD_E = 2.898
+
+
+def vpl_series(sky, **options):
+    """The library's vpl_series with the test K_md_e unless given."""
+    return _vpl_series(sky, **{"k_md_e": K_MD_E, **options})
 
 #: ESBC (Esbjerg) from its RINEX header's APPROX POSITION XYZ: 55.4936 N, 8.4568 E, 59.5 m
 ESBC_XYZ_M = np.array([3582105.2910, 532589.7313, 5232754.8054])
@@ -65,7 +76,7 @@ def test_series_equals_direct_budget_and_vpl(nominal_ge, options):
         vis = np.isfinite(sky.elevation_deg[i])
         az, el = sky.azimuth_deg[i, vis], sky.elevation_deg[i, vis]
         total = error_budget(el, n_receivers=m, x_air_m=x, **budget).total
-        h0, eph = vpl(los_from_az_el(az, el), total, n_receivers=m, x_air_m=x)
+        h0, eph = vpl(los_from_az_el(az, el), total, k_md_e=K_MD_E, n_receivers=m, x_air_m=x)
         assert series.vpl_h0_m[i] == pytest.approx(h0, abs=1e-12)
         assert series.vpl_eph_m[i] == pytest.approx(eph, abs=1e-12)
         assert series.vpl_m[i] == pytest.approx(max(h0, eph), abs=1e-12)
@@ -149,8 +160,8 @@ def test_more_satellites_with_fixed_weights_never_raise_vpl_h0(nominal_ge):
         az, el = low.azimuth_deg[i, vis_low], low.elevation_deg[i, vis_low]
         sigma = error_budget(el).total
         keep = vis_high[vis_low]
-        h0_all, _ = vpl(los_from_az_el(az, el), sigma)
-        h0_sub, _ = vpl(los_from_az_el(az[keep], el[keep]), sigma[keep])
+        h0_all, _ = vpl(los_from_az_el(az, el), sigma, k_md_e=K_MD_E)
+        h0_sub, _ = vpl(los_from_az_el(az[keep], el[keep]), sigma[keep], k_md_e=K_MD_E)
         assert h0_all <= h0_sub * (1 + 1e-12)
 
 
@@ -247,7 +258,9 @@ def test_bad_input(nominal_ge):
         vpl_series(sky, process="XX")
     with pytest.raises(InputError, match="M = 5"):
         vpl_series(sky, n_receivers=5)
-    assert np.isfinite(vpl_series(sky, n_receivers=5, k_ffmd=5.9, k_md=2.9).vpl_m).all()
+    with pytest.raises(InputError, match="k_md_e.*required"):
+        vpl_series(sky, k_md_e=None)
+    assert np.isfinite(vpl_series(sky, n_receivers=5, k_ffmd=5.9).vpl_m).all()
     with pytest.raises(InputError, match="alert limit"):
         vpl_series(sky).availability(0.0)
 

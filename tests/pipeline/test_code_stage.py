@@ -146,6 +146,14 @@ def test_overbound_cli_on_esbc(tmp_path):
     doc = json.loads((out / "result.json").read_text())
     assert [b["elevation_deg"] for b in doc["overbound"]["bins"]][0] == [5.0, 15.0]
     assert all(b["inflation"] > 0.9 for b in doc["overbound"]["bins"])
+    # issue 33: paired by default (no exempted core), per-bin sample sizes and confidence
+    ob = doc["overbound"]
+    assert ob["method"] == "paired" and ob["min_abs_z"] == 0.0
+    for b in ob["bins"]:
+        assert 1.0 <= b["n_eff"] <= b["n"] and b["confidence"] == 0.95 and b["bias"] >= 0
+        assert b["sigma_upper"] >= b["sigma"] and b["inflation_upper"] >= b["inflation"]
+    assert ob["bins"][-1]["n_eff"] < 0.5 * ob["bins"][-1]["n"]  # correlated at high elevation
+    assert "n_eff" in r.stdout and "infl_up" in r.stdout
     assert doc["code_multipath"]["codes"] == ["C1C"] and doc["code_multipath"]["n_arcs"] > 20
     assert (out / "overbound_qq.png").stat().st_size > 10_000
     # too few samples in a bin: exit 2, the bin named, nothing written

@@ -103,7 +103,7 @@ def test_fuzz_budget_nav(bases, tmp_path, kind, index):  # noqa: F811
     data, what = NAV_MUTATIONS[kind](bases.esbc_nav, rng)
     name = f"budget-{kind}-{index}.rnx"
     path = write(tmp_path / name, data)
-    r = run_cli(["budget", "--nav", path, "--position", "55.49,8.45,60",
+    r = run_cli(["budget", "--k-md-e", "5", "--nav", path, "--position", "55.49,8.45,60",
                  "--start", "2020-06-25T00:00:00", "--hours", "1", "--step-s", "900",
                  "--out", tmp_path / "out"], timeout_s=120)  # fmt: skip
     problem = check_run(r, name, allowed=(0, 2))

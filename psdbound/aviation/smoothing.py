@@ -1,26 +1,17 @@
-"""Aviation error models that filter engineers combine with a multipath bound.
+"""Carrier smoothing of a first-order Gauss-Markov code error (seeds 000, 001, 004).
 
-From the aviation literature (docs/bibliography.rst): seed 000 is Blanch,
-Walter & Phelts (2019), seed 001 Blanch, Phelts, Chen & Enge (2017), seed 004
-Nam, Kim, Kim, Lee & Pullen (LADGNSS smoothing):
-
-* airborne multipath and noise sigma curves vs elevation, and the
-  dual-frequency iono-free factor (seed 001 eq. 1, seed 000 eqs. 1-3);
-* carrier smoothing of a first-order Markov code error (seed 000): the
-  variance of the running mean of ``k`` unit-variance samples with lag-1
-  correlation ``alpha`` (eq. 12), the variance inflation vs smoothing time
-  relative to a reference (eq. 20, reference 360 s), the standard-deviation
-  inflation ``M(t)`` of seed 001 (reference 100 s), and the exact variance
-  of a Hatch filter that switches from a running mean to a time constant
-  ``K`` (eqs. 7-8);
+* the variance of the running mean of ``k`` unit-variance samples with lag-1
+  correlation ``alpha`` (seed 000 eq. 12), the variance inflation vs smoothing
+  time relative to a reference (eq. 20, reference 360 s), the standard-deviation
+  inflation ``M(t)`` of seed 001 (reference 100 s), and the exact variance of a
+  Hatch filter that switches from a running mean to a time constant ``K``
+  (seed 000 eqs. 7-8);
 * the smoothing-time ratio ``xi(tau)`` of seed 004 (eq. 17 / A7) for an
-  exponential smoother with a Gauss-Markov input;
-* a Gaussian overbound of a sample distribution: the largest ratio of sample
-  quantile to standard-normal quantile (seed 001).
+  exponential smoother with a Gauss-Markov input, exact or as the seed prints it.
 
-All samples are at 1 Hz in the seeds; here ``alpha`` is the correlation
-between consecutive samples, ``alpha = exp(-dt / tau)`` for a Gauss-Markov
-error of time constant ``tau`` (:func:`alpha_from_tau`).
+All samples are at 1 Hz in the seeds; ``alpha`` is the correlation between
+consecutive samples, ``alpha = exp(-dt / tau)`` for a Gauss-Markov error of
+time constant ``tau`` (:func:`alpha_from_tau`).
 """
 
 from __future__ import annotations
@@ -30,25 +21,16 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
-from scipy.stats import norm
 
 from psdbound.constants import F_L1_HZ, F_L5_HZ
 from psdbound.errors import InputError
 
 __all__ = [
-    "F_L1_HZ",
-    "F_L5_HZ",
     "SMOOTHING_RATIO_FORMULAS",
     "alpha_for_inflation",
     "alpha_from_tau",
-    "gaussian_overbound_sigma",
     "hatch_filter_variance",
-    "iono_free_factor",
-    "qq_ratio",
     "running_mean_variance",
-    "sigma_air_m",
-    "sigma_multipath_airborne_m",
-    "sigma_noise_airborne_m",
     "smoothing_sigma_factor",
     "smoothing_time_ratio",
     "smoothing_variance_factor",
@@ -57,108 +39,11 @@ __all__ = [
 SMOOTHING_RATIO_FORMULAS = ("exact", "seed", "steady_state")
 
 
-def _elev(elevation_deg: ArrayLike) -> NDArray[np.float64]:
-    el = np.asarray(elevation_deg, dtype=float)
-    if not np.isfinite(el).all():
-        raise InputError("elevations must be finite numbers of degrees")
-    return el
-
-
 def _alpha(alpha: float) -> float:
     a = float(alpha)
     if not (0.0 <= a < 1.0):
         raise InputError(f"correlation alpha must be in [0, 1), got {alpha!r}")
     return a
-
-
-# ----------------------------------------------------------------- sigma curves
-def sigma_multipath_airborne_m(elevation_deg: ArrayLike) -> NDArray[np.float64]:
-    """Airborne multipath sigma ``0.13 + 0.53 exp(-el / 10 deg)``, metres.
-
-    Parameters
-    ----------
-    elevation_deg : array_like
-        Elevation, degrees.
-
-    Returns
-    -------
-    ndarray
-    """
-    return 0.13 + 0.53 * np.exp(-_elev(elevation_deg) / 10.0)
-
-
-def sigma_noise_airborne_m(elevation_deg: ArrayLike) -> NDArray[np.float64]:
-    """Airborne receiver-noise sigma (AAD-A) ``0.15 + 0.43 exp(-el / 6.9 deg)``, metres.
-
-    Parameters
-    ----------
-    elevation_deg : array_like
-        Elevation, degrees.
-
-    Returns
-    -------
-    ndarray
-    """
-    return 0.15 + 0.43 * np.exp(-_elev(elevation_deg) / 6.9)
-
-
-def iono_free_factor(f1_hz: float = F_L1_HZ, f2_hz: float = F_L5_HZ) -> float:
-    """Noise amplification of the iono-free combination, ``sqrt(f1^4 + f2^4) / |f1^2 - f2^2|``.
-
-    For equal, independent errors on the two frequencies (2.588 for L1/L5).
-
-    Parameters
-    ----------
-    f1_hz, f2_hz : float
-        Carrier frequencies, Hz (different, > 0).
-
-    Returns
-    -------
-    float
-    """
-    if not (f1_hz > 0 and f2_hz > 0) or f1_hz == f2_hz:
-        raise InputError(f"need two different positive frequencies, got {f1_hz}, {f2_hz}")
-    return math.sqrt((f1_hz**4 + f2_hz**4) / (f1_hz**2 - f2_hz**2) ** 2)
-
-
-def sigma_air_m(
-    elevation_deg: ArrayLike,
-    *,
-    dual_frequency: bool = True,
-    f1_hz: float = F_L1_HZ,
-    f2_hz: float = F_L5_HZ,
-    multipath_variance_factor: ArrayLike = 1.0,
-    noise_variance_factor: ArrayLike = 1.0,
-) -> NDArray[np.float64]:
-    """Airborne code error sigma ``F sqrt(A_MP sigma_MP^2 + A_noise sigma_noise^2)``, metres.
-
-    Seed 000 eq. (3) (eq. (1) with unit factors; ``F`` the iono-free factor,
-    1 for single frequency). Use :func:`smoothing_variance_factor` for
-    ``A_MP(k)`` and ``A_noise(k)`` (seed 000 eq. 21).
-
-    Parameters
-    ----------
-    elevation_deg : array_like
-        Elevation, degrees.
-    dual_frequency : bool, default True
-        Apply the iono-free factor of ``f1_hz, f2_hz``.
-    f1_hz, f2_hz : float
-        Frequencies of the combination, Hz (default L1, L5).
-    multipath_variance_factor, noise_variance_factor : array_like, default 1
-        Variance inflation ``A_MP``, ``A_noise`` (dimensionless).
-
-    Returns
-    -------
-    ndarray
-    """
-    f = iono_free_factor(f1_hz, f2_hz) if dual_frequency else 1.0
-    amp = np.asarray(multipath_variance_factor, dtype=float)
-    anoise = np.asarray(noise_variance_factor, dtype=float)
-    if (amp < 0).any() or (anoise < 0).any():
-        raise InputError("variance factors must be >= 0")
-    mp = sigma_multipath_airborne_m(elevation_deg)
-    nz = sigma_noise_airborne_m(elevation_deg)
-    return f * np.sqrt(amp * mp**2 + anoise * nz**2)
 
 
 # -------------------------------------------------------------- carrier smoothing
@@ -437,77 +322,3 @@ def smoothing_time_ratio(
     ref = var(float(tau_ref_s))
     out = np.array([math.sqrt(var(float(t)) / ref) for t in taus.reshape(-1)])
     return out.reshape(taus.shape)
-
-
-# ------------------------------------------------------------------- overbound
-def qq_ratio(
-    samples: ArrayLike, *, sigma: float = 1.0
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """Sample vs standard-normal quantiles and their ratio (a Q-Q plot), seed 001.
-
-    The ``i``-th smallest of ``n`` samples (divided by ``sigma``) is paired
-    with the normal quantile ``z_i = Phi^-1((i - 0.5) / n)`` (Hazen plotting
-    positions); the ratio is ``x_(i) / z_i``.
-
-    Parameters
-    ----------
-    samples : array_like
-        Sample errors (any unit), e.g. errors normalised by a model sigma.
-    sigma : float, default 1
-        Divide the samples by this first.
-
-    Returns
-    -------
-    z : ndarray
-        Standard-normal quantiles.
-    x : ndarray
-        Sorted samples / ``sigma``.
-    ratio : ndarray
-        ``x / z`` (``nan`` where ``z = 0``).
-    """
-    x = np.sort(np.asarray(samples, dtype=float).reshape(-1)) / float(sigma)
-    if x.size < 2 or not np.isfinite(x).all():
-        raise InputError("need at least 2 finite samples")
-    p = (np.arange(1, x.size + 1) - 0.5) / x.size
-    z = norm.ppf(p)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where(z != 0, x / z, np.nan)
-    return z, x, ratio
-
-
-def gaussian_overbound_sigma(
-    samples: ArrayLike, *, sigma: float = 1.0, min_abs_z: float = 1.0
-) -> float:
-    """Sigma of the smallest zero-mean Gaussian whose quantiles enclose the sample's.
-
-    The largest ratio of sample to standard-normal quantile (seed 001: "the
-    maximum ratio between the sample quantiles and the gaussian quantiles
-    will provide the standard deviation of the minimum gaussian that bounds
-    the sample distribution"): ``max x_(i) / z_i`` over the points with
-    ``|z_i| >= min_abs_z``, which makes ``sigma z_i >= x_(i)`` in the upper
-    tail and ``sigma z_i <= x_(i)`` in the lower tail. The core
-    (``|z| < min_abs_z``) is left out because ``x / z`` is unstable there
-    (any non-zero median divided by ``z -> 0``); integrity cares about tails.
-    This is the Q-Q criterion of the seed, not the two-step (paired)
-    overbounding of its reference [4].
-
-    Parameters
-    ----------
-    samples : array_like
-        Sample errors (e.g. normalised by a model sigma, then the result is
-        the model's inflation factor).
-    sigma : float, default 1
-        Divide the samples by this first.
-    min_abs_z : float, default 1
-        Only quantiles with ``|z| >= min_abs_z`` count (0 keeps all).
-
-    Returns
-    -------
-    float
-        The overbounding sigma (in units of ``sigma``).
-    """
-    z, _, ratio = qq_ratio(samples, sigma=sigma)
-    keep = (np.abs(z) >= float(min_abs_z)) & (z != 0)
-    if not keep.any():
-        raise InputError(f"no sample quantile with |z| >= {min_abs_z}; use more samples")
-    return float(np.max(ratio[keep]))

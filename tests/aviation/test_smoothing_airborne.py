@@ -9,8 +9,7 @@ import numpy as np
 import pytest
 from scipy.stats import norm
 
-from psdbound.errors import InputError
-from psdbound.kalman import (
+from psdbound.aviation import (
     alpha_for_inflation,
     alpha_from_tau,
     gaussian_overbound_sigma,
@@ -25,6 +24,7 @@ from psdbound.kalman import (
     smoothing_time_ratio,
     smoothing_variance_factor,
 )
+from psdbound.errors import InputError
 
 
 # --------------------------------------------------------------------------- aviation

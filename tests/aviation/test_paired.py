@@ -1,0 +1,162 @@
+"""Paired overbounds, effective sample size, and the bias carried to the VPL and the filter."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy import stats
+
+from psdbound.aviation import (
+    bias_bound_response,
+    effective_sample_size,
+    los_from_az_el,
+    overbound_by_elevation,
+    paired_overbound,
+    projection_matrix,
+    vpl,
+)
+from psdbound.errors import InputError
+
+N = 20_000
+
+
+def _ar1(rng, phi, n):
+    e = rng.normal(size=n)
+    x = np.empty(n)
+    x[0] = e[0] / np.sqrt(1 - phi**2)
+    for k in range(1, n):
+        x[k] = phi * x[k - 1] + e[k]
+    return x
+
+
+@pytest.mark.parametrize("phi", [0.0, 0.5, 0.9])
+def test_effective_sample_size_of_ar1_matches_closed_form(phi):
+    rng = np.random.default_rng(11)
+    n = 60_000
+    n_eff, tau = effective_sample_size(_ar1(rng, phi, n))
+    expect = n * (1 - phi) / (1 + phi)
+    assert n_eff == pytest.approx(expect, rel=0.10)  # Monte Carlo error of tau_int: a few %
+    assert tau == pytest.approx(n / n_eff)
+
+
+def test_effective_sample_size_never_crosses_segments():
+    rng = np.random.default_rng(3)
+    pieces = [_ar1(rng, 0.8, 2000) + 50.0 * k for k in range(10)]  # offsets between pieces
+    x, ids = np.concatenate(pieces), np.repeat(np.arange(10), 2000)
+    n_seg, _ = effective_sample_size(x, segment_id=ids)
+    assert n_seg == pytest.approx(20_000 * 0.2 / 1.8, rel=0.15)
+    n_one, _ = effective_sample_size(x)  # joined: the offsets look like a long correlation
+    assert n_one < 0.2 * n_seg
+
+
+MIXTURE = (0.9, 1.0, 0.1, 3.0)  # weight, sigma of a narrow and a wide zero-mean component
+
+
+def _mixture_cdf(x, shift=0.0):
+    w1, s1, w2, s2 = MIXTURE
+    return w1 * stats.norm.cdf(x - shift, scale=s1) + w2 * stats.norm.cdf(x - shift, scale=s2)
+
+
+def _mixture_draw(rng, n, shift=0.0):
+    w1, s1, _, s2 = MIXTURE
+    wide = rng.random(n) > w1
+    return shift + np.where(wide, s2, s1) * rng.normal(size=n)
+
+
+CASES = {
+    "student_t3": (lambda rng, n: 0.4 * rng.standard_t(3, n), lambda x: stats.t.cdf(x / 0.4, 3)),
+    "mixture_biased": (lambda rng, n: _mixture_draw(rng, n, 0.3),
+                       lambda x: _mixture_cdf(x, 0.3)),
+}  # fmt: skip
+
+
+def _holds(cdf, x, b, s):
+    """Both covering sides of the pair N(-b, s), N(+b, s) against a CDF at the points x."""
+    f = cdf(x)
+    left = f <= stats.norm.cdf((x + b) / s) + 1e-12
+    right = (1 - f) <= stats.norm.sf((x - b) / s) + 1e-12
+    return left, right
+
+
+@pytest.mark.parametrize("case", sorted(CASES))
+def test_paired_overbound_holds_against_the_true_cdf(case):
+    draw, cdf = CASES[case]
+    res = overbound_by_elevation(draw(np.random.default_rng(5), N), min_samples=10)
+    (bin_,) = res.bins
+    assert res.method == "paired" and res.min_abs_z == 0.0
+    assert bin_.n_eff == pytest.approx(N, rel=0.1)  # independent draws
+    # the bound at 95 % confidence holds wherever the sample had support (tails >= 1/n)
+    grid = np.linspace(-12.0, 12.0, 4001)
+    f = cdf(grid)
+    inside = (f >= 1.0 / N) & (f <= 1.0 - 1.0 / N)
+    left, right = _holds(cdf, grid, bin_.bias_upper, bin_.sigma_upper)
+    med = grid[np.argmin(np.abs(f - 0.5))]
+    assert left[inside & (grid <= med)].all() and right[inside & (grid >= med)].all()
+    assert bin_.sigma_upper >= bin_.sigma and bin_.inflation_upper >= bin_.inflation > 1.0
+
+
+def test_paired_overbound_survives_convolution_monte_carlo():
+    rng = np.random.default_rng(21)
+    (t_draw, _), (m_draw, _) = CASES["student_t3"], CASES["mixture_biased"]
+    up = {}
+    for name, draw in (("t", t_draw), ("m", m_draw)):
+        (b,) = overbound_by_elevation(draw(rng, N), min_samples=10).bins
+        up[name] = (b.bias_upper, b.sigma_upper)
+    bias = up["t"][0] + up["m"][0]
+    sigma = float(np.hypot(up["t"][1], up["m"][1]))
+    n = 400_000
+    for sign in (1.0, -1.0):  # a sum and a difference (a negative projection coefficient)
+        y = np.sort(t_draw(rng, n) + sign * m_draw(rng, n))
+        f_emp = np.arange(1, n + 1) / n
+        med = np.median(y)
+        tails = (f_emp >= 1e-3) & (f_emp <= 1 - 1e-3)  # where the Monte Carlo CDF is precise
+        lo = tails & (y <= med)
+        hi = tails & (y >= med)
+        assert (f_emp[lo] <= stats.norm.cdf((y[lo] + bias) / sigma)).all()
+        assert ((1 - f_emp[hi] + 1 / n) <= stats.norm.sf((y[hi] - bias) / sigma)).all()
+
+
+def test_biased_samples_move_the_vpl_by_sum_abs_s_abs_m():
+    rng = np.random.default_rng(8)
+    az = np.array([0.0, 72.0, 144.0, 216.0, 288.0, 40.0])
+    el = np.array([15.0, 30.0, 45.0, 60.0, 75.0, 88.0])
+    base = 0.5 * rng.standard_t(5, 5000)
+    base -= np.median(base)
+    m = np.array([0.4, -0.25, 0.0, 0.1, -0.6, 0.3])  # one bias per satellite
+    b0, s0 = paired_overbound(base)
+    pairs = [paired_overbound(base + mi) for mi in m]
+    assert [b for b, _ in pairs] == pytest.approx(b0 + np.abs(m), abs=1e-12)
+    assert [s for _, s in pairs] == pytest.approx(np.full(m.size, s0), rel=1e-12)
+    u = los_from_az_el(az, el)
+    sig = np.full(el.size, s0)
+    sv = projection_matrix(u, sig)[2]
+    h0, eph = vpl(u, sig, k_md_e=5.0, bias_m=np.full(el.size, b0))
+    h0m, ephm = vpl(u, sig, k_md_e=5.0, bias_m=[b for b, _ in pairs])
+    shift = float(np.sum(np.abs(sv) * np.abs(m)))
+    assert h0m - h0 == pytest.approx(shift, rel=1e-9)
+    assert ephm - eph == pytest.approx(shift, rel=1e-9)
+    with pytest.raises(InputError, match="bias_m"):
+        vpl(u, sig, k_md_e=5.0, bias_m=[-1.0] * el.size)
+
+
+def test_bias_bound_through_the_filter_equals_least_squares_at_first_epoch():
+    # static position + clock, no process noise, diffuse prior: the first update is least
+    # squares, so the worst-case mean error of each state is sum_i |S_ji| B_i
+    az = np.array([0.0, 90.0, 180.0, 270.0, 45.0])
+    el = np.array([20.0, 35.0, 50.0, 65.0, 80.0])
+    u = los_from_az_el(az, el)
+    g = np.column_stack([-u, np.ones(el.size)])
+    sig = np.array([0.9, 0.7, 0.5, 0.4, 0.3])
+    bound = np.array([0.3, 0.0, 0.2, 0.1, 0.25])
+    w = bias_bound_response(np.eye(4), np.zeros((4, 4)), g, np.diag(sig**2), bound,
+                            n_steps=3, p0=1e10 * np.eye(4))  # fmt: skip
+    s = projection_matrix(u, sig)
+    assert w[0] == pytest.approx(np.abs(s) @ bound, rel=1e-6)
+    assert w[-1] == pytest.approx(np.abs(s) @ bound, rel=1e-6)  # constant bias: stays
+
+
+def test_bad_options():
+    with pytest.raises(InputError, match="confidence"):
+        overbound_by_elevation(np.zeros(200) + np.arange(200), confidence=1.0)
+    with pytest.raises(InputError, match="k_weight"):
+        paired_overbound(np.arange(10.0), k_weight=0.0)
