@@ -28,7 +28,7 @@ import time
 
 from _simfit import checkout_env
 
-COMMANDS = ("fit", "campaign", "simulate", "inspect", "cutoff", "validate", "overbound",
+COMMANDS = ("fit", "export", "campaign", "simulate", "inspect", "cutoff", "validate", "overbound",
             "budget", "report")  # fmt: skip
 TARGET_S = 0.3
 

@@ -7,7 +7,9 @@
   :func:`match_nav`, :func:`orbit_span`);
 * :func:`pool_station`: a station's bounded days pooled, the pooled bound judged;
 * :func:`held_out`: each station-day against the bound of the station's other days;
-* :func:`write_campaign`: ``campaign.json``, ``campaign.html``, ``campaign.pdf``.
+* :func:`write_campaign`: ``campaign.json``, ``campaign.html``, ``campaign.pdf``,
+  ``network.html`` (stations on a map and in one sortable table) and ``days/``
+  (each station-day's report).
 """
 
 from __future__ import annotations

@@ -1,4 +1,9 @@
-"""Campaign outputs: ``campaign.json``, ``campaign.html`` (table + figure), ``campaign.pdf``."""
+"""Campaign outputs: ``campaign.json``, ``campaign.html``, ``network.html``, ``campaign.pdf``.
+
+Beside them, ``days/`` holds each fitted station-day's report (the HTML
+report ``fit`` writes, drawn from the day's result document), which the
+network page (:mod:`psdbound.campaign.network`) links to.
+"""
 
 from __future__ import annotations
 
@@ -10,13 +15,16 @@ import os
 from pathlib import Path
 from typing import Any
 
+from psdbound.campaign.network import NETWORK_PAGE, day_report_name, network_page
 from psdbound.campaign.run import CampaignResult
 from psdbound.errors import InputError
 from psdbound.results.headline import check_line
 
 __all__ = ["CAMPAIGN_FILES", "station_lines", "write_campaign"]
 
-CAMPAIGN_FILES = ("campaign.json", "campaign.html", "campaign.pdf")
+CAMPAIGN_FILES = ("campaign.json", "campaign.html", NETWORK_PAGE, "campaign.pdf")
+#: Folder of the station-day reports in a campaign folder.
+DAYS_FOLDER = "days"
 
 
 def _figure(doc: dict[str, Any]) -> Any:
@@ -139,7 +147,8 @@ def _page(doc: dict[str, Any], summary: str, img: str | None) -> str:
         "</title><style>body{font-family:sans-serif;max-width:1000px;margin:2em auto}"
         "td,th{border:1px solid #ccc;padding:3px 6px;font-size:0.9em;vertical-align:top}"
         "table{border-collapse:collapse}</style></head><body><h1>psdbound campaign: "
-        f"{html.escape(doc['verdict'])}</h1>"
+        f"{html.escape(doc['verdict'])}</h1><p><a href='{NETWORK_PAGE}'>network page</a>: "
+        "every station on a map and in one sortable table, with its reports</p>"
         f"{_station_html(doc)}{_held_out_html(doc, img)}{_days_html(doc)}"
         f"<h2>Summary</h2><pre>{html.escape(summary)}</pre></body></html>"
     )
@@ -179,7 +188,7 @@ _LINES_PER_PAGE = 95
 def write_campaign(
     result: CampaignResult, out_dir: str | os.PathLike[str], *, pdf: bool = True
 ) -> dict[str, Path]:
-    """Write ``campaign.json``, ``campaign.html`` and (optionally) ``campaign.pdf`` atomically.
+    """Write the campaign's JSON, HTML pages, station-day reports and PDF atomically.
 
     Parameters
     ----------
@@ -191,6 +200,7 @@ def write_campaign(
     Returns
     -------
     dict of str to Path
+        ``json``, ``html``, ``network`` and (with ``pdf``) ``pdf``.
 
     Raises
     ------
@@ -205,7 +215,8 @@ def write_campaign(
     out = Path(out_dir)
     if out.exists():
         entries = set(os.listdir(out)) if out.is_dir() else {"?"}
-        if entries and not (entries <= set(CAMPAIGN_FILES) and "campaign.json" in entries):
+        ours = {*CAMPAIGN_FILES, DAYS_FOLDER}
+        if entries and not (entries <= ours and "campaign.json" in entries):
             raise InputError(
                 "output folder holds files that are not a campaign's; choose a new or empty "
                 "folder",
@@ -219,9 +230,14 @@ def write_campaign(
         fig.savefig(buf, format="png", dpi=110)
         img = base64.b64encode(buf.getvalue()).decode()
     pages = [*_text_pages(doc), *([fig] if fig is not None else [])] if pdf else []
+    reports = {(d["station"], d["day"]): day_report_name(d["station"], d["day"])
+               for d, document in zip(doc["days"], result.documents, strict=False)
+               if document is not None}  # fmt: skip
     with atomic_folder(out, replace=True) as tmp:
         (tmp / "campaign.json").write_text(json.dumps(doc, indent=1, allow_nan=True))
         (tmp / "campaign.html").write_text(_page(doc, result.summary(), img))
+        _write_day_reports(tmp, doc, result.documents)
+        (tmp / NETWORK_PAGE).write_text(network_page(doc, reports))
         if pdf:
             with PdfPages(tmp / "campaign.pdf") as pp:
                 for page in pages:
@@ -232,4 +248,17 @@ def write_campaign(
         if f is not None:
             plt.close(f)
     names = [n for n in CAMPAIGN_FILES if pdf or n != "campaign.pdf"]
-    return {n.split(".")[1]: out / n for n in names}
+    return {n.split(".")[0] if n == NETWORK_PAGE else n.split(".")[1]: out / n for n in names}
+
+
+def _write_day_reports(folder: Path, doc: dict[str, Any],
+                       documents: list[dict[str, Any] | None]) -> None:  # fmt: skip
+    """Write each fitted station-day's HTML report into ``folder/days``."""
+    from psdbound.reports import render_html
+
+    for d, document in zip(doc["days"], documents, strict=False):
+        if document is None:
+            continue
+        path = folder / day_report_name(d["station"], d["day"])
+        path.parent.mkdir(exist_ok=True)
+        path.write_text(render_html(document))

@@ -128,6 +128,10 @@ class CampaignResult:
         Per pooled station-day: the bound of the station's other pooled days tested on it.
     n_computed, n_cached : int
         Station-days computed by this run and read from the cache.
+    documents : list of dict or None
+        Per day (in the order of ``days``), the result document of its fit
+        (None when the day failed); not part of ``campaign.json``, the
+        station-day reports are drawn from it.
     """
 
     days: list[dict[str, Any]]
@@ -136,6 +140,7 @@ class CampaignResult:
     n_computed: int = 0
     n_cached: int = 0
     meta: dict[str, Any] = field(default_factory=dict)
+    documents: list[dict[str, Any] | None] = field(default_factory=list)
 
     @property
     def verdict(self) -> str:
@@ -190,7 +195,7 @@ def _station_lines(s: dict[str, Any]) -> list[str]:
 def _public(result: dict[str, Any], item: dict[str, Any], in_pool: bool) -> dict[str, Any]:
     """Return a day's entry in ``campaign.json``: no PSD arrays; its files; whether pooled."""
     out = {k: (v.tolist() if isinstance(v, np.ndarray) else v)
-           for k, v in result.items() if not k.startswith("psd_")}  # fmt: skip
+           for k, v in result.items() if not k.startswith("psd_") and k != "document"}  # fmt: skip
     out.update(obs=[Path(p).name for p in item["obs"]], nav=Path(item["nav"]).name,
                in_pool=in_pool)  # fmt: skip
     return out
@@ -276,6 +281,7 @@ def run_campaign(
         meta={"files": [{"station": it["station"], "day": it["day"], "sha256": it["sha256"]}
                         for it in items], "options": options or {},
               "psdbound": __version__},  # fmt: skip
+        documents=[r.get("document") for r in results],
     )
 
 

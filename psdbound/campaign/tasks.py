@@ -57,10 +57,14 @@ def station_day_task(item: dict[str, Any]) -> dict[str, Any]:
         windows, s), ``n_windows`` and the window PSDs as flat arrays
         ``psd_f_hz``, ``psd_m2_hz`` (divided by the high-pass's power response
         where it passes at least half the power, as the pooled bound does),
-        ``psd_dof``, ``psd_n`` (samples) and ``psd_len`` (frequencies per window).
+        ``psd_dof``, ``psd_n`` (samples) and ``psd_len`` (frequencies per window),
+        the station's position from the header (``position_xyz_m``, ECEF m;
+        ``lat_deg``, ``lon_deg``, WGS84 deg; None without one) and the day's
+        result document (``document``, for its report).
     """
     from psdbound.errors import InputError, NoDataError
     from psdbound.pipeline.front import fit
+    from psdbound.results import to_jsonable
 
     out: dict[str, Any] = {"station": item["station"], "day": item["day"], "fitted": False}
     try:
@@ -71,8 +75,17 @@ def station_day_task(item: dict[str, Any]) -> dict[str, Any]:
                    error=error)  # fmt: skip
         return out
     out.update(verdict=res.verdict, verdict_reasons=res.verdict_reasons)
+    out.update(_position(res.inputs))
     out.update(_day_bound(res))
+    out["document"] = to_jsonable(res.document)
     return out
+
+
+def _position(inputs: Any) -> dict[str, Any]:
+    """Return the station's position from its header (APPROX POSITION XYZ): ECEF and geodetic."""
+    xyz = inputs.receiver_xyz_m[0] if inputs.receiver_xyz_m else None
+    return {"position_xyz_m": None if xyz is None else [float(v) for v in xyz],
+            "lat_deg": inputs.lat_deg, "lon_deg": inputs.lon_deg}  # fmt: skip
 
 
 def _psd_values(res: Any) -> list[np.ndarray]:

@@ -37,7 +37,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "as `psdbound fit` does (a Dask task, cached by input hash: a re-run computes only what "
         "changed) with its verdict, pool each station's bounded days into one bound with its "
         "own verdict, and test every pooled day against the bound of the station's other days. "
-        "Writes campaign.json, campaign.html and campaign.pdf.",
+        "Writes campaign.json, campaign.html, campaign.pdf, network.html (every station on a "
+        "map and in one sortable table, with its bound over the days) and days/ (each "
+        "station-day's report).",
         epilog="The day options are fit's (same names, defaults and checks; --config takes "
         "fit's TOML sections except [output] and [code_multipath], and of [inputs] only "
         "system and signals). Exit codes: 0 every station's pooled bound is bounded; 3 some "

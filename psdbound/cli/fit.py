@@ -22,11 +22,15 @@ from psdbound.errors import InputError, NoDataError
 __all__ = [
     "DefaultsFormatter",
     "add_day_options",
+    "add_input_options",
     "add_output_options",
     "add_parser",
     "build_config",
     "output_dir",
+    "reporter",
     "run",
+    "run_name",
+    "with_files",
 ]
 
 #: (section, option) -> command-line flag
@@ -173,6 +177,29 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "Exit codes: 0 bounded; 3 ran but no trustworthy bound (verdict not-bounded: reasons "
         "printed, outputs written); 2 bad input (nothing written); 1 internal error.",
     )
+    add_input_options(p)
+    g_code = p.add_argument_group("code multipath (optional)")
+    # fmt: off
+    g_code.add_argument("--code-multipath", metavar="CODES",
+                   help="also estimate code multipath by carrier levelling and overbound it per "
+                   "elevation bin: one pseudorange code (C1C: MP combination) or two (C1C,C5Q: "
+                   "ionosphere-free); result.json code_multipath and a report section "
+                   "(default: off)")
+    g_code.add_argument("--code-edges-deg", metavar="EDGES",
+                   help="elevation bin edges of the code-multipath overbound, deg")
+    g_code.add_argument("--code-overbound", choices=("two_step", "cdf"),
+                   help="Gaussian overbound construction of the code multipath")
+    # fmt: on
+    add_output_options(p)
+    p.set_defaults(func=run)
+
+
+def add_input_options(p: argparse.ArgumentParser) -> None:
+    """Add ``fit``'s inputs: OBS, ``--nav``, the day options and the dual-antenna options.
+
+    ``fit`` and ``export`` take the same inputs and method options (every
+    ``fit`` option but code multipath and the outputs).
+    """
     # fmt: off
     p.add_argument("obs", nargs="*",
                    help="observation file(s) of one station (consecutive files are merged), or "
@@ -184,7 +211,6 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     # fmt: on
     add_day_options(p)
     g_da = p.add_argument_group("isolation method and dual-antenna pairs")
-    g_code = p.add_argument_group("code multipath (optional)")
     # fmt: off
     g_da.add_argument("--method", choices=("auto", "df", "da"),
                    help="isolation method: df dual-frequency, da dual-antenna, auto by the inputs")
@@ -202,18 +228,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    "3 standard errors; estimate always; given keeps the positions")
     g_da.add_argument("--baseline-tolerance-m", type=float,
                    help="correction above which --baseline auto uses the estimate, m")
-    g_code.add_argument("--code-multipath", metavar="CODES",
-                   help="also estimate code multipath by carrier levelling and overbound it per "
-                   "elevation bin: one pseudorange code (C1C: MP combination) or two (C1C,C5Q: "
-                   "ionosphere-free); result.json code_multipath and a report section "
-                   "(default: off)")
-    g_code.add_argument("--code-edges-deg", metavar="EDGES",
-                   help="elevation bin edges of the code-multipath overbound, deg")
-    g_code.add_argument("--code-overbound", choices=("two_step", "cdf"),
-                   help="Gaussian overbound construction of the code multipath")
     # fmt: on
-    add_output_options(p)
-    p.set_defaults(func=run)
 
 
 def add_day_options(p: argparse.ArgumentParser) -> None:
@@ -400,7 +415,8 @@ def build_config(args: argparse.Namespace):
     return cfg.check(label)
 
 
-def _run_name(cfg) -> str:
+def run_name(cfg) -> str:
+    """Return the run name: ``--name``, else from the first observation file (checked)."""
     if cfg.output.name:
         name = cfg.output.name
     elif cfg.inputs.pair:
@@ -430,7 +446,7 @@ def output_dir(cfg) -> Path:
     """
     from psdbound.common.outputs import check_output_folder
 
-    out = Path(cfg.output.out) if cfg.output.out else Path("reports") / _run_name(cfg)
+    out = Path(cfg.output.out) if cfg.output.out else Path("reports") / run_name(cfg)
     check_output_folder(out, overwrite=cfg.output.overwrite, option="--out")
     return out
 
@@ -448,8 +464,8 @@ def reporter(args: argparse.Namespace):
     return say
 
 
-def _with_files(exc: InputError, obs: tuple[str, ...]) -> InputError:
-    """Name the observation file(s) in a data error that names no file."""
+def with_files(exc: InputError, obs: tuple[str, ...]) -> InputError:
+    """Return a data error that names no file with the observation file(s) named."""
     if exc.path is not None or not obs or type(exc) not in (InputError, NoDataError):
         return exc
     return type(exc)(exc.reason, path=" + ".join(obs))
@@ -466,7 +482,7 @@ def run(args: argparse.Namespace) -> int:
     try:
         result = psdbound.fit(config=cfg, progress=say)
     except InputError as exc:
-        raise _with_files(exc, cfg.inputs.obs) from None
+        raise with_files(exc, cfg.inputs.obs) from None
     extra = {"series.csv.gz": result.series_csv()} if cfg.output.series else None
     names = ["result.json", "report.html", *(["report.pdf"] if cfg.output.pdf else []),
              *(extra or {})]  # fmt: skip

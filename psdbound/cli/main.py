@@ -16,8 +16,8 @@ __all__ = ["main", "build_parser", "EXIT_OK", "EXIT_BAD_INPUT", "EXIT_INTERNAL",
 
 
 # subcommand modules psdbound.cli.<name>, each with add_parser(sub) and run(args)
-_COMMANDS = ("inspect", "fit", "campaign", "cutoff", "validate", "simulate", "report", "overbound",
-             "budget")
+_COMMANDS = ("inspect", "fit", "export", "campaign", "cutoff", "validate", "simulate", "report",
+             "overbound", "budget")
 
 
 class _Parser(argparse.ArgumentParser):

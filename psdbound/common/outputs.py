@@ -29,13 +29,14 @@ import json
 import os
 import shutil
 import tempfile
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 
 from psdbound.errors import InputError
 
 __all__ = [
     "REPORT_FILES",
+    "check_output_file",
     "check_output_folder",
     "check_writable_folder",
     "is_report_folder",
@@ -115,6 +116,47 @@ def check_writable_folder(path: str | os.PathLike[str], *, option: str = "output
         raise InputError(
             f"{option} cannot be created: {anc} is not writable (permission denied)", path=p
         )
+    return p
+
+
+def check_output_file(path: str | os.PathLike[str], *, overwrite: bool = False,
+                      option: str = "output file",
+                      ours: Callable[[Path], bool] | None = None) -> Path:  # fmt: skip
+    """Check that one output file can be written at ``path`` (nothing is created).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file to write.
+    overwrite : bool, default False
+        Allow replacing an existing file.
+    option : str
+        How to name the destination in messages (``"-o"``).
+    ours : callable, optional
+        ``ours(path)`` is True for a file psdbound wrote earlier (replaced
+        without ``overwrite``, as a previous report folder is).
+
+    Returns
+    -------
+    Path
+
+    Raises
+    ------
+    InputError
+        ``path`` is a folder (or anything but a file), an existing file that
+        is not ours without ``overwrite``, or its folder cannot be created or
+        written.
+    """
+    p = Path(path)
+    if p.exists() or p.is_symlink():
+        if not p.is_file():
+            raise InputError(f"{option} is an existing folder (or not a regular file); give a "
+                             "file name (nothing was written)", path=p)  # fmt: skip
+        if not overwrite and not (ours is not None and ours(p)):
+            raise InputError(f"{option} is an existing file that psdbound did not write; give "
+                             "another name, or --overwrite to replace it (nothing was written)",
+                             path=p)  # fmt: skip
+    check_writable_folder(p.parent if str(p.parent) else Path("."), option=f"{option}'s folder")
     return p
 
 

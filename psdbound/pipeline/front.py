@@ -161,11 +161,39 @@ class FitResults:
 
         return series_csv(self.series_table(), gz=gz)
 
-    def write_series(self, path: str | os.PathLike[str]) -> Path:
-        """Write :meth:`series_table` as CSV (gzip when the name ends in ``.gz``), atomically."""
-        from psdbound.results.series_table import write_series_csv
+    def series_dataset(self) -> Any:
+        """Return :meth:`series_table` as an :class:`xarray.Dataset` with units and provenance.
 
-        return write_series_csv(self.series_table(), path)
+        Returns
+        -------
+        xarray.Dataset
+            Variables along ``sample`` with ``units``, ``long_name`` and
+            ``description``; global attributes name the input files (with
+            SHA-256), the psdbound version, the verdict and the bound
+            (:func:`psdbound.results.series_export.series_attrs`).
+        """
+        from psdbound.results.series_export import series_attrs, series_dataset
+
+        return series_dataset(self.series_table(), attrs=series_attrs(self.document))
+
+    def write_series(self, path: str | os.PathLike[str], *, format: str | None = None) -> Path:
+        """Write :meth:`series_table` to a file atomically: CSV or netCDF.
+
+        Parameters
+        ----------
+        path : str or path-like
+            Destination; CSV is gzip-compressed when the name ends in ``.gz``.
+        format : {"csv", "netcdf"}, optional
+            Default: from the name (``.nc`` netCDF, ``.csv``/``.csv.gz`` CSV).
+
+        Returns
+        -------
+        Path
+        """
+        from psdbound.results.series_export import series_attrs, write_series
+
+        return write_series(self.series_table(), path, fmt=format,
+                            attrs=series_attrs(self.document))  # fmt: skip
 
     # ------------------------------------------------------------- figures
     def plot(self, name: str) -> Any:

@@ -146,7 +146,8 @@ def test_cli_campaign_system_and_bad_output_folder(two_days, tmp_path, capsys):
                  "--workers", "0", "--cache-dir", str(tmp_path / "cache"), "--no-pdf",
                  "--system", "G", "--elevation-mask-deg", "12"])  # fmt: skip
     assert code == 0, capsys.readouterr().err
-    assert sorted(p.name for p in out.iterdir()) == ["campaign.html", "campaign.json"]
+    assert sorted(p.name for p in out.iterdir()) == ["campaign.html", "campaign.json", "days",
+                                                      "network.html"]  # fmt: skip
     text = capsys.readouterr().out
     assert "campaign verdict: BOUNDED" in text and "held out" in text
     doc = json.loads((out / "campaign.json").read_text())

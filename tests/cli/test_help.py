@@ -30,7 +30,7 @@ def _actions():
                          ids=lambda x: x if isinstance(x, str) else "/".join(
                              x.option_strings) or x.dest)  # fmt: skip
 def test_help_states_default_and_unit(command, action):
-    shared = command in ("fit", "campaign")  # fit's day options and formatter
+    shared = command in ("fit", "campaign", "export")  # fit's day options and formatter
     h = " ".join((help_text(action) if shared else action.help or "").split())
     assert h, f"{command} {action.dest}: no help"
     assert re.search(r"default|required", h), f"{command} {action.option_strings}: {h!r}"

@@ -1,0 +1,129 @@
+"""The campaign's network page on two simulated stations: map, sortable table, links (#32)."""
+
+from __future__ import annotations
+
+import json
+import re
+import shutil
+import subprocess
+from html.parser import HTMLParser
+
+import numpy as np
+import pytest
+
+from psdbound.campaign import run_campaign, write_campaign
+from psdbound.campaign.network import day_report_name, station_positions
+from psdbound.simulate import preset, simulate
+
+pytestmark = pytest.mark.slow
+
+#: Two stations 5 deg apart (Chicago area and further west), two days each.
+STATIONS = {"NETA": (41.84, -87.63), "NETB": (39.0, -94.5)}
+
+
+@pytest.fixture(scope="module")
+def network(tmp_path_factory):
+    root = tmp_path_factory.mktemp("network")
+    obs, nav = [], []
+    for s, (name, (lat, lon)) in enumerate(STATIONS.items()):
+        for k, start in enumerate(("2020-11-24T06:00:00", "2020-11-25T06:00:00")):
+            sc = preset("demo").replace(name=name, start_gps=start, duration_s=12 * 3600.0,
+                                        interval_s=30.0, dual_antenna=False, lat_deg=lat,
+                                        lon_deg=lon, seed=31 + 2 * s + k)  # fmt: skip
+            res = simulate(sc, root / f"{name}{k}")
+            obs.append(res.obs_paths[0])
+            if s == 0:  # one broadcast file per day serves every station
+                nav.append(res.nav_path)
+    result = run_campaign(obs, nav, workers=0, cache_dir=root / "cache")
+    out = root / "out"
+    files = write_campaign(result, out, pdf=False)
+    return result, out, files
+
+
+class _Page(HTMLParser):
+    def __init__(self):
+        super().__init__()
+        self.links, self.images, self.tables, self.scripts = [], [], [], 0
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if tag == "a":
+            self.links.append(a["href"])
+        elif tag == "img":
+            self.images.append(a)
+        elif tag == "table":
+            self.tables.append(a)
+        elif tag == "script":
+            self.scripts += 1
+
+
+def test_network_page_has_every_station_the_map_the_table_and_working_links(network):
+    result, out, files = network
+    assert files["network"] == out / "network.html"
+    text = files["network"].read_text()
+    page = _Page()
+    page.feed(text)
+    doc = json.loads(files["json"].read_text())
+    # positions from the headers (APPROX POSITION XYZ -> WGS84) are where the stations were put
+    pos = station_positions(doc)
+    for name, (lat, lon) in STATIONS.items():
+        assert np.allclose(pos[name], (lat, lon), atol=1e-6)
+        assert f"<td data-sort='{name}'>{name}</td>" in text
+    assert {i["alt"] for i in page.images} == {"station map", "bound over time"}
+    assert all(i["src"].startswith("data:image/png;base64,") and len(i["src"]) > 5000
+               for i in page.images)  # fmt: skip
+    assert {"class": "sortable", "id": "stations"} in page.tables and page.scripts == 1
+    assert "addEventListener('click'" in text and "http" not in text  # no CDN, nothing fetched
+    # one link per station-day report, every relative link resolves to a file
+    days = [(d["station"], d["day"]) for d in doc["days"]]
+    assert len(days) == 4
+    reports = [day_report_name(*sd) for sd in days]
+    assert set(reports) <= set(page.links) and "campaign.html" in page.links
+    for href in page.links:
+        assert (out / href).is_file(), href
+    day = (out / reports[0]).read_text()
+    assert "<html" in day and days[0][0] in day
+    assert "network.html" in files["html"].read_text()  # the campaign page links to it
+    # the sort keys are numbers where the column is numeric
+    bounds = re.findall(r"<td data-sort='([0-9.e+-]+)'>", text)
+    assert len(bounds) >= 2 * 3
+
+
+def test_rewriting_the_campaign_replaces_the_day_reports(network, tmp_path):
+    result, out, _ = network
+    files = write_campaign(result, out, pdf=False)  # an earlier campaign folder: replaced
+    assert sorted(p.name for p in out.iterdir()) == ["campaign.html", "campaign.json", "days",
+                                                      "network.html"]  # fmt: skip
+    assert len(list((out / "days").iterdir())) == 4 and files["network"].is_file()
+
+
+def _not_blank(png) -> float:
+    import matplotlib.image as mpimg
+
+    img = mpimg.imread(png)
+    return float(np.std(img[..., :3]))
+
+
+@pytest.mark.skipif(
+    shutil.which("chromium") is None or shutil.which("pdftoppm") is None,
+    reason="needs Debian's chromium and poppler-utils (installed by .ci/run)",
+)
+def test_network_page_as_a_person_sees_it(network, tmp_path):
+    """Render network.html in headless Chromium: a page with the map, table and figure."""
+    _, out, _ = network
+    shot = tmp_path / "network.png"
+    subprocess.run(
+        ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
+         "--no-first-run", "--disable-background-networking", "--disable-component-update",
+         "--disable-sync", f"--user-data-dir={tmp_path / 'ud'}", "--window-size=1200,1800",
+         f"--screenshot={shot}", (out / "network.html").as_uri()],
+        capture_output=True, timeout=120, check=True,
+    )  # fmt: skip
+    assert shot.stat().st_size > 20_000 and _not_blank(shot) > 0.05
+    dom = subprocess.run(
+        ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
+         "--disable-background-networking", "--disable-component-update", "--disable-sync",
+         f"--user-data-dir={tmp_path / 'ud2'}", "--dump-dom", (out / "network.html").as_uri()],
+        capture_output=True, timeout=120, check=True, text=True,
+    ).stdout  # fmt: skip
+    assert all(name in dom for name in STATIONS) and "station-map" in dom
