@@ -44,8 +44,6 @@ from psdbound.common.lazy import lazy_exports
 
 if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
     from psdbound.aviation.airborne import (
-        F_L1_HZ,
-        F_L5_HZ,
         iono_free_factor,
         sigma_air_m,
         sigma_multipath_airborne_m,
@@ -117,8 +115,6 @@ if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
 __all__ = [
     "effective_sample_size",
     "paired_overbound",
-    "F_L1_HZ",
-    "F_L5_HZ",
     "iono_free_factor",
     "sigma_air_m",
     "sigma_multipath_airborne_m",
@@ -183,8 +179,6 @@ __all__ = [
 _EXPORTS = {
     "effective_sample_size": ("psdbound.aviation.sample_size", "effective_sample_size"),
     "paired_overbound": ("psdbound.aviation.paired", "paired_overbound"),
-    "F_L1_HZ": ("psdbound.aviation.airborne", "F_L1_HZ"),
-    "F_L5_HZ": ("psdbound.aviation.airborne", "F_L5_HZ"),
     "iono_free_factor": ("psdbound.aviation.airborne", "iono_free_factor"),
     "sigma_air_m": ("psdbound.aviation.airborne", "sigma_air_m"),
     "sigma_multipath_airborne_m": ("psdbound.aviation.airborne", "sigma_multipath_airborne_m"),

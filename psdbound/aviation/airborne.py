@@ -15,20 +15,15 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from psdbound.aviation.standards import AAD_A_MULTIPATH, AAD_A_NOISE
+from psdbound.constants import F_L1_HZ, F_L5_HZ
 from psdbound.errors import InputError
 
 __all__ = [
-    "F_L1_HZ",
-    "F_L5_HZ",
     "iono_free_factor",
     "sigma_air_m",
     "sigma_multipath_airborne_m",
     "sigma_noise_airborne_m",
 ]
-
-#: GPS L1 and L5 carrier frequencies, Hz (IS-GPS-200 / IS-GPS-705).
-F_L1_HZ = 1575.42e6
-F_L5_HZ = 1176.45e6
 
 
 def _elev(elevation_deg: ArrayLike) -> NDArray[np.float64]:

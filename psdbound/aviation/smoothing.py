@@ -22,7 +22,6 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
-from psdbound.constants import F_L1_HZ, F_L5_HZ
 from psdbound.errors import InputError
 
 __all__ = [

@@ -130,9 +130,22 @@ def run(args: argparse.Namespace) -> int:
     InputError
         Unreadable samples, NaN, a bin with too few samples, bad options.
     """
-    from psdbound.aviation import overbound_by_elevation, read_samples, write_overbound
+    from psdbound.aviation import write_overbound
     from psdbound.common.outputs import check_writable_folder
 
+    _check_options(args)
+    if args.out:
+        check_writable_folder(args.out, option="--out")
+    res, extra = _code_overbound(args) if args.code else (_samples_overbound(args), {})
+    print(res.summary())
+    if args.out:
+        for f in write_overbound(res, args.out, extra=extra):
+            print(f"wrote {f}")
+    return 0
+
+
+def _check_options(args: argparse.Namespace) -> None:
+    """Refuse inconsistent options; fill the method-dependent default of ``--min-abs-z``."""
     if args.min_samples < 2:
         raise InputError(f"--min-samples must be >= 2, got {args.min_samples}")
     if not 0.0 < args.confidence < 1.0:
@@ -142,34 +155,23 @@ def run(args: argparse.Namespace) -> int:
                          "exempts no core")  # fmt: skip
     if args.min_abs_z is None:
         args.min_abs_z = 0.25
-    if args.out:
-        check_writable_folder(args.out, option="--out")
-    if args.code:
-        res, extra = _code_overbound(args)
-    else:
-        if args.nav:
-            raise InputError("--nav is only used with --code (SAMPLES is a samples file)")
-        errors, elevation = read_samples(args.samples)
-        extra = {}
-        try:
-            res = overbound_by_elevation(
-                errors,
-                elevation,
-                edges_deg=args.edges,
-                method=args.method,
-                bias=args.bias,
-                min_abs_z=args.min_abs_z,
-                min_samples=args.min_samples,
-                unit=args.unit,
-                confidence=args.confidence,
-            )
-        except InputError as exc:
-            raise InputError(exc.reason, path=args.samples) from None
-    print(res.summary())
-    if args.out:
-        for f in write_overbound(res, args.out, extra=extra):
-            print(f"wrote {f}")
-    return 0
+    if not args.code and args.nav:
+        raise InputError("--nav is only used with --code (SAMPLES is a samples file)")
+
+
+def _samples_overbound(args: argparse.Namespace) -> Any:
+    """Overbound the errors of a samples file (``SAMPLES``)."""
+    from psdbound.aviation import overbound_by_elevation, read_samples
+
+    errors, elevation = read_samples(args.samples)
+    try:
+        return overbound_by_elevation(
+            errors, elevation, edges_deg=args.edges, method=args.method, bias=args.bias,
+            min_abs_z=args.min_abs_z, min_samples=args.min_samples, unit=args.unit,
+            confidence=args.confidence,
+        )  # fmt: skip
+    except InputError as exc:
+        raise InputError(exc.reason, path=args.samples) from None
 
 
 def _code_overbound(args: argparse.Namespace) -> tuple[Any, dict[str, Any]]:

@@ -6,8 +6,6 @@ import numpy as np
 import pytest
 
 from psdbound.aviation import (
-    F_L1_HZ,
-    F_L5_HZ,
     error_budget,
     ground_sigma_pr_m,
     iono_free_multiplier,
@@ -17,6 +15,7 @@ from psdbound.aviation import (
     smoothing_time_ratio,
     vpl,
 )
+from psdbound.constants import F_L1_HZ, F_L5_HZ
 from psdbound.errors import InputError
 
 K_MD_E = 2.898  # a test value (the old H1 number); real runs take the station's K_md_e
