@@ -95,12 +95,16 @@ def utc_to_gps_s(t_utc_label_gps_s: ArrayLike) -> NDArray[np.float64]:
     from astropy.time import Time
 
     lab = np.atleast_1d(np.asarray(t_utc_label_gps_s, dtype=np.float64))
-    isot = gps_s_to_datetime64(lab).astype("datetime64[ms]").astype(str)
+    # a leap second is inserted at the end of a UTC day, so the offset is that of the
+    # day's start: convert each distinct day once (a navigation file has thousands of
+    # epochs and one or two days)
+    days, inverse = np.unique(np.floor(lab / 86400.0), return_inverse=True)
+    isot = gps_s_to_datetime64(days * 86400.0).astype("datetime64[ms]").astype(str)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         utc = Time(list(isot), format="isot", scale="utc")
         # astropy's "gps" format counts SI seconds since 1980-01-06 00:00:00 UTC.
-        offset = utc.gps - lab
+        offset = (utc.gps - days * 86400.0)[inverse.reshape(lab.shape)]
     if caught:
         from psdbound.common.notices import warn
 
