@@ -1,8 +1,6 @@
 """``python -m psdbound`` entry point."""
 
-import sys
-
-from psdbound.cli import main
+from psdbound.cli.main import console
 
 if __name__ == "__main__":
-    sys.exit(main())
+    console()

@@ -253,3 +253,30 @@ def test_one_definition_of_each_physical_constant():
                     bad.append(f"{path}:{node.lineno} writes {node.value!r}: use "
                                f"psdbound.constants.{hit}")
     assert not bad, "constants defined twice:\n" + "\n".join(bad)
+
+
+#: Modules that encode JSON for something other than a file a user reads, with the reason.
+JSON_ENCODERS = {
+    "psdbound.results.jsonfile": "the one JSON writer",
+    "psdbound.results.schema": "a value quoted in an error message",
+    "psdbound.compute.cache": "cache keys and the cache's own payload (not a user file)",
+    "psdbound.simulate.scenario": "canonical text of a scenario for its digest and CLI echo",
+    "psdbound.simulate.simulator": "truth.json beside the simulated files: sorted keys, so "
+                                   "a simulation is byte-identical run to run",
+    "psdbound.ionosphere.outputs": "the shipped cutoff world map (package data, one line)",
+    "psdbound.validation.outputs": "a list inside one CSV cell",
+}
+
+
+def test_one_json_writer():
+    # every command's JSON files are written by psdbound.results.write_json (one NaN policy:
+    # null; one layout); any other json.dump/json.dumps is listed above with its reason
+    bad = []
+    for mod, path in MODULES.items():
+        if mod in JSON_ENCODERS:
+            continue
+        for node in ast.walk(ast.parse(path.read_text())):
+            if (isinstance(node, ast.Attribute) and node.attr in ("dump", "dumps")
+                    and isinstance(node.value, ast.Name) and node.value.id == "json"):
+                bad.append(f"{path}:{node.lineno} encodes JSON: use psdbound.results.write_json")
+    assert not bad, "\n".join(bad)

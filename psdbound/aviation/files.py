@@ -13,7 +13,6 @@ written atomically.
 from __future__ import annotations
 
 import io
-import json
 from pathlib import Path
 from typing import Any
 
@@ -22,8 +21,9 @@ from numpy.typing import NDArray
 from scipy.stats import norm
 
 from psdbound.aviation.overbound import OverboundResult
-from psdbound.common.atomic import atomic_write_bytes, atomic_write_text
+from psdbound.common.atomic import atomic_write_bytes
 from psdbound.errors import InputError
+from psdbound.results import write_json
 
 __all__ = ["read_samples", "write_overbound"]
 
@@ -130,6 +130,6 @@ def write_overbound(result: OverboundResult, out: str | Path, *,
     """
     folder = Path(out)
     doc = {**(extra or {}), "overbound": result.to_dict()}
-    j = atomic_write_text(folder / "result.json", json.dumps(doc, indent=2) + "\n")
+    j = write_json(folder / "result.json", doc)
     png = atomic_write_bytes(folder / "overbound_qq.png", _qq_png(result))
     return [Path(j), Path(png)]

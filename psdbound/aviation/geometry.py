@@ -13,7 +13,6 @@ from __future__ import annotations
 import contextlib
 import inspect
 import io
-import json
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -23,12 +22,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from psdbound.aviation.budget import error_budget, los_from_az_el, multipliers, vpl
 from psdbound.aviation.standards import P_EPH
-from psdbound.common.atomic import atomic_write_bytes, atomic_write_text
+from psdbound.common.atomic import atomic_write_bytes
 from psdbound.errors import InputError
 from psdbound.io.geometry import OrbitSource, satellite_azel
 from psdbound.io.navigation import Navigation
 from psdbound.io.nominal import nominal_elements, nominal_navigation
 from psdbound.io.timescales import calendar_to_gps_s, gps_s_to_datetime64
+from psdbound.results import write_json
 
 __all__ = ["SEED004_START_GPS_S", "Sky", "VplSeries", "nominal_orbit", "sky_over",
            "vpl_series", "write_vpl_series"]  # fmt: skip
@@ -346,7 +346,6 @@ def write_vpl_series(series: VplSeries, out: str | Path, *,
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=120)
     plt.close(fig)
-    doc = json.dumps({"vpl": series.to_dict(val_m=val_m)}, indent=2) + "\n"
     folder = Path(out)
     png = atomic_write_bytes(folder / "vpl.png", buf.getvalue())
-    return [atomic_write_text(folder / "vpl.json", doc), png]
+    return [write_json(folder / "vpl.json", {"vpl": series.to_dict(val_m=val_m)}), png]

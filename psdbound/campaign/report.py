@@ -10,7 +10,6 @@ from __future__ import annotations
 import base64
 import html
 import io
-import json
 import os
 from pathlib import Path
 from typing import Any
@@ -18,6 +17,7 @@ from typing import Any
 from psdbound.campaign.network import NETWORK_PAGE, day_report_name, network_page
 from psdbound.campaign.run import CampaignResult
 from psdbound.errors import InputError
+from psdbound.results import json_text
 from psdbound.results.headline import check_line
 
 __all__ = ["CAMPAIGN_FILES", "station_lines", "write_campaign"]
@@ -234,7 +234,7 @@ def write_campaign(
                for d, document in zip(doc["days"], result.documents, strict=False)
                if document is not None}  # fmt: skip
     with atomic_folder(out, replace=True) as tmp:
-        (tmp / "campaign.json").write_text(json.dumps(doc, indent=1, allow_nan=True))
+        (tmp / "campaign.json").write_text(json_text(doc))
         (tmp / "campaign.html").write_text(_page(doc, result.summary(), img))
         _write_day_reports(tmp, doc, result.documents)
         (tmp / NETWORK_PAGE).write_text(network_page(doc, reports))

@@ -249,14 +249,12 @@ def run(args: argparse.Namespace) -> int:
         check_writable_folder(args.out, option="--out")
     print(budget_report(az, el, **kopts, **_budget_options(args)))
     if args.out:
-        import json
         from pathlib import Path
 
-        from psdbound.common.atomic import atomic_write_text
+        from psdbound.results import write_json
 
         doc = budget_document(az, el, **kopts, **_budget_options(args))
-        path = atomic_write_text(Path(args.out) / "budget.json",
-                                 json.dumps({"budget": doc}, indent=2) + "\n")  # fmt: skip
+        path = write_json(Path(args.out) / "budget.json", {"budget": doc})
         print(f"wrote {path}")
     return 0
 

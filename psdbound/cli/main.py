@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import warnings
 from collections.abc import Sequence
@@ -11,7 +12,7 @@ from psdbound.cli.exit_codes import EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_NOT_BOUN
 from psdbound.errors import InputError
 from psdbound.version import __version__
 
-__all__ = ["main", "build_parser", "EXIT_OK", "EXIT_BAD_INPUT", "EXIT_INTERNAL",
+__all__ = ["main", "console", "build_parser", "EXIT_OK", "EXIT_BAD_INPUT", "EXIT_INTERNAL",
            "EXIT_NOT_BOUNDED"]
 
 
@@ -114,3 +115,36 @@ def main(argv: Sequence[str] | None = None) -> int:
             file=sys.stderr,
         )
         return EXIT_INTERNAL
+
+
+#: Commands that may leave helper processes (Dask) whose clean-up runs at interpreter exit.
+_FULL_EXIT = frozenset({"campaign"})
+
+
+def console(argv: Sequence[str] | None = None) -> None:
+    """Run :func:`main` as a process and end it: the ``psdbound`` script and ``python -m``.
+
+    Every output is written and closed when :func:`main` returns, so the
+    process leaves with :func:`os._exit` after flushing its streams instead of
+    the interpreter's teardown of the ~1,700 modules a fit loads (0.4 s of
+    CPU on a station day). ``campaign``, whose Dask cluster cleans up at
+    exit, leaves the ordinary way.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Arguments (default: ``sys.argv[1:]``).
+    """
+    args = list(sys.argv[1:] if argv is None else argv)
+    code = main(args)
+    if _FULL_EXIT.intersection(args[:1]):
+        sys.exit(code)
+    import logging
+
+    logging.shutdown()
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):  # a closed pipe: nothing more can be said
+            pass
+    os._exit(code)

@@ -36,10 +36,10 @@ from psdbound.ionosphere.figures import (
 )
 from psdbound.ionosphere.results import CutoffMap, StationCutoffs
 from psdbound.ionosphere.stations import THESIS_CHICAGO_2020_HZ
+from psdbound.results import write_json
 
 __all__ = [
     "file_tag",
-    "json_text",
     "write_cutoff_outputs",
     "write_map_outputs",
     "write_station_outputs",
@@ -52,19 +52,6 @@ def file_tag(name: str) -> str:
     """Return a station name made safe for file names (other characters become ``_``)."""
     keep = "".join(c if c.isalnum() or c in "-_." else "_" for c in name)
     return keep or "station"
-
-
-def json_text(obj: Any) -> str:
-    """Return the JSON text of a result dict (NumPy values converted, NaN allowed)."""
-
-    def default(o: Any) -> Any:
-        if isinstance(o, np.generic):
-            return o.item()
-        if isinstance(o, np.ndarray):
-            return o.tolist()
-        raise TypeError(type(o).__name__)
-
-    return json.dumps(obj, indent=1, default=default, allow_nan=True) + "\n"
 
 
 def write_station_outputs(
@@ -90,7 +77,7 @@ def write_station_outputs(
     tag = file_tag(result.name)
     files = [
         atomic_write_text(out / f"cutoff_{tag}.csv", result.table_csv()),
-        atomic_write_text(out / f"cutoff_{tag}.json", json_text(result.to_json_dict())),
+        write_json(out / f"cutoff_{tag}.json", result.to_json_dict()),
     ]
     if figures:
         files += _station_figures(result, out, tag)
@@ -168,7 +155,7 @@ def write_map_outputs(
     out = Path(out_dir)
     files = [
         atomic_write_text(out / "cutoff_map.csv", result.table_csv()),
-        atomic_write_text(out / "cutoff_map.json", json_text(result.to_json_dict())),
+        write_json(out / "cutoff_map.json", result.to_json_dict()),
     ]
     if figures:
         rows = result.rows()

@@ -10,6 +10,7 @@ and write through it. The JSON Schema of the document,
 
 from __future__ import annotations
 
+from psdbound.results.jsonfile import json_text, to_jsonable, write_json
 from psdbound.results.jsonschema import SCHEMA_FILE, load_schema, schema_errors, validate
 from psdbound.results.schema import (
     NUMBER_FIELDS,
@@ -18,7 +19,6 @@ from psdbound.results.schema import (
     get_field,
     number_problems,
     read_document,
-    to_jsonable,
     write_document,
 )
 
@@ -28,6 +28,7 @@ __all__ = [
     "SCHEMA_FILE",
     "SCHEMA_VERSION",
     "get_field",
+    "json_text",
     "load_schema",
     "number_problems",
     "read_document",
@@ -35,4 +36,5 @@ __all__ = [
     "to_jsonable",
     "validate",
     "write_document",
+    "write_json",
 ]

@@ -8,10 +8,9 @@ import os
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from psdbound.common import atomic_write_text
 from psdbound.errors import InputError
+from psdbound.results.jsonfile import COMPACT_SECTIONS, json_text, to_jsonable
 
 __all__ = [
     "SCHEMA_VERSION",
@@ -96,43 +95,6 @@ def number_problems(document: dict[str, Any]) -> list[str]:
     return out
 
 
-_PLAIN = (int, str, bool, type(None))
-
-
-def _finite_or_none(x: float) -> float | None:
-    return x if math.isfinite(x) else None
-
-
-def to_jsonable(obj: Any) -> Any:
-    """Convert numpy arrays/scalars, tuples and paths to plain JSON data.
-
-    Non-finite floats become ``None`` (JSON has no NaN or infinity).
-    """
-    if isinstance(obj, dict):
-        return {str(k): to_jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, list | tuple):
-        return [v if type(v) in _PLAIN else _finite_or_none(v) if type(v) is float
-                else to_jsonable(v) for v in obj]  # fmt: skip
-    if isinstance(obj, np.ndarray):
-        if obj.dtype.kind in "biu":
-            return obj.tolist()
-        if obj.dtype.kind == "f":
-            bad = ~np.isfinite(obj)
-            if not bad.any():
-                return obj.tolist()
-            out = obj.astype(object)
-            out[bad] = None
-            return out.tolist()
-        return to_jsonable(obj.tolist())
-    if isinstance(obj, np.generic):
-        return to_jsonable(obj.item())
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    if isinstance(obj, os.PathLike):
-        return os.fspath(obj)
-    return obj
-
-
 def get_field(document: dict[str, Any], dotted: str) -> Any:
     """Return ``document[a][b]...`` for ``dotted = "a.b..."``; KeyError if absent."""
     cur: Any = document
@@ -173,8 +135,7 @@ def write_document(path: str | os.PathLike[str], document: dict[str, Any]) -> Pa
             "refusing to write a result whose documented numbers are not numbers: "
             + ", ".join(bad)
         )
-    text = json.dumps(data, indent=1, allow_nan=False) + "\n"
-    return atomic_write_text(path, text)
+    return atomic_write_text(path, json_text(data, compact=COMPACT_SECTIONS))
 
 
 def read_document(path: str | os.PathLike[str]) -> dict[str, Any]:

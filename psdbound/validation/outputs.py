@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from psdbound.common import atomic_write_text
+from psdbound.results import write_json
 from psdbound.validation.results import ValidationReport
 
 __all__ = ["OUTPUT_FILES", "validation_csv", "write_validation_outputs"]
@@ -80,7 +81,7 @@ def write_validation_outputs(
     out = Path(out_dir)
     written = [
         atomic_write_text(out / OUTPUT_FILES[0], validation_csv(report.rows())),
-        atomic_write_text(out / OUTPUT_FILES[1], json.dumps(report.to_dict(), indent=2) + "\n"),
+        write_json(out / OUTPUT_FILES[1], report.to_dict()),
     ]
     if figures:
         from psdbound.validation.figures import plot_direct, plot_expansion, save_figure
