@@ -14,7 +14,7 @@ from psdbound.kalman.error_model import Component, error_model_section
 from psdbound.pipeline.config import FitConfig
 from psdbound.pipeline.products import CodeOverbound
 from psdbound.pipeline.stages import InputData, Isolated, Screened, Validated, Windowed
-from psdbound.pipeline.verdict import verdict_checks, verdict_of
+from psdbound.pipeline.verdict import verdict_checks, verdict_facts, verdict_of
 from psdbound.reports import figure_data
 from psdbound.results import SCHEMA_VERSION, to_jsonable
 from psdbound.results.headline import headline
@@ -424,7 +424,9 @@ def build_document(
             **_demo_truth(meta["scenario"], bounded, inputs.interval_s),
         }
     doc = to_jsonable(doc)
-    checks = verdict_checks(doc, config.verdict)
+    facts = verdict_facts(bounded=bounded, windowed=windowed, screened=screened,
+                          isolated=isolated, cutoff=cutoff, interval_s=interval_s)
+    checks = verdict_checks(facts, config.verdict)
     verdict, reasons = verdict_of(checks)
     out = {"schema_version": doc.pop("schema_version"), "verdict": verdict,
            "verdict_reasons": reasons,

@@ -94,18 +94,24 @@ low frequencies
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from psdbound.common.options import Choice, Number, check_fields, option
 from psdbound.results.headline import check_line
+from psdbound.results.jsonfile import to_jsonable
 from psdbound.spectra.names import POLICIES
 
-__all__ = ["VerdictCheck", "VerdictOptions", "judge", "judge_pooled", "pooled_checks",
-           "verdict_checks", "verdict_of"]
+if TYPE_CHECKING:  # the products, for type checkers: this module stays light to import
+    from psdbound.ionosphere.policy import CutoffChoice
+    from psdbound.pipeline.products import Isolated, Screened, Windowed
+    from psdbound.spectra import BoundResults
+
+__all__ = ["VerdictCheck", "VerdictFacts", "VerdictOptions", "judge", "judge_pooled",
+           "pooled_checks", "verdict_checks", "verdict_facts", "verdict_of"]
 
 
 @dataclass(frozen=True)
@@ -153,11 +159,10 @@ class VerdictOptions:
         check_fields(self)
 
 
-def _covered_s(per_window: list[dict[str, Any]], interval_s: float) -> float:
-    """Time covered by the union of the windows, s."""
-    spans = sorted((w["arc"], w["t_start_gps_s"], w["t_stop_gps_s"]) for w in per_window)
+def _covered_s(spans: Sequence[tuple[Any, float, float]], interval_s: float) -> float:
+    """Time covered by the union of the windows' (arc, start, stop) spans, s."""
     total, cur = 0.0, None
-    for arc, t0, t1 in spans:
+    for arc, t0, t1 in sorted(spans):
         t1 = t1 + interval_s
         if cur is None or arc != cur[0] or t0 > cur[2]:
             if cur is not None:
@@ -168,6 +173,113 @@ def _covered_s(per_window: list[dict[str, Any]], interval_s: float) -> float:
     if cur is not None:
         total += cur[2] - cur[1]
     return total
+
+
+@dataclass(frozen=True)
+class VerdictFacts:
+    """What the verdict rules measure, taken from the typed stage products.
+
+    Built by :func:`verdict_facts` from a fit's products, by
+    :meth:`from_document` from a result document (a loaded ``result.json``),
+    or directly (a campaign's pooled bound: only the bound and its coverage).
+    None: the quantity does not apply (no filter, no screening, ...), and the
+    rule that needs it is not applied.
+
+    Attributes
+    ----------
+    sigma_gm_m, tau_s, sigma_wn_m : float
+        The bound (m, s, m).
+    tau_grid_s : tuple of float
+        The time constants searched, s (empty: only ``tau_s``).
+    covered_s : float
+        Time covered by the bound's windows, s.
+    low_frequency : dict or None
+        The bound's low-frequency section (:mod:`psdbound.spectra.lowfreq`).
+    filter_loss : float or None
+        Median fraction of the power above f_c that the high-pass removed.
+    f_c_hz, nyquist_hz : float or None
+        The cutoff and the Nyquist frequency, Hz.
+    rejected_s, data_s : float or None
+        Screened data that failed every stationarity test, and all screened data, s.
+    excluded_fraction : float or None
+        Fraction of the data the screening excluded.
+    offered_s : float or None
+        Data the file offered above the elevation mask, s.
+    multipath_limit_m : float or None
+        The largest standard deviation carrier multipath can reach, m.
+    """
+
+    sigma_gm_m: float
+    tau_s: float
+    sigma_wn_m: float = 0.0
+    tau_grid_s: tuple[float, ...] = ()
+    covered_s: float = 0.0
+    low_frequency: dict[str, Any] | None = None
+    filter_loss: float | None = None
+    f_c_hz: float | None = None
+    nyquist_hz: float | None = None
+    rejected_s: float | None = None
+    data_s: float | None = None
+    excluded_fraction: float | None = None
+    offered_s: float | None = None
+    multipath_limit_m: float | None = None
+
+    @classmethod
+    def from_document(cls, d: dict[str, Any]) -> VerdictFacts:
+        """Return the facts of a result document (its bound, windows, screening sections)."""
+        b, w, s = d["bound"], d["windows"], d["sampling"]
+        iso, scr = d.get("isolation") or {}, d.get("screening") or {}
+        spans = [(x["arc"], x["t_start_gps_s"], x["t_stop_gps_s"]) for x in w["per_window"]]
+        covered = d.get("covered_s")
+        return cls(
+            sigma_gm_m=b["sigma_gm_m"], tau_s=b["tau_s"], sigma_wn_m=b["sigma_wn_m"],
+            tau_grid_s=tuple(b.get("tau_grid_s") or ()),
+            covered_s=float(covered) if covered is not None else _covered_s(
+                spans, s["interval_s"]),
+            low_frequency=b.get("low_frequency"),
+            filter_loss=(iso.get("safety") or {}).get("removed_above_fc_median"),
+            f_c_hz=d["cutoff"].get("f_c_hz"), nyquist_hz=s["nyquist_hz"],
+            rejected_s=w.get("rejected_s"), data_s=w.get("data_s"),
+            excluded_fraction=scr.get("excluded_fraction"),
+            offered_s=(iso.get("offered") or {}).get("offered_s"),
+            multipath_limit_m=scr.get("multipath_limit_m"),
+        )  # fmt: skip
+
+
+def verdict_facts(*, bounded: BoundResults, windowed: Windowed, screened: Screened,
+                  isolated: Isolated, cutoff: CutoffChoice | None,
+                  interval_s: float) -> VerdictFacts:  # fmt: skip
+    """Return the verdict's facts from a fit's stage products.
+
+    Parameters
+    ----------
+    bounded, windowed, screened, isolated : stage products
+        Of :mod:`psdbound.pipeline.stages`.
+    cutoff : CutoffChoice or None
+        The cutoff (None: dual-antenna).
+    interval_s : float
+        Sampling interval, s.
+
+    Returns
+    -------
+    VerdictFacts
+    """
+    b, w, sc = bounded.bound, windowed.windows, screened.screening
+    details = isolated.details or {}
+    low = bounded.low_frequency
+    spans = [(x.arc_id, x.t_start_gps_s, x.t_stop_gps_s) for x in w.windows]
+    return VerdictFacts(
+        sigma_gm_m=b.sigma_gm_m, tau_s=b.tau_s, sigma_wn_m=b.sigma_wn_m,
+        tau_grid_s=tuple(float(t) for t in b.tau_grid_s),
+        covered_s=_covered_s(spans, interval_s),
+        low_frequency=None if low is None else to_jsonable(low.as_dict()),
+        filter_loss=(details.get("safety") or {}).get("removed_above_fc_median"),
+        f_c_hz=None if cutoff is None else cutoff.f_c_hz, nyquist_hz=0.5 / interval_s,
+        rejected_s=w.rejected_s, data_s=screened.series.data_s,
+        excluded_fraction=sc.excluded_fraction,
+        offered_s=(details.get("offered") or {}).get("offered_s"),
+        multipath_limit_m=sc.limit_m,
+    )  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -208,34 +320,25 @@ def _check(rule: str, passed: bool, measured: str, limit: str, reason: str) -> V
     return VerdictCheck(rule, bool(passed), measured, limit, "" if passed else reason)
 
 
-def _degenerate(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
-    b = d["bound"]
-    grid = b.get("tau_grid_s") or [b["tau_s"]]
+def _degenerate(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
+    grid = f.tau_grid_s or (f.tau_s,)
     lo, hi = min(grid), max(grid)
-    inside = lo * (1 + 1e-6) < b["tau_s"] < hi * (1 - 1e-6)
+    inside = lo * (1 + 1e-6) < f.tau_s < hi * (1 - 1e-6)
     return [
-        _check("time correlation", b["sigma_gm_m"] > 0.0,
-               f"sigma_GM {100 * b['sigma_gm_m']:.3f} cm", "> 0",
+        _check("time correlation", f.sigma_gm_m > 0.0,
+               f"sigma_GM {100 * f.sigma_gm_m:.3f} cm", "> 0",
                "degenerate bound: sigma_GM = 0, only white noise; no time correlation is "
                "resolved in the band fitted"),
-        _check("tau inside its search", inside, f"tau {b['tau_s']:.3g} s",
-               f"inside [{lo:.3g}, {hi:.3g}] s", f"degenerate bound: tau = {b['tau_s']:.3g} s "
+        _check("tau inside its search", inside, f"tau {f.tau_s:.3g} s",
+               f"inside [{lo:.3g}, {hi:.3g}] s", f"degenerate bound: tau = {f.tau_s:.3g} s "
                f"sits at the end of its search grid [{lo:.3g}, {hi:.3g}] s"),
     ]  # fmt: skip
 
 
-def _covered(d: dict[str, Any]) -> float:
-    """Time in the bound's windows, s: given (a campaign pool), or from the windows' spans."""
-    if d.get("covered_s") is not None:
-        return float(d["covered_s"])
-    return _covered_s(d["windows"]["per_window"], d["sampling"]["interval_s"])
-
-
-def _data_for_tau(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
-    b = d["bound"]
-    covered = _covered(d)
-    need = opt.min_tau_multiple * b["tau_s"]
-    ok = b["sigma_gm_m"] <= 0 or covered >= need
+def _data_for_tau(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
+    covered = f.covered_s
+    need = opt.min_tau_multiple * f.tau_s
+    ok = f.sigma_gm_m <= 0 or covered >= need
     return [_check("data for tau", ok, f"{covered / 3600:.2f} h in windows",
                    f">= {opt.min_tau_multiple:g} tau = {need / 3600:.2f} h",
                    f"too little stationary data: {covered / 60:.1f} min covered by windows < "
@@ -243,42 +346,37 @@ def _data_for_tau(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
                    "above 20 %)")]  # fmt: skip
 
 
-def _filter(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
+def _filter(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
     out = []
-    safety = d.get("isolation", {}).get("safety")
-    if safety and safety.get("removed_above_fc_median") is not None:
-        loss = safety["removed_above_fc_median"]
+    if f.filter_loss is not None:
+        loss = f.filter_loss
         out.append(_check("filter loss", loss <= opt.max_filter_loss, f"{100 * loss:.1f} %",
                           f"<= {100 * opt.max_filter_loss:g} %",
                           f"filter loss: the high-pass removed a median {100 * loss:.1f} % of "
                           f"the power above f_c (limit {100 * opt.max_filter_loss:g} %); arcs "
                           "are too short for the cutoff"))  # fmt: skip
-    f_c, s = d["cutoff"].get("f_c_hz"), d["sampling"]
-    if f_c:
-        ratio = s["nyquist_hz"] / f_c
+    if f.f_c_hz and f.nyquist_hz is not None:
+        ratio = f.nyquist_hz / f.f_c_hz
         out.append(_check("band", ratio >= opt.min_band_ratio, f"Nyquist / f_c {ratio:.3g}",
                           f">= {opt.min_band_ratio:g}",
-                          f"band: cutoff {f_c:.3g} Hz leaves only a factor {ratio:.2f} below "
-                          f"the Nyquist frequency {s['nyquist_hz']:.3g} Hz (need "
+                          f"band: cutoff {f.f_c_hz:.3g} Hz leaves only a factor {ratio:.2f} "
+                          f"below the Nyquist frequency {f.nyquist_hz:.3g} Hz (need "
                           f"{opt.min_band_ratio:g})"))  # fmt: skip
     return out
 
 
-def _data_use(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
+def _data_use(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
     out = []
-    w = d["windows"]
-    rejected = w.get("rejected_s")
-    if rejected is not None and w["data_s"] > 0:
-        frac = rejected / w["data_s"]
+    if f.rejected_s is not None and f.data_s:
+        frac = f.rejected_s / f.data_s
         lim = opt.max_never_stationary_fraction
         out.append(_check("data outside the bound", frac <= lim, f"{100 * frac:.1f} %",
                           f"<= {100 * lim:g} %",
                           f"data outside the bound: {100 * frac:.1f} % of the screened data "
-                          f"({rejected / 3600:.2f} h) failed every stationarity test (limit "
-                          f"{100 * lim:g} %)"))  # fmt: skip
-    scr = d.get("screening")
-    if scr and scr.get("excluded_fraction") is not None:
-        frac, lim = scr["excluded_fraction"], opt.max_excluded_fraction
+                          f"({f.rejected_s / 3600:.2f} h) failed every stationarity test "
+                          f"(limit {100 * lim:g} %)"))  # fmt: skip
+    if f.excluded_fraction is not None:
+        frac, lim = f.excluded_fraction, opt.max_excluded_fraction
         out.append(_check("data excluded", frac <= lim, f"{100 * frac:.1f} %",
                           f"<= {100 * lim:g} %",
                           f"most data excluded: screening removed {100 * frac:.1f} % of the "
@@ -286,11 +384,11 @@ def _data_use(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
     return out
 
 
-def _data_used(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
-    offered = ((d.get("isolation") or {}).get("offered") or {}).get("offered_s")
+def _data_used(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
+    offered = f.offered_s
     if not offered:
         return []
-    used = _covered(d) / offered
+    used = f.covered_s / offered
     lim = opt.min_used_fraction
     return [_check("data used", used >= lim, f"{100 * used:.1f} % of {offered / 3600:.1f} h",
                    f">= {100 * lim:g} %",
@@ -300,22 +398,20 @@ def _data_used(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
                    "screening, stationarity)")]  # fmt: skip
 
 
-def _low_frequency(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
+def _low_frequency(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
     from psdbound.spectra.lowfreq import low_frequency_reasons  # deferred: the stage is heavy
 
-    low = d["bound"].get("low_frequency")
-    reasons = low_frequency_reasons(low, opt.low_frequency)
-    status = (low or {}).get("status", "unchecked")
+    reasons = low_frequency_reasons(f.low_frequency, opt.low_frequency)
+    status = (f.low_frequency or {}).get("status", "unchecked")
     return [VerdictCheck("low frequencies", not reasons, f"status {status}",
                          f"policy {opt.low_frequency}", "; ".join(reasons))]  # fmt: skip
 
 
-def _physical(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
-    lim = (d.get("screening") or {}).get("multipath_limit_m")
+def _physical(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
+    lim = f.multipath_limit_m
     if not lim:
         return []
-    b = d["bound"]
-    sigma = float(np.hypot(b["sigma_gm_m"], b["sigma_wn_m"]))
+    sigma = float(np.hypot(f.sigma_gm_m, f.sigma_wn_m))
     return [_check("physical limit", sigma <= lim, f"sigma {100 * sigma:.2f} cm at zenith",
                    f"<= {100 * lim:.2f} cm carrier-multipath limit",
                    f"physical limit: the bound's standard deviation {100 * sigma:.2f} cm exceeds "
@@ -325,20 +421,20 @@ def _physical(d: dict[str, Any], opt: VerdictOptions) -> list[VerdictCheck]:
 
 
 #: The rules in the order every output lists them.
-RULES: tuple[Callable[[dict[str, Any], VerdictOptions], list[VerdictCheck]], ...] = (
+RULES: tuple[Callable[[VerdictFacts, VerdictOptions], list[VerdictCheck]], ...] = (
     _degenerate, _data_for_tau, _filter, _data_use, _data_used, _low_frequency, _physical,
 )  # fmt: skip
 
 
-def verdict_checks(document: dict[str, Any],
+def verdict_checks(facts: VerdictFacts | dict[str, Any],
                    options: VerdictOptions | None = None) -> list[VerdictCheck]:  # fmt: skip
-    """Apply every verdict rule to a result document.
+    """Apply every verdict rule to a fit's facts.
 
     Parameters
     ----------
-    document : dict
-        The result document (bound, windows, sampling, cutoff, isolation,
-        screening sections).
+    facts : VerdictFacts or dict
+        The facts (:func:`verdict_facts` of the stage products), or a result
+        document (read through :meth:`VerdictFacts.from_document`).
     options : VerdictOptions, optional
 
     Returns
@@ -347,7 +443,8 @@ def verdict_checks(document: dict[str, Any],
         One per rule that applies, in :data:`RULES` order.
     """
     opt = options or VerdictOptions()
-    return [c for rule in RULES for c in rule(document, opt)]
+    f = facts if isinstance(facts, VerdictFacts) else VerdictFacts.from_document(facts)
+    return [c for rule in RULES for c in rule(f, opt)]
 
 
 def verdict_of(checks: list[VerdictCheck]) -> tuple[str, list[str]]:
@@ -418,8 +515,10 @@ def pooled_checks(bound: dict[str, Any] | None, *, covered_s: float, n_days: int
                   "there is nothing to pool")  # fmt: skip
     if not days.passed:
         return [days]
-    d = {"bound": bound, "covered_s": covered_s}
-    return [days, *_degenerate(d, opt), *_data_for_tau(d, opt), *_low_frequency(d, opt)]
+    f = VerdictFacts(sigma_gm_m=bound["sigma_gm_m"], tau_s=bound["tau_s"],
+                     tau_grid_s=tuple(bound.get("tau_grid_s") or ()), covered_s=covered_s,
+                     low_frequency=bound.get("low_frequency"))  # fmt: skip
+    return [days, *_degenerate(f, opt), *_data_for_tau(f, opt), *_low_frequency(f, opt)]
 
 
 def judge_pooled(bound: dict[str, Any] | None, *, covered_s: float, n_days: int,

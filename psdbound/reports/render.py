@@ -51,7 +51,6 @@ import matplotlib
 matplotlib.use("Agg")
 import numpy as np  # noqa: E402
 from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
-from matplotlib.backends.backend_pdf import PdfPages  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 from PIL import Image  # noqa: E402
 
@@ -385,6 +384,8 @@ def render_pdf(document: dict[str, Any], path: str | os.PathLike[str], *,
     -------
     Path
     """
+    from matplotlib.backends.backend_pdf import PdfPages  # deferred: not needed with --no-pdf
+
     r = document
     p = Path(path)
     figs = _as_rendered(r, figures, rendered)

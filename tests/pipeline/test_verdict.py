@@ -251,3 +251,17 @@ def test_headline_says_do_not_use_and_states_nothing_when_not_bounded():
     assert lines[-1].startswith("statement: none") and "95 %" not in " ".join(lines)
     d["verdict"] = "bounded"
     assert headline(d)[-1] == "statement: with 95 % confidence ..."
+
+
+def test_facts_from_products_are_the_document_s():
+    # the verdict judges the typed products; a loaded result.json gives the same facts
+    import psdbound
+    from psdbound.pipeline.verdict import VerdictFacts, verdict_facts
+
+    r = psdbound.fit()
+    typed = verdict_facts(bounded=r.bounded, windowed=r.windowed, screened=r.screened,
+                          isolated=r.isolated, cutoff=r.cutoff,
+                          interval_s=r.inputs.interval_s)
+    loaded = VerdictFacts.from_document(r.document)
+    assert typed == loaded
+    assert [c.as_dict() for c in verdict_checks(typed)] == r.document["verdict_checks"]
