@@ -28,8 +28,20 @@ class _Parser(argparse.ArgumentParser):
         self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message}\n")
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """Return the ``psdbound`` argument parser with all subcommands."""
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """Return the ``psdbound`` argument parser.
+
+    Parameters
+    ----------
+    command : str, optional
+        Build only this subcommand (what :func:`main` does for a command
+        line that names one: a usage error or ``--help`` then imports and
+        builds one command's options, not all ten); None builds them all.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+    """
     parser = _Parser(
         prog="psdbound",
         description="Gauss-Markov + white-noise PSD bounds of GNSS carrier-phase multipath, "
@@ -43,7 +55,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     import importlib
 
-    for name in _COMMANDS:
+    for name in (command,) if command in _COMMANDS else _COMMANDS:
         importlib.import_module(f"psdbound.cli.{name}").add_parser(sub)
     return parser
 
@@ -85,8 +97,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         input, where the error line is the only output, nor with
         ``--quiet``).
     """
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    argv = list(sys.argv[1:] if argv is None else argv)
+    parser = build_parser(argv[0] if argv else None)
+    args = parser.parse_args(argv)  # a usage error: one line and SystemExit(2)
     if not getattr(args, "command", None):
         parser.print_help()
         return EXIT_OK

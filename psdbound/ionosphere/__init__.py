@@ -76,6 +76,7 @@ if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
     )
     from psdbound.ionosphere.envelope import Envelope, fit_envelope, local_maxima
     from psdbound.ionosphere.iri import DEFAULT_F107_SFU
+    from psdbound.ionosphere.names import THESIS_CHICAGO_2020_HZ
     from psdbound.ionosphere.outputs import write_cutoff_outputs
     from psdbound.ionosphere.policy import (
         CUTOFF_SOURCES,
@@ -99,7 +100,6 @@ if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
     from psdbound.ionosphere.stations import (
         CHICAGO,
         MAP_STATIONS,
-        THESIS_CHICAGO_2020_HZ,
         Station,
         nearest_station,
         validate_station,
@@ -216,7 +216,7 @@ _EXPORTS = {
     "simulate_slant_delay": ("psdbound.ionosphere.slant", "simulate_slant_delay"),
     "CHICAGO": ("psdbound.ionosphere.stations", "CHICAGO"),
     "MAP_STATIONS": ("psdbound.ionosphere.stations", "MAP_STATIONS"),
-    "THESIS_CHICAGO_2020_HZ": ("psdbound.ionosphere.stations", "THESIS_CHICAGO_2020_HZ"),
+    "THESIS_CHICAGO_2020_HZ": ("psdbound.ionosphere.names", "THESIS_CHICAGO_2020_HZ"),
     "Station": ("psdbound.ionosphere.stations", "Station"),
     "nearest_station": ("psdbound.ionosphere.stations", "nearest_station"),
     "validate_station": ("psdbound.ionosphere.stations", "validate_station"),

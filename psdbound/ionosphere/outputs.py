@@ -34,8 +34,8 @@ from psdbound.ionosphere.figures import (
     plot_station_envelopes,
     plot_world_map,
 )
+from psdbound.ionosphere.names import THESIS_CHICAGO_2020_HZ
 from psdbound.ionosphere.results import CutoffMap, StationCutoffs
-from psdbound.ionosphere.stations import THESIS_CHICAGO_2020_HZ
 from psdbound.results import write_json
 
 __all__ = [

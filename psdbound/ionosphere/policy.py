@@ -45,8 +45,11 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from psdbound.errors import InputError
-from psdbound.ionosphere.names import DEFAULT_MARGIN_DB, DEFAULT_MP_SIGMA_M
-from psdbound.ionosphere.stations import THESIS_CHICAGO_2020_HZ
+from psdbound.ionosphere.names import (
+    DEFAULT_MARGIN_DB,
+    DEFAULT_MP_SIGMA_M,
+    THESIS_CHICAGO_2020_HZ,
+)
 
 __all__ = [
     "CUTOFF_SOURCES",

@@ -18,7 +18,6 @@ from psdbound.errors import InputError
 __all__ = [
     "CHICAGO",
     "MAP_STATIONS",
-    "THESIS_CHICAGO_2020_HZ",
     "Station",
     "great_circle_deg",
     "nearest_station",
@@ -61,9 +60,6 @@ MAP_STATIONS: tuple[Station, ...] = (
 #: The thesis's rooftop site in Chicago (section 4.1).
 CHICAGO = Station("CHICAGO", 41.84, -87.63)
 
-#: The thesis's Chicago 2020 cutoffs (section 4.3.3): mean, min and max over
-#: about 350 satellite-days, Hz; the maximum is its recommended cutoff (eq. 4.2).
-THESIS_CHICAGO_2020_HZ = {"mean": 6.73e-4, "min": 5.03e-4, "max": 9.55e-4}
 
 
 def validate_station(lat_deg: float, lon_deg: float) -> tuple[float, float]:

@@ -52,6 +52,7 @@ from psdbound.common.options import (
     check_fields,
     option,
     show_value,
+    spec_of,
 )
 from psdbound.common.tomlfile import read_toml
 from psdbound.errors import InputError
@@ -73,6 +74,7 @@ __all__ = [
     "Label",
     "OutputConfig",
     "default_label",
+    "section_spec",
 ]
 
 #: Cutoff frequencies accepted before the data are read, Hz (the Nyquist frequency of
@@ -203,6 +205,26 @@ _CUTOFF_SPECS: dict[str, Spec] = {
     "mp_sigma_m": Number(lo=0.0, hi=1.0, lo_open=True, unit="m"),
     "margin_db": Number(lo=0.0, hi=200.0, unit="dB"),
 }
+
+def section_spec(section: str, name: str) -> Spec | None:
+    """Return the schema entry of an option: ``[section] name`` of a fit (None: no such option).
+
+    Parameters
+    ----------
+    section : str
+        A section of :class:`FitConfig` (``"filter"``).
+    name : str
+        An option of it (``"order"``).
+
+    Returns
+    -------
+    Spec or None
+    """
+    if section == "cutoff":
+        return _CUTOFF_SPECS.get(name)
+    cls = _SECTIONS.get(section)
+    return None if cls is None else spec_of(cls, name)
+
 
 #: How an option is named in messages: ``label(section, name)``.
 Label = Callable[[str, str], str]

@@ -94,15 +94,13 @@ low frequencies
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-import numpy as np
-
 from psdbound.common.options import Choice, Number, check_fields, option
 from psdbound.results.headline import check_line
-from psdbound.results.jsonfile import to_jsonable
 from psdbound.spectra.names import POLICIES
 
 if TYPE_CHECKING:  # the products, for type checkers: this module stays light to import
@@ -264,6 +262,8 @@ def verdict_facts(*, bounded: BoundResults, windowed: Windowed, screened: Screen
     -------
     VerdictFacts
     """
+    from psdbound.results.jsonfile import to_jsonable
+
     b, w, sc = bounded.bound, windowed.windows, screened.screening
     details = isolated.details or {}
     low = bounded.low_frequency
@@ -411,7 +411,7 @@ def _physical(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
     lim = f.multipath_limit_m
     if not lim:
         return []
-    sigma = float(np.hypot(f.sigma_gm_m, f.sigma_wn_m))
+    sigma = math.hypot(f.sigma_gm_m, f.sigma_wn_m)
     return [_check("physical limit", sigma <= lim, f"sigma {100 * sigma:.2f} cm at zenith",
                    f"<= {100 * lim:.2f} cm carrier-multipath limit",
                    f"physical limit: the bound's standard deviation {100 * sigma:.2f} cm exceeds "

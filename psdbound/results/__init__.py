@@ -10,17 +10,22 @@ and write through it. The JSON Schema of the document,
 
 from __future__ import annotations
 
-from psdbound.results.jsonfile import json_text, to_jsonable, write_json
-from psdbound.results.jsonschema import SCHEMA_FILE, load_schema, schema_errors, validate
-from psdbound.results.schema import (
-    NUMBER_FIELDS,
-    REQUIRED_FIELDS,
-    SCHEMA_VERSION,
-    get_field,
-    number_problems,
-    read_document,
-    write_document,
-)
+from typing import TYPE_CHECKING
+
+from psdbound.common.lazy import lazy_exports
+
+if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
+    from psdbound.results.jsonfile import json_text, to_jsonable, write_json
+    from psdbound.results.jsonschema import SCHEMA_FILE, load_schema, schema_errors, validate
+    from psdbound.results.schema import (
+        NUMBER_FIELDS,
+        REQUIRED_FIELDS,
+        SCHEMA_VERSION,
+        get_field,
+        number_problems,
+        read_document,
+        write_document,
+    )
 
 __all__ = [
     "NUMBER_FIELDS",
@@ -38,3 +43,16 @@ __all__ = [
     "write_document",
     "write_json",
 ]
+
+#: Where each public name lives (imported on first use: the headline module, which the
+#: light verdict module uses, must not pull NumPy in through this package).
+_EXPORTS = {
+    **{n: ("psdbound.results.jsonfile", n) for n in ("json_text", "to_jsonable", "write_json")},
+    **{n: ("psdbound.results.jsonschema", n)
+       for n in ("SCHEMA_FILE", "load_schema", "schema_errors", "validate")},
+    **{n: ("psdbound.results.schema", n)
+       for n in ("NUMBER_FIELDS", "REQUIRED_FIELDS", "SCHEMA_VERSION", "get_field",
+                 "number_problems", "read_document", "write_document")},
+}  # fmt: skip
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

@@ -7,7 +7,7 @@ import re
 
 import pytest
 
-from psdbound.cli.fit import FLAGS, help_text
+from psdbound.cli.fit import OPTIONS, help_text
 from psdbound.cli.main import build_parser
 from psdbound.pipeline import FitConfig
 
@@ -42,11 +42,12 @@ def test_fit_help_defaults_are_the_library_defaults():
     """The default printed by fit --help comes from FitConfig (one source of truth)."""
     parser = build_parser()
     sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
-    fit = {a.option_strings[0]: a for a in sub.choices["fit"]._actions if a.option_strings}
+    fit = {a.option_strings[-1]: a for a in sub.choices["fit"]._actions if a.option_strings}
     cfg = FitConfig()
     checked = 0
-    for (section, name), flag in FLAGS.items():
-        if flag not in fit or list(FLAGS.values()).count(flag) != 1:
+    for opt in OPTIONS:
+        flag, section, name = opt.flag, opt.section, opt.name
+        if flag not in fit or opt.sets:
             continue
         value = getattr(getattr(cfg, section), name)
         if value is None or isinstance(value, bool) or value == ():
@@ -63,3 +64,25 @@ def test_fit_help_defaults_are_the_library_defaults():
             assert stated == str(value), flag
         checked += 1
     assert checked >= 25
+
+
+def test_fit_options_are_generated_from_the_schema():
+    # one table of flags (each written once); choices and number types come from the schema
+    from psdbound.common.options import Choice, Number
+    from psdbound.pipeline.config import section_spec
+
+    flags = [f for o in OPTIONS for f in o.flags]
+    assert len(flags) == len(set(flags))
+    parser = build_parser()
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    fit = {a.option_strings[-1]: a for a in sub.choices["fit"]._actions if a.option_strings}
+    for opt in OPTIONS:
+        spec = section_spec(opt.section, opt.name)
+        assert spec is not None, (opt.section, opt.name)
+        action = fit.get(opt.flag)
+        if action is None or opt.convert is not None or "type" in opt.kwargs:
+            continue
+        if isinstance(spec, Choice) and "choices" not in opt.kwargs:
+            assert tuple(action.choices) == spec.choices, opt.flag
+        if isinstance(spec, Number):
+            assert action.type is (int if spec.integer else float), opt.flag

@@ -29,7 +29,10 @@ def files(tmp_path, monkeypatch):
 
 
 def _run(capsys, *args):
-    code = main([str(a) for a in args])
+    try:
+        code = main([str(a) for a in args])
+    except SystemExit as exc:  # a usage error found by the parser itself (a choice)
+        code = exc.code
     err = capsys.readouterr().err.strip()
     return code, err
 
@@ -52,7 +55,7 @@ def _run(capsys, *args):
         (["--cutoff-hz", "nan"], "--cutoff-hz must be a number from 1e-06 to 10 Hz, got nan"),
         (["--signals", "L1C"], "--signals must be two phase codes"),
         (["--signals", "L1C,C1C"], "--signals item 2 must be a phase code"),
-        (["--system", "X"], "--system must be one of 'G', 'E'"),
+        (["--system", "X"], "argument --system: invalid choice: 'X' (choose from 'G', 'E'"),
         (["--level", "0.9"], "--level 0.9 is only used with --target upper"),
         (["--filter", "fir", "--filter-order", "6"],
          "--filter-order 6 is not used by --filter fir"),
