@@ -116,7 +116,6 @@ LARGE_FUNCTIONS: dict[str, str] = {
     "psdbound.ionosphere.worldmap.compute_world_map": "not split yet",
     "psdbound.isolation.code._choose_phases": "not split yet",
     "psdbound.isolation.code.isolate_code_multipath": "not split yet",
-    "psdbound.isolation.dual_antenna.isolate_dual_antenna": "not split yet",
     "psdbound.kalman.bound.from_result": "not split yet",
     "psdbound.kalman.covariance.analyze_covariance": "not split yet",
     "psdbound.kalman.process.__post_init__": "not split yet",
