@@ -114,8 +114,6 @@ LARGE_FUNCTIONS: dict[str, str] = {
     "psdbound.ionosphere.residual.residual_cutoffs": "not split yet",
     "psdbound.ionosphere.slant.simulate_slant_delay": "not split yet",
     "psdbound.ionosphere.worldmap.compute_world_map": "not split yet",
-    "psdbound.isolation.code._choose_phases": "not split yet",
-    "psdbound.isolation.code.isolate_code_multipath": "not split yet",
     "psdbound.kalman.bound.from_result": "not split yet",
     "psdbound.kalman.covariance.analyze_covariance": "not split yet",
     "psdbound.kalman.process.__post_init__": "not split yet",
