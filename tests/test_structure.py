@@ -119,7 +119,6 @@ LARGE_FUNCTIONS: dict[str, str] = {
     "psdbound.kalman.process.__post_init__": "not split yet",
     "psdbound.periodogram._ls_gridfft.lombscargle_gridfft": "not split yet",
     "psdbound.reports.render._summary_pages": "not split yet",
-    "psdbound.validation.validate.validate_cutoff": "not split yet",
 }
 
 
