@@ -114,7 +114,6 @@ LARGE_FUNCTIONS: dict[str, str] = {
     "psdbound.ionosphere.residual.residual_cutoffs": "not split yet",
     "psdbound.ionosphere.slant.simulate_slant_delay": "not split yet",
     "psdbound.ionosphere.worldmap.compute_world_map": "not split yet",
-    "psdbound.reports.render._summary_pages": "not split yet",
 }
 
 
