@@ -114,18 +114,6 @@ LARGE_FUNCTIONS: dict[str, str] = {
     "psdbound.ionosphere.residual.residual_cutoffs": "not split yet",
     "psdbound.ionosphere.slant.simulate_slant_delay": "not split yet",
     "psdbound.ionosphere.worldmap.compute_world_map": "not split yet",
-    "psdbound.isolation.code._choose_phases": "not split yet",
-    "psdbound.isolation.code.isolate_code_multipath": "not split yet",
-    "psdbound.isolation.dual_antenna.isolate_dual_antenna": "not split yet",
-    "psdbound.kalman.bound.from_result": "not split yet",
-    "psdbound.kalman.covariance.analyze_covariance": "not split yet",
-    "psdbound.kalman.process.__post_init__": "not split yet",
-    "psdbound.periodogram._ls_gridfft.lombscargle_gridfft": "not split yet",
-    "psdbound.reports.render._summary_pages": "not split yet",
-    "psdbound.simulate.simulator.simulate": "not split yet",
-    "psdbound.spectra.bound.fit_bound": "not split yet",
-    "psdbound.stationarity.windowing.window_arc": "not split yet",
-    "psdbound.validation.validate.validate_cutoff": "not split yet",
 }
 
 

@@ -19,6 +19,8 @@ from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -66,28 +68,41 @@ def _choose_phases(
     obs: Observations, system: str, codes: tuple[str, ...], phases: Sequence[str] | None
 ) -> tuple[str, str]:
     """Return the carrier pair as stored in the file, ``Phi_i`` on the first code's band."""
-    bands = [_v3(c)[1] for c in codes]
     if phases is None:
-        first = _phase_on_band(obs, system, _v3(codes[0]))
-        if first is None:
-            raise _no_phase(obs, system, codes[0])
-        if len(codes) == 2:
-            second = _phase_on_band(obs, system, _v3(codes[1]))
-            if second is None:
-                raise _no_phase(obs, system, codes[1])
-            return first, second
-        file_phases = [c for c in obs.codes(system) if c.startswith("L")]
-        by_v3 = {_v3(c): c for c in file_phases}
-        others = [by_v3[s] for s in DEFAULT_SIGNALS.get(system, ()) if s in by_v3]
-        others = [c for c in [*others, *file_phases] if _v3(c)[1] != bands[0]]
-        if not others:
-            raise InputError(
-                f"no carrier phase on a band other than {bands[0]} "
-                f"({SYSTEM_NAMES.get(system, system)}; phases: {' '.join(file_phases) or 'none'})"
-                f": the combination for {codes[0]} needs a second carrier",
-                path=obs.path,
-            )
-        return first, others[0]
+        return _default_phases(obs, system, codes)
+    return _given_phases(obs, system, codes, phases)
+
+
+def _default_phases(obs: Observations, system: str, codes: tuple[str, ...]) -> tuple[str, str]:
+    """Return the file's carrier pair for the codes (see ``phases`` of the caller)."""
+    bands = [_v3(c)[1] for c in codes]
+    first = _phase_on_band(obs, system, _v3(codes[0]))
+    if first is None:
+        raise _no_phase(obs, system, codes[0])
+    if len(codes) == 2:
+        second = _phase_on_band(obs, system, _v3(codes[1]))
+        if second is None:
+            raise _no_phase(obs, system, codes[1])
+        return first, second
+    file_phases = [c for c in obs.codes(system) if c.startswith("L")]
+    by_v3 = {_v3(c): c for c in file_phases}
+    others = [by_v3[s] for s in DEFAULT_SIGNALS.get(system, ()) if s in by_v3]
+    others = [c for c in [*others, *file_phases] if _v3(c)[1] != bands[0]]
+    if not others:
+        raise InputError(
+            f"no carrier phase on a band other than {bands[0]} "
+            f"({SYSTEM_NAMES.get(system, system)}; phases: {' '.join(file_phases) or 'none'})"
+            f": the combination for {codes[0]} needs a second carrier",
+            path=obs.path,
+        )
+    return first, others[0]
+
+
+def _given_phases(
+    obs: Observations, system: str, codes: tuple[str, ...], phases: Sequence[str]
+) -> tuple[str, str]:
+    """Check the user's carrier pair against the codes; return it as stored in the file."""
+    bands = [_v3(c)[1] for c in codes]
     if len(phases) != 2:
         raise InputError(f"expected a pair of carrier phases, got {tuple(phases)}", path=obs.path)
     pair = tuple(obs.resolve_code(system, p) for p in phases)
@@ -220,6 +235,64 @@ def isolate_code_multipath(
     >>> 0.1 < min(rms_by_satellite(mp).values()) < 1.0   # metres
     True
     """
+    system, fcodes = _check_codes(obs, codes, system)
+    pi, pj = _choose_phases(obs, system, fcodes, phases)
+    arcs = find_arcs(obs, (pi, pj), system=system, orbit=orbit, receiver_xyz_m=receiver_xyz_m,
+                     min_length_s=min_length_s, gap_factor=gap_factor,
+                     slip_threshold_m=slip_threshold_m, elevation_mask_deg=elevation_mask_deg,
+                     satellites=satellites)  # fmt: skip
+    if len(arcs) == 0:
+        raise NoDataError(arcs.empty_reason(), path=arcs.path)
+    lv = _Levelling(fcodes, min_length_s, outlier_m, min_jump_m, notes=list(arcs.warnings))
+    channels = arcs.glonass_channels or dict(obs.header.glonass_channels)
+    for arc in arcs:
+        if arc.sat not in lv.coef:
+            fi, fj = (carrier_frequency_hz(arc.sat, _v3(p), channels) for p in (pi, pj))
+            lv.coef[arc.sat] = _coefficients(fi, fj, len(fcodes))
+        lv.level(obs, arc)
+    if not lv.out:
+        raise NoDataError(
+            f"no arc of {SYSTEM_NAMES.get(system, system)} {' '.join(fcodes)} lasts "
+            f"{min_length_s / 60:g} min once the {lv.missing} epochs without the pseudorange are "
+            f"dropped ({lv.short} arcs); choose another code",
+            path=obs.path,
+        )
+    meta = {
+        "source": obs.path,
+        "system": system,
+        "combination": _ONE if len(fcodes) == 1 else _IF,
+        "codes": fcodes,
+        "phases": (pi, pj),
+        "coefficients": _coefficient_table(lv.coef, len(fcodes)),
+        "arcs_in": len(arcs),
+        "arcs_dropped_code_missing": lv.short,
+        "code_missing_samples": lv.missing,
+        "arc_breaks": dict(arcs.breaks),
+        "stretches_dropped_short": int(sum(arcs.dropped.values())),
+        "elevation_mask_deg": arcs.elevation_mask_deg,
+        "outlier_threshold_m": float(outlier_m),
+        "outlier_samples_gt_m": dict(sorted(lv.outliers.items())),
+        "level_shift_min_m": float(min_jump_m),
+        "level_shift_breaks": dict(sorted(lv.shifts.items())),
+        "level_shift_dropped_samples": int(lv.shift_dropped),
+        "has_elevation": all(a.elevation_deg is not None for a in arcs),
+        "warnings": tuple(lv.notes),
+    }
+    return MultipathSeries.from_arcs(
+        "CODE" if len(fcodes) == 1 else "CODE-IF",
+        lv.out,
+        signals=(*fcodes, pi, pj),
+        scaling=1.0,
+        interval_s=arcs.interval_s,
+        cutoff_hz=None,
+        meta=meta,
+    )
+
+
+def _check_codes(
+    obs: Observations, codes: str | Sequence[str], system: str | None
+) -> tuple[str, tuple[str, ...]]:
+    """Return the system and the pseudorange codes as stored in the file, checked."""
     codes = (codes,) if isinstance(codes, str) else tuple(codes)
     if len(codes) not in (1, 2):
         raise InputError(f"expected one or two pseudorange codes, got {codes}", path=obs.path)
@@ -237,95 +310,80 @@ def isolate_code_multipath(
             "combination needs two bands",
             path=obs.path,
         )
-    pi, pj = _choose_phases(obs, system, fcodes, phases)
-    arcs = find_arcs(obs, (pi, pj), system=system, orbit=orbit, receiver_xyz_m=receiver_xyz_m,
-                     min_length_s=min_length_s, gap_factor=gap_factor,
-                     slip_threshold_m=slip_threshold_m, elevation_mask_deg=elevation_mask_deg,
-                     satellites=satellites)  # fmt: skip
-    if len(arcs) == 0:
-        raise NoDataError(arcs.empty_reason(), path=arcs.path)
-    channels = arcs.glonass_channels or dict(obs.header.glonass_channels)
-    coef: dict[str, tuple[np.ndarray, np.ndarray]] = {}
-    out, missing, short, outliers, notes = [], 0, 0, Counter(), list(arcs.warnings)
-    shifts: Counter = Counter()
-    shift_dropped = 0
-    for arc in arcs:
-        if arc.sat not in coef:
-            fi, fj = (carrier_frequency_hz(arc.sat, _v3(p), channels) for p in (pi, pj))
-            coef[arc.sat] = _coefficients(fi, fj, len(fcodes))
-        c_code, c_phase = coef[arc.sat]
-        p = np.column_stack([obs.get(arc.sat, c)[arc.epoch_index] for c in fcodes])
+    return system, fcodes
+
+
+#: Frames between :func:`_Levelling.level`'s warnings and the caller of
+#: :func:`isolate_code_multipath` (where the warnings point, as before the split).
+_WARN_STACKLEVEL = 3
+
+
+@dataclass
+class _Levelling:
+    """The levelled arcs of :func:`isolate_code_multipath` and what was dropped, split, warned."""
+
+    fcodes: tuple[str, ...]
+    min_length_s: float
+    outlier_m: float
+    min_jump_m: float
+    notes: list[str]
+    coef: dict[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
+    out: list[dict[str, Any]] = field(default_factory=list)
+    missing: int = 0
+    short: int = 0
+    outliers: Counter = field(default_factory=Counter)
+    shifts: Counter = field(default_factory=Counter)
+    shift_dropped: int = 0
+
+    def level(self, obs: Observations, arc: Any) -> None:
+        """Level one phase arc: drop epochs without the code, split at level shifts."""
+        c_code, c_phase = self.coef[arc.sat]
+        p = np.column_stack([obs.get(arc.sat, c)[arc.epoch_index] for c in self.fcodes])
         ok = np.all(np.isfinite(p) & (p != 0.0), axis=1)
-        missing += int(ok.size - ok.sum())
+        self.missing += int(ok.size - ok.sum())
         t = arc.t_gps_s[ok]
-        if t.size < 2 or t[-1] - t[0] < min_length_s:
-            short += 1
-            continue
+        if t.size < 2 or t[-1] - t[0] < self.min_length_s:
+            self.short += 1
+            return
         raw = p[ok] @ c_code + arc.phase_m[ok] @ c_phase
         el_all = np.full(t.size, np.nan) if arc.elevation_deg is None else arc.elevation_deg[ok]
-        cuts = level_shifts(raw, min_jump_m=min_jump_m)
+        cuts = level_shifts(raw, min_jump_m=self.min_jump_m)
         if cuts.size:
-            shifts[arc.sat] += int(cuts.size)
-            notes.append(warn(
-                f"{arc.sat} ({fcodes[0]}, {t[0]:.0f}-{t[-1]:.0f} GPS s): the code-minus-carrier "
-                f"level steps by {_steps_text(raw, cuts)} m "
+            self.shifts[arc.sat] += int(cuts.size)
+            self.notes.append(warn(
+                f"{arc.sat} ({self.fcodes[0]}, {t[0]:.0f}-{t[-1]:.0f} GPS s): the "
+                f"code-minus-carrier level steps by {_steps_text(raw, cuts)} m "
                 "(a slip the geometry-free test cannot see, a code jump, or a reacquisition at "
                 "the arc's edge): the arc is split "
-                "there, each piece levelled on its own", path=obs.path))  # fmt: skip
+                "there, each piece levelled on its own", path=obs.path,
+                stacklevel=_WARN_STACKLEVEL))  # fmt: skip
         for a, b in zip(np.r_[0, cuts], np.r_[cuts, t.size], strict=True):
-            if b - a < 2 or t[b - 1] - t[a] < min_length_s:
-                shift_dropped += b - a
+            if b - a < 2 or t[b - 1] - t[a] < self.min_length_s:
+                self.shift_dropped += b - a
                 continue
-            mp = raw[a:b] - raw[a:b].mean()
-            bad = np.abs(mp) > outlier_m
-            if bad.any():
-                outliers[arc.sat] += int(bad.sum())
-                text = (
-                    f"{arc.sat} arc {len(out)} ({fcodes[0]}, {t[a]:.0f}-{t[b - 1]:.0f} GPS s): "
-                    f"{int(bad.sum())} code-multipath samples beyond {outlier_m:g} m after "
-                    f"levelling (largest {np.abs(mp).max():.1f} m): not multipath but a code "
-                    "outlier or an undetected slip; kept, counted in meta['outlier_samples_gt_m']"
-                )
-                notes.append(warn(text, path=obs.path))
-            out.append({"sats": arc.sat, "t_gps_s": t[a:b], "value_m": mp,
-                        "elevation_deg": el_all[a:b]})  # fmt: skip
-    if not out:
-        raise NoDataError(
-            f"no arc of {SYSTEM_NAMES.get(system, system)} {' '.join(fcodes)} lasts "
-            f"{min_length_s / 60:g} min once the {missing} epochs without the pseudorange are "
-            f"dropped ({short} arcs); choose another code",
-            path=obs.path,
-        )
-    meta = {
-        "source": obs.path,
-        "system": system,
-        "combination": _ONE if len(fcodes) == 1 else _IF,
-        "codes": fcodes,
-        "phases": (pi, pj),
-        "coefficients": _coefficient_table(coef, len(fcodes)),
-        "arcs_in": len(arcs),
-        "arcs_dropped_code_missing": short,
-        "code_missing_samples": missing,
-        "arc_breaks": dict(arcs.breaks),
-        "stretches_dropped_short": int(sum(arcs.dropped.values())),
-        "elevation_mask_deg": arcs.elevation_mask_deg,
-        "outlier_threshold_m": float(outlier_m),
-        "outlier_samples_gt_m": dict(sorted(outliers.items())),
-        "level_shift_min_m": float(min_jump_m),
-        "level_shift_breaks": dict(sorted(shifts.items())),
-        "level_shift_dropped_samples": int(shift_dropped),
-        "has_elevation": all(a.elevation_deg is not None for a in arcs),
-        "warnings": tuple(notes),
-    }
-    return MultipathSeries.from_arcs(
-        "CODE" if len(fcodes) == 1 else "CODE-IF",
-        out,
-        signals=(*fcodes, pi, pj),
-        scaling=1.0,
-        interval_s=arcs.interval_s,
-        cutoff_hz=None,
-        meta=meta,
-    )
+            self._add_piece(obs, arc.sat, t[a:b], raw[a:b], el_all[a:b])
+
+    def _add_piece(
+        self,
+        obs: Observations,
+        sat: str,
+        t: NDArray[np.float64],
+        raw: NDArray[np.float64],
+        el: NDArray[np.float64],
+    ) -> None:
+        """Remove a piece's mean (m), count and warn about its outliers, keep it."""
+        mp = raw - raw.mean()
+        bad = np.abs(mp) > self.outlier_m
+        if bad.any():
+            self.outliers[sat] += int(bad.sum())
+            text = (
+                f"{sat} arc {len(self.out)} ({self.fcodes[0]}, {t[0]:.0f}-{t[-1]:.0f} GPS s): "
+                f"{int(bad.sum())} code-multipath samples beyond {self.outlier_m:g} m after "
+                f"levelling (largest {np.abs(mp).max():.1f} m): not multipath but a code "
+                "outlier or an undetected slip; kept, counted in meta['outlier_samples_gt_m']"
+            )
+            self.notes.append(warn(text, path=obs.path, stacklevel=_WARN_STACKLEVEL + 1))
+        self.out.append({"sats": sat, "t_gps_s": t, "value_m": mp, "elevation_deg": el})
 
 
 _TERMS = {1: ("P_i", "Phi_i", "Phi_j"), 2: ("P_i", "P_j", "Phi_i", "Phi_j")}

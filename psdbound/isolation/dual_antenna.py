@@ -48,6 +48,7 @@ the dual-frequency method is preferred. ``meta["note"]`` says so.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -216,6 +217,102 @@ def isolate_dual_antenna(
     False
     """
     files = f"{obs1.path} and {obs2.path}"
+    inp = _check_inputs(obs1, obs2, files, receiver1_xyz_m, receiver2_xyz_m, system=system,
+                        signal=signal, slip_signal=slip_signal, max_baseline_m=max_baseline_m,
+                        baseline=baseline, baseline_tolerance_m=baseline_tolerance_m)
+    i1, i2 = match_epochs(obs1, obs2, files)
+    sats = common_satellites(obs1, obs2, system, inp.code1, inp.code2, i1, i2, files)
+
+    # geometry at the nominal epochs: receiver clocks and the find_arcs pre-filter
+    trk1 = _track(obs1, inp.pos1, inp.code1, inp.slip1, orbit, sats, system=system,
+                  min_length_s=min_length_s, elevation_mask_deg=elevation_mask_deg)
+    trk2 = _track(obs2, inp.pos2, inp.code2, inp.slip2, orbit, sats, system=system,
+                  min_length_s=min_length_s, elevation_mask_deg=elevation_mask_deg)
+    common = _Common.of(obs1, obs2, i1, i2, trk1, trk2, inp)
+
+    sd = _single_differences(trk1.arcs, trk2.arcs, common, orbit, min_length_s)
+    if not sd.arcs:
+        raise NoDataError(
+            f"no single-difference arc of at least {min_length_s:g} s above "
+            f"{elevation_mask_deg:g} deg in {files} ({len(trk1.arcs)} and "
+            f"{len(trk2.arcs)} tracking arcs, {sd.n_short} common stretches too short)"
+        )
+    sd.arcs.sort(key=lambda a: (int(a.ci[0]), a.sat))
+
+    lam = wavelength_m(sats[0], RINEX2_TO_RINEX3.get(inp.code1, inp.code1),
+                       obs1.header.glonass_channels)
+    dd = _double_differences(sd.arcs, common.t_s, DD_JUMP_FRACTION * lam, min_length_s)
+    if not dd.pieces:
+        raise NoDataError(
+            f"no double-difference arc of at least {min_length_s:g} s in {files} "
+            f"({len(sd.arcs)} single-difference arcs, {dd.n_short} double-difference "
+            "arcs too short)"
+        )
+    choice = _choose_baseline(dd.pieces, inp, baseline, baseline_tolerance_m)
+    n_common = int(i1.size)
+    interval_s = float(np.median(np.diff(common.t_s))) if n_common > 1 else obs1.interval_s
+    meta: dict[str, Any] = {
+        "files": (obs1.path, obs2.path),
+        "markers": (obs1.header.marker_name, obs2.header.marker_name),
+        "baseline_m": choice.baseline_m,
+        "positions_m": (inp.pos1.tolist(), choice.pos2.tolist()),
+        "baseline_estimate": choice.info,
+        "position_sources": (inp.src1, choice.src2),
+        "codes": (inp.code1, inp.code2),
+        "slip_codes": (inp.slip1, inp.slip2),
+        "slip_detection": _slip_detection_text(slip_signal),
+        "reference_periods": _reference_meta(dd.periods, common.t_s),
+        "receiver_clock": _clock_meta(orbit, trk1, trk2, i1, i2),
+        **_count_meta(n_common, trk1, trk2, sd, dd, len(choice.arcs)),
+        "min_length_s": float(min_length_s),
+        "elevation_mask_deg": float(elevation_mask_deg),
+        "max_baseline_m": float(max_baseline_m),
+        "note": _NOTE,
+    }
+    return MultipathSeries.from_arcs(
+        "DA",
+        choice.arcs,
+        signals=(signal,),
+        scaling=DA_SCALING,
+        interval_s=interval_s,
+        cutoff_hz=None,
+        meta=meta,
+    )
+
+
+# --------------------------------------------------------------------------- checks
+
+
+@dataclass(frozen=True)
+class _Inputs:
+    """The checked antenna positions (ECEF, m), their sources and the resolved codes."""
+
+    pos1: NDArray[np.float64]
+    pos2: NDArray[np.float64]
+    src1: str
+    src2: str
+    baseline_m: float
+    code1: str
+    code2: str
+    slip1: str | None
+    slip2: str | None
+
+
+def _check_inputs(
+    obs1: Observations,
+    obs2: Observations,
+    files: str,
+    receiver1_xyz_m: ArrayLike | None,
+    receiver2_xyz_m: ArrayLike | None,
+    *,
+    system: str,
+    signal: str,
+    slip_signal: str | None,
+    max_baseline_m: float,
+    baseline: str,
+    baseline_tolerance_m: float,
+) -> _Inputs:
+    """Check the options, the two files and the baseline; resolve positions and codes."""
     if baseline not in BASELINE_MODES:
         raise InputError(f"baseline must be one of {', '.join(BASELINE_MODES)}, got {baseline!r}")
     if not baseline_tolerance_m >= 0.0:
@@ -234,6 +331,19 @@ def isolate_dual_antenna(
             f"not a short baseline: {files} are {baseline_m / 1e3:.3f} km apart "
             f"(max_baseline_m = {max_baseline_m:g} m)"
         )
+    code1, code2, slip1, slip2 = _resolve_codes(obs1, obs2, files, system, signal, slip_signal)
+    return _Inputs(pos1, pos2, src1, src2, baseline_m, code1, code2, slip1, slip2)
+
+
+def _resolve_codes(
+    obs1: Observations,
+    obs2: Observations,
+    files: str,
+    system: str,
+    signal: str,
+    slip_signal: str | None,
+) -> tuple[str, str, str | None, str | None]:
+    """Return both files' phase codes and slip-test codes (None without a slip signal)."""
     for obs in (obs1, obs2):
         if system not in obs.blocks:
             raise InputError(
@@ -246,115 +356,229 @@ def isolate_dual_antenna(
     slip1 = slip2 = None
     if slip_signal is not None:
         slip1, slip2 = resolve_pair(obs1, obs2, system, slip_signal, "slip_signal")
-    i1, i2 = match_epochs(obs1, obs2, files)
-    t1c, t2c = obs1.t_gps_s[i1], obs2.t_gps_s[i2]
-    n_common = int(i1.size)
+    return code1, code2, slip1, slip2
 
-    sats = common_satellites(obs1, obs2, system, code1, code2, i1, i2, files)
 
-    # geometry at the nominal epochs: receiver clocks and the find_arcs pre-filter
-    clocks = []
-    arcsets: list[ArcSet] = []
-    for obs, pos, code, slip in ((obs1, pos1, code1, slip1), (obs2, pos2, code2, slip2)):
-        rho, tau, el = geometry_all(orbit, sats, obs.t_gps_s, pos)
-        clocks.append(estimate_receiver_clock(obs, orbit, sats, code, rho, tau))
-        visible = [
-            s
-            for k, s in enumerate(sats)
-            if any_above(obs, s, code, slip, el[:, k], elevation_mask_deg)
-        ]
-        pair = (code, code if slip is None else slip)
-        arcsets.append(
-            find_arcs(
-                obs,
-                pair,
-                system=system,
-                orbit=orbit,
-                receiver_xyz_m=pos,
-                min_length_s=min_length_s,
-                elevation_mask_deg=elevation_mask_deg,
-                satellites=visible,
-            )
-        )
-    (dt1, code_c1, n_interp1), (dt2, code_c2, n_interp2) = clocks
+# --------------------------------------------------------------------------- tracking
 
-    # single differences
-    where1 = np.full(obs1.t_gps_s.size, -1, dtype=np.intp)
-    where1[i1] = np.arange(n_common)
-    where2 = np.full(obs2.t_gps_s.size, -1, dtype=np.intp)
-    where2[i2] = np.arange(n_common)
-    t_rx1 = t1c - dt1[i1]
-    t_rx2 = t2c - dt2[i2]
-    sd_arcs: list[SDArc] = []
-    n_sd_short = 0
+
+@dataclass(frozen=True)
+class _Tracking:
+    """One receiver's clock estimate (s, per epoch of its file) and tracking arcs."""
+
+    dt_s: NDArray[np.float64]
+    clock_code: str
+    n_interpolated: int
+    arcs: ArcSet
+
+
+def _track(
+    obs: Observations,
+    pos: NDArray[np.float64],
+    code: str,
+    slip: str | None,
+    orbit: OrbitSource,
+    sats: list[str],
+    *,
+    system: str,
+    min_length_s: float,
+    elevation_mask_deg: float,
+) -> _Tracking:
+    """Estimate one receiver's clock and find its tracking arcs of the visible satellites."""
+    rho, tau, el = geometry_all(orbit, sats, obs.t_gps_s, pos)
+    dt, code_c, n_interp = estimate_receiver_clock(obs, orbit, sats, code, rho, tau)
+    visible = [
+        s
+        for k, s in enumerate(sats)
+        if any_above(obs, s, code, slip, el[:, k], elevation_mask_deg)
+    ]
+    pair = (code, code if slip is None else slip)
+    arcs = find_arcs(
+        obs,
+        pair,
+        system=system,
+        orbit=orbit,
+        receiver_xyz_m=pos,
+        min_length_s=min_length_s,
+        elevation_mask_deg=elevation_mask_deg,
+        satellites=visible,
+    )
+    return _Tracking(dt, code_c, n_interp, arcs)
+
+
+@dataclass(frozen=True)
+class _Common:
+    """Both receivers on the common epochs: times and clock-corrected receive times (GPS s)."""
+
+    t_s: NDArray[np.float64]
+    where1: NDArray[np.intp]
+    where2: NDArray[np.intp]
+    t_rx1: NDArray[np.float64]
+    t_rx2: NDArray[np.float64]
+    pos1: NDArray[np.float64]
+    pos2: NDArray[np.float64]
+
+    @classmethod
+    def of(
+        cls,
+        obs1: Observations,
+        obs2: Observations,
+        i1: NDArray[np.intp],
+        i2: NDArray[np.intp],
+        trk1: _Tracking,
+        trk2: _Tracking,
+        inp: _Inputs,
+    ) -> _Common:
+        """Map each file's epochs to the common ones (-1: not common)."""
+        n_common = int(i1.size)
+        where1 = np.full(obs1.t_gps_s.size, -1, dtype=np.intp)
+        where1[i1] = np.arange(n_common)
+        where2 = np.full(obs2.t_gps_s.size, -1, dtype=np.intp)
+        where2[i2] = np.arange(n_common)
+        t1c, t2c = obs1.t_gps_s[i1], obs2.t_gps_s[i2]
+        t_rx1 = t1c - trk1.dt_s[i1]
+        t_rx2 = t2c - trk2.dt_s[i2]
+        return cls(t1c, where1, where2, t_rx1, t_rx2, inp.pos1, inp.pos2)
+
+    def too_short(self, ci: NDArray[np.intp], min_length_s: float) -> bool:
+        """Whether common epochs ``ci`` are fewer than two or span less than ``min_length_s``."""
+        return bool(ci.size < 2 or self.t_s[ci[-1]] - self.t_s[ci[0]] < min_length_s)
+
+
+# --------------------------------------------------------------------------- differences
+
+
+@dataclass
+class _SingleDifferences:
+    """Single-difference arcs and the count of common stretches too short."""
+
+    arcs: list[SDArc]
+    n_short: int
+
+
+def _single_differences(
+    arcs1: ArcSet, arcs2: ArcSet, common: _Common, orbit: OrbitSource, min_length_s: float
+) -> _SingleDifferences:
+    """Difference the two receivers' arcs of each satellite on their common epochs."""
+    out = _SingleDifferences([], 0)
     by_sat2: dict[str, list] = {}
-    for a in arcsets[1]:
+    for a in arcs2:
         by_sat2.setdefault(a.sat, []).append(a)
-    for a1 in arcsets[0]:
-        c1 = where1[a1.epoch_index]
+    for a1 in arcs1:
+        c1 = common.where1[a1.epoch_index]
         k1 = np.flatnonzero(c1 >= 0)
         for a2 in by_sat2.get(a1.sat, []):
-            c2 = where2[a2.epoch_index]
-            k2 = np.flatnonzero(c2 >= 0)
-            ci, j1, j2 = np.intersect1d(c1[k1], c2[k2], assume_unique=True, return_indices=True)
-            j1, j2 = k1[j1], k2[j2]
-            if ci.size < 2 or t1c[ci[-1]] - t1c[ci[0]] < min_length_s:
-                n_sd_short += int(ci.size > 0)
-                continue
-            rho1, _, sv = geometric_range_m(orbit, a1.sat, t_rx1[ci], pos1)
-            rho2 = geometric_range_m(orbit, a1.sat, t_rx2[ci], pos2)[0]
-            sd = a1.phase_m[j1, 0] - a2.phase_m[j2, 0] - (rho1 - rho2)
-            el = np.minimum(a1.elevation_deg[j1], a2.elevation_deg[j2])
-            los = (sv - pos1) / rho1[:, None]
-            ok = np.isfinite(sd) & np.isfinite(el)
-            if not ok.all():
-                ci, sd, el, los = ci[ok], sd[ok], el[ok], los[ok]
-                if ci.size < 2 or t1c[ci[-1]] - t1c[ci[0]] < min_length_s:
-                    n_sd_short += 1
-                    continue
-            sd_arcs.append(SDArc(a1.sat, ci, sd, el, los))
-    if not sd_arcs:
-        raise NoDataError(
-            f"no single-difference arc of at least {min_length_s:g} s above "
-            f"{elevation_mask_deg:g} deg in {files} ({len(arcsets[0])} and "
-            f"{len(arcsets[1])} tracking arcs, {n_sd_short} common stretches too short)"
-        )
-    sd_arcs.sort(key=lambda a: (int(a.ci[0]), a.sat))
+            arc, n_short = _single_difference(a1, c1, k1, a2, common, orbit, min_length_s)
+            out.n_short += n_short
+            if arc is not None:
+                out.arcs.append(arc)
+    return out
 
-    # reference periods and double differences
-    lam = wavelength_m(sats[0], RINEX2_TO_RINEX3.get(code1, code1), obs1.header.glonass_channels)
-    jump_m = DD_JUMP_FRACTION * lam
-    periods = reference_periods(sd_arcs)
-    pieces: list[tuple[str, NDArray, NDArray, NDArray, NDArray]] = []
-    n_dd_short = 0
-    n_jump_splits = 0
-    for ref, k0, k1 in periods:
+
+def _single_difference(
+    a1: Any,
+    c1: NDArray[np.intp],
+    k1: NDArray[np.intp],
+    a2: Any,
+    common: _Common,
+    orbit: OrbitSource,
+    min_length_s: float,
+) -> tuple[SDArc | None, int]:
+    """Single difference of one pair of tracking arcs (m), or None with 1 if too short."""
+    c2 = common.where2[a2.epoch_index]
+    k2 = np.flatnonzero(c2 >= 0)
+    ci, j1, j2 = np.intersect1d(c1[k1], c2[k2], assume_unique=True, return_indices=True)
+    j1, j2 = k1[j1], k2[j2]
+    if common.too_short(ci, min_length_s):
+        return None, int(ci.size > 0)
+    rho1, _, sv = geometric_range_m(orbit, a1.sat, common.t_rx1[ci], common.pos1)
+    rho2 = geometric_range_m(orbit, a1.sat, common.t_rx2[ci], common.pos2)[0]
+    sd = a1.phase_m[j1, 0] - a2.phase_m[j2, 0] - (rho1 - rho2)
+    el = np.minimum(a1.elevation_deg[j1], a2.elevation_deg[j2])
+    los = (sv - common.pos1) / rho1[:, None]
+    ok = np.isfinite(sd) & np.isfinite(el)
+    if not ok.all():
+        ci, sd, el, los = ci[ok], sd[ok], el[ok], los[ok]
+        if common.too_short(ci, min_length_s):
+            return None, 1
+    return SDArc(a1.sat, ci, sd, el, los), 0
+
+
+#: A double-difference arc: satellite pair name, times (GPS s), values (m),
+#: elevations (deg) and line-of-sight differences.
+_Piece = tuple[str, NDArray, NDArray, NDArray, NDArray]
+
+
+@dataclass
+class _DoubleDifferences:
+    """Double-difference arcs, the reference periods and the counts of dropped/split arcs."""
+
+    pieces: list[_Piece]
+    periods: list[tuple[SDArc, int, int]]
+    n_short: int = 0
+    n_jump_splits: int = 0
+
+
+def _double_differences(
+    sd_arcs: list[SDArc], t_s: NDArray[np.float64], jump_m: float, min_length_s: float
+) -> _DoubleDifferences:
+    """Choose the reference periods and difference every other arc with the reference."""
+    out = _DoubleDifferences([], reference_periods(sd_arcs))
+    for ref, k0, k1 in out.periods:
         in_period = (ref.ci >= k0) & (ref.ci <= k1)
-        rci, rsd, rel = ref.ci[in_period], ref.sd_m[in_period], ref.el_deg[in_period]
-        rlos = ref.los[in_period]
+        window = SDArc(ref.sat, ref.ci[in_period], ref.sd_m[in_period], ref.el_deg[in_period],
+                       ref.los[in_period])
         for other in sd_arcs:
             if other.sat == ref.sat or other.ci[-1] < k0 or other.ci[0] > k1:
                 continue
-            ci, jo, jr = np.intersect1d(other.ci, rci, assume_unique=True, return_indices=True)
-            if ci.size < 2:
-                continue
-            dd = other.sd_m[jo] - rsd[jr]
-            el = np.minimum(other.el_deg[jo], rel[jr])
-            g = other.los[jo] - rlos[jr]
-            cuts = np.flatnonzero(np.abs(np.diff(dd)) > jump_m) + 1
-            n_jump_splits += int(cuts.size)
-            for piece in np.split(np.arange(ci.size), cuts):
-                tp = t1c[ci[piece]]
-                if piece.size < 2 or tp[-1] - tp[0] < min_length_s:
-                    n_dd_short += 1
-                    continue
-                pieces.append((f"{other.sat}-{ref.sat}", tp, dd[piece], el[piece], g[piece]))
-    if not pieces:
-        raise NoDataError(
-            f"no double-difference arc of at least {min_length_s:g} s in {files} "
-            f"({len(sd_arcs)} single-difference arcs, {n_dd_short} double-difference "
-            "arcs too short)"
-        )
+            _difference_with_reference(other, window, t_s, jump_m, min_length_s, out)
+    return out
+
+
+def _difference_with_reference(
+    other: SDArc,
+    ref: SDArc,
+    t_s: NDArray[np.float64],
+    jump_m: float,
+    min_length_s: float,
+    out: _DoubleDifferences,
+) -> None:
+    """Append the pieces of ``other - ref`` to ``out``, split at jumps over ``jump_m`` metres."""
+    ci, jo, jr = np.intersect1d(other.ci, ref.ci, assume_unique=True, return_indices=True)
+    if ci.size < 2:
+        return
+    dd = other.sd_m[jo] - ref.sd_m[jr]
+    el = np.minimum(other.el_deg[jo], ref.el_deg[jr])
+    g = other.los[jo] - ref.los[jr]
+    cuts = np.flatnonzero(np.abs(np.diff(dd)) > jump_m) + 1
+    out.n_jump_splits += int(cuts.size)
+    for piece in np.split(np.arange(ci.size), cuts):
+        tp = t_s[ci[piece]]
+        if piece.size < 2 or tp[-1] - tp[0] < min_length_s:
+            out.n_short += 1
+            continue
+        out.pieces.append((f"{other.sat}-{ref.sat}", tp, dd[piece], el[piece], g[piece]))
+
+
+# --------------------------------------------------------------------------- baseline
+
+
+@dataclass(frozen=True)
+class _BaselineChoice:
+    """The levelled arcs and antenna 2's position (ECEF, m) after the baseline check."""
+
+    arcs: list[dict[str, Any]]
+    pos2: NDArray[np.float64]
+    baseline_m: float
+    src2: str
+    info: dict[str, Any]
+
+
+def _choose_baseline(
+    pieces: list[_Piece], inp: _Inputs, baseline: str, baseline_tolerance_m: float
+) -> _BaselineChoice:
+    """Estimate the baseline correction, apply it when the mode says so, level the arcs."""
+    pos1, pos2 = inp.pos1, inp.pos2
     est, why_not = estimate_baseline_correction(
         [p[2] for p in pieces], [p[4] for p in pieces], pos1
     )
@@ -371,76 +595,85 @@ def isolate_dual_antenna(
         arcs.append({"sats": sats_name, "t_gps_s": tp, "value_m": DA_SCALING * (v - v.mean()),
                      "elevation_deg": el})  # fmt: skip
     pos2_used = pos2 + est.correction_m if use and est is not None else pos2
-    baseline_info: dict[str, Any] = {
+    info: dict[str, Any] = {
         "mode": baseline,
         "tolerance_m": float(baseline_tolerance_m),
         "used": bool(use),
-        "given_baseline_m": baseline_m,
+        "given_baseline_m": inp.baseline_m,
         "given_positions_m": (pos1.tolist(), pos2.tolist()),
         "estimate": None if est is None else est.as_dict(),
         "estimated_baseline_m": None if est is None
         else float(np.linalg.norm(pos2 + est.correction_m - pos1)),
         "reason": why_not,
     }  # fmt: skip
-    if use:
-        baseline_m = float(np.linalg.norm(pos2_used - pos1))
-        src2 = f"{src2} corrected by the double-difference baseline estimate"
-    interval_s = float(np.median(np.diff(t1c))) if n_common > 1 else obs1.interval_s
-    meta: dict[str, Any] = {
-        "files": (obs1.path, obs2.path),
-        "markers": (obs1.header.marker_name, obs2.header.marker_name),
-        "baseline_m": baseline_m,
-        "positions_m": (pos1.tolist(), pos2_used.tolist()),
-        "baseline_estimate": baseline_info,
-        "position_sources": (src1, src2),
-        "codes": (code1, code2),
-        "slip_codes": (slip1, slip2),
-        "slip_detection": (
-            "geometry-free test with the second signal, gaps, loss of lock, power failure"
-            if slip_signal is not None
-            else "gaps, loss of lock and power failure only (no second signal)"
-        )
-        + f"; double-difference jumps > {DD_JUMP_FRACTION:g} wavelength split arcs",
-        "reference_periods": [
-            {
-                "sat": ref.sat,
-                "start_gps_s": float(t1c[k0]),
-                "stop_gps_s": float(t1c[k1]),
-            }
-            for ref, k0, k1 in periods
-        ],
-        "receiver_clock": {
-            "method": _CLOCK_NOTE,
-            "codes": (code_c1, code_c2),
-            "satellite_clock": hasattr(orbit, "satellite_clock_s"),
-            "median_offset_s": (float(np.median(dt1[i1])), float(np.median(dt2[i2]))),
-            "max_abs_offset_s": (float(np.max(np.abs(dt1))), float(np.max(np.abs(dt2)))),
-            "epochs_interpolated": (n_interp1, n_interp2),
-        },
-        "n_common_epochs": n_common,
-        "n_tracking_arcs": (len(arcsets[0]), len(arcsets[1])),
-        "tracking_breaks": (dict(arcsets[0].breaks), dict(arcsets[1].breaks)),
-        "n_sd_arcs": len(sd_arcs),
-        "n_sd_arcs_dropped": n_sd_short,
-        "n_dd_arcs": len(arcs),
-        "n_dd_arcs_dropped": n_dd_short,
-        "n_dd_jump_splits": n_jump_splits,
-        "min_length_s": float(min_length_s),
-        "elevation_mask_deg": float(elevation_mask_deg),
-        "max_baseline_m": float(max_baseline_m),
-        "note": _NOTE,
+    if not use:
+        return _BaselineChoice(arcs, pos2_used, inp.baseline_m, inp.src2, info)
+    baseline_m = float(np.linalg.norm(pos2_used - pos1))
+    src2 = f"{inp.src2} corrected by the double-difference baseline estimate"
+    return _BaselineChoice(arcs, pos2_used, baseline_m, src2, info)
+
+
+# --------------------------------------------------------------------------- meta
+
+
+def _slip_detection_text(slip_signal: str | None) -> str:
+    """Say how the arcs were broken at cycle slips."""
+    return (
+        "geometry-free test with the second signal, gaps, loss of lock, power failure"
+        if slip_signal is not None
+        else "gaps, loss of lock and power failure only (no second signal)"
+    ) + f"; double-difference jumps > {DD_JUMP_FRACTION:g} wavelength split arcs"
+
+
+def _reference_meta(
+    periods: list[tuple[SDArc, int, int]], t_s: NDArray[np.float64]
+) -> list[dict[str, Any]]:
+    """Return the reference satellite and its period (GPS s) of each reference period."""
+    return [
+        {
+            "sat": ref.sat,
+            "start_gps_s": float(t_s[k0]),
+            "stop_gps_s": float(t_s[k1]),
+        }
+        for ref, k0, k1 in periods
+    ]
+
+
+def _clock_meta(
+    orbit: OrbitSource,
+    trk1: _Tracking,
+    trk2: _Tracking,
+    i1: NDArray[np.intp],
+    i2: NDArray[np.intp],
+) -> dict[str, Any]:
+    """Describe the receiver-clock estimates (offsets in s)."""
+    dt1, dt2 = trk1.dt_s, trk2.dt_s
+    return {
+        "method": _CLOCK_NOTE,
+        "codes": (trk1.clock_code, trk2.clock_code),
+        "satellite_clock": hasattr(orbit, "satellite_clock_s"),
+        "median_offset_s": (float(np.median(dt1[i1])), float(np.median(dt2[i2]))),
+        "max_abs_offset_s": (float(np.max(np.abs(dt1))), float(np.max(np.abs(dt2)))),
+        "epochs_interpolated": (trk1.n_interpolated, trk2.n_interpolated),
     }
-    return MultipathSeries.from_arcs(
-        "DA",
-        arcs,
-        signals=(signal,),
-        scaling=DA_SCALING,
-        interval_s=interval_s,
-        cutoff_hz=None,
-        meta=meta,
-    )
 
 
-# --------------------------------------------------------------------------- checks
-
-
+def _count_meta(
+    n_common: int,
+    trk1: _Tracking,
+    trk2: _Tracking,
+    sd: _SingleDifferences,
+    dd: _DoubleDifferences,
+    n_dd_arcs: int,
+) -> dict[str, Any]:
+    """Count the common epochs and the arcs kept, dropped and split at each stage."""
+    return {
+        "n_common_epochs": n_common,
+        "n_tracking_arcs": (len(trk1.arcs), len(trk2.arcs)),
+        "tracking_breaks": (dict(trk1.arcs.breaks), dict(trk2.arcs.breaks)),
+        "n_sd_arcs": len(sd.arcs),
+        "n_sd_arcs_dropped": sd.n_short,
+        "n_dd_arcs": n_dd_arcs,
+        "n_dd_arcs_dropped": dd.n_short,
+        "n_dd_jump_splits": dd.n_jump_splits,
+    }

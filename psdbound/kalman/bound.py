@@ -281,60 +281,17 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
         """
         p = Path(path)
         doc = read_document(p)
-        verdict = doc.get("verdict", "bounded")
-        if verdict != "bounded" and not allow_not_bounded:
-            why = "; ".join(str(r) for r in doc.get("verdict_reasons", [])) or "no reason given"
-            raise InputError(
-                f"the verdict is {verdict!r} ({why}): this bound is not for a filter; pass "
-                "allow_not_bounded=True to read it anyway", path=p)  # fmt: skip
-
-        def section(name: str) -> dict[str, Any]:
-            if name not in doc:
-                raise InputError(f"missing key {name!r}", path=p)
-            sec = doc[name]
-            if not isinstance(sec, dict):
-                raise InputError(f"key {name!r} must hold a JSON object, got {sec!r}", path=p)
-            return sec
-
-        def number(sec: dict[str, Any], sname: str, key: str, *, positive: bool = False) -> float:
-            if key not in sec:
-                raise InputError(f"missing key '{sname}.{key}'", path=p)
-            v = sec[key]
-            if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
-                raise InputError(f"'{sname}.{key}' must be a finite number, got {v!r}", path=p)
-            if v < 0 or (positive and v == 0):
-                need = "> 0" if positive else ">= 0"
-                raise InputError(f"'{sname}.{key}' must be {need}, got {v!r}", path=p)
-            return float(v)
-
-        b = section("bound")
-        sigma_gm = number(b, "bound", "sigma_gm_m")
-        tau = number(b, "bound", "tau_s", positive=True)
-        sigma_wn = number(b, "bound", "sigma_wn_m")
-        n_wn = number(b, "bound", "n_wn_two_sided_m2_hz")
-        dt = number(b, "bound", "dt_s", positive=True)
-        s = section("sampling")
-        interval = number(s, "sampling", "interval_s", positive=True)
-        nyq = number(s, "sampling", "nyquist_hz", positive=True)
-
-        def agree(a: float, b_: float) -> bool:
-            return math.isclose(a, b_, rel_tol=_REL_TOL, abs_tol=0.0) or a == b_
-
-        if not agree(n_wn, sigma_wn**2 * dt):
-            raise InputError(
-                f"'bound.n_wn_two_sided_m2_hz' = {n_wn!r} disagrees with sigma_wn_m^2 * dt_s = "
-                f"{sigma_wn**2 * dt!r}",
-                path=p,
-            )
-        if not agree(interval, dt):
-            raise InputError(
-                f"'sampling.interval_s' = {interval!r} disagrees with 'bound.dt_s' = {dt!r}", path=p
-            )
-        if not agree(nyq, 0.5 / dt):
-            raise InputError(
-                f"'sampling.nyquist_hz' = {nyq!r} disagrees with 1 / (2 dt_s) = {0.5 / dt!r}",
-                path=p,
-            )
+        _check_verdict(doc, p, allow_not_bounded)
+        b = _section(doc, "bound", p)
+        sigma_gm = _number(b, "bound", "sigma_gm_m", p)
+        tau = _number(b, "bound", "tau_s", p, positive=True)
+        sigma_wn = _number(b, "bound", "sigma_wn_m", p)
+        n_wn = _number(b, "bound", "n_wn_two_sided_m2_hz", p)
+        dt = _number(b, "bound", "dt_s", p, positive=True)
+        s = _section(doc, "sampling", p)
+        interval = _number(s, "sampling", "interval_s", p, positive=True)
+        nyq = _number(s, "sampling", "nyquist_hz", p, positive=True)
+        _check_redundant(n_wn, sigma_wn, dt, interval, nyq, p)
         slow = [c for c in (doc.get("error_model") or {}).get("components", [])
                 if c.get("name") == "slow"]  # fmt: skip
         if slow:
@@ -343,13 +300,7 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
                 f"carry (multipath the high-pass removed: {1000 * slow[0]['sigma_m']:.2f} mm, "
                 f"tau {slow[0]['tau_s']:.4g} s); psdbound.load(path).error_model exports every "
                 f"component", stacklevel=2)  # fmt: skip
-        mapping = None
-        if doc["mapping"] is not None:
-            m = section("mapping")
-            a = number(m, "mapping", "a", positive=True)
-            bb = number(m, "mapping", "b")
-            c = number(m, "mapping", "c_deg", positive=True)
-            mapping = ElevationMapping(a, bb, c, str(m.get("source", "fixed")))
+        mapping = _read_mapping(doc, p)
         return cls(sigma_gm, tau, sigma_wn, dt, mapping=mapping, source=str(p))
 
     # ------------------------------------------------------------ filter use
@@ -515,3 +466,78 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
             f"sigma_wn={100 * self.sigma_wn_m:.3f} cm at dt={self.dt_s:g} s, "
             f"N_WN={self.n_wn_two_sided_m2_hz:.4g} m^2/Hz{m})"
         )
+
+
+# ------------------------------------------------------------------ result file
+
+
+def _check_verdict(doc: dict[str, Any], p: Path, allow_not_bounded: bool) -> None:
+    """Refuse a result whose verdict is not "bounded" unless allowed."""
+    verdict = doc.get("verdict", "bounded")
+    if verdict != "bounded" and not allow_not_bounded:
+        why = "; ".join(str(r) for r in doc.get("verdict_reasons", [])) or "no reason given"
+        raise InputError(
+            f"the verdict is {verdict!r} ({why}): this bound is not for a filter; pass "
+            "allow_not_bounded=True to read it anyway", path=p)  # fmt: skip
+
+
+def _section(doc: dict[str, Any], name: str, p: Path) -> dict[str, Any]:
+    """Return the JSON object under ``name`` of a result document."""
+    if name not in doc:
+        raise InputError(f"missing key {name!r}", path=p)
+    sec = doc[name]
+    if not isinstance(sec, dict):
+        raise InputError(f"key {name!r} must hold a JSON object, got {sec!r}", path=p)
+    return sec
+
+
+def _number(
+    sec: dict[str, Any], sname: str, key: str, p: Path, *, positive: bool = False
+) -> float:
+    """Return ``sec[key]`` checked: a finite number, >= 0 (> 0 when ``positive``)."""
+    if key not in sec:
+        raise InputError(f"missing key '{sname}.{key}'", path=p)
+    v = sec[key]
+    if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
+        raise InputError(f"'{sname}.{key}' must be a finite number, got {v!r}", path=p)
+    if v < 0 or (positive and v == 0):
+        need = "> 0" if positive else ">= 0"
+        raise InputError(f"'{sname}.{key}' must be {need}, got {v!r}", path=p)
+    return float(v)
+
+
+def _agree(a: float, b_: float) -> bool:
+    """Whether two redundant numbers agree to the relative tolerance."""
+    return math.isclose(a, b_, rel_tol=_REL_TOL, abs_tol=0.0) or a == b_
+
+
+def _check_redundant(
+    n_wn: float, sigma_wn: float, dt: float, interval: float, nyq: float, p: Path
+) -> None:
+    """Check the redundant numbers of a result: white-noise level, interval, Nyquist frequency."""
+    if not _agree(n_wn, sigma_wn**2 * dt):
+        raise InputError(
+            f"'bound.n_wn_two_sided_m2_hz' = {n_wn!r} disagrees with sigma_wn_m^2 * dt_s = "
+            f"{sigma_wn**2 * dt!r}",
+            path=p,
+        )
+    if not _agree(interval, dt):
+        raise InputError(
+            f"'sampling.interval_s' = {interval!r} disagrees with 'bound.dt_s' = {dt!r}", path=p
+        )
+    if not _agree(nyq, 0.5 / dt):
+        raise InputError(
+            f"'sampling.nyquist_hz' = {nyq!r} disagrees with 1 / (2 dt_s) = {0.5 / dt!r}",
+            path=p,
+        )
+
+
+def _read_mapping(doc: dict[str, Any], p: Path) -> ElevationMapping | None:
+    """Return the result's elevation mapping, None for a bound on the raw error."""
+    if doc["mapping"] is None:
+        return None
+    m = _section(doc, "mapping", p)
+    a = _number(m, "mapping", "a", p, positive=True)
+    bb = _number(m, "mapping", "b", p)
+    c = _number(m, "mapping", "c_deg", p, positive=True)
+    return ElevationMapping(a, bb, c, str(m.get("source", "fixed")))

@@ -61,10 +61,10 @@ methods are in ``psdbound.kalman._methods``.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 from scipy import linalg
 
 from psdbound.errors import InputError
@@ -80,10 +80,10 @@ from psdbound.kalman._methods import (
     steady_state_filter,
 )
 from psdbound.kalman.analysis import CovarianceAnalysis
-from psdbound.kalman.augment import augment_gm_states, broadcast_bounds
+from psdbound.kalman.augment import AugmentedModel, augment_gm_states, broadcast_bounds
 from psdbound.kalman.bound import GaussMarkovBound
 from psdbound.kalman.process import ErrorProcess
-from psdbound.kalman.truth import ErrorSequences, SampledPSD, broadcast_truth
+from psdbound.kalman.truth import ErrorSequences, SampledPSD, Truth, broadcast_truth
 
 __all__ = [
     "CovarianceAnalysis",
@@ -186,24 +186,12 @@ def analyze_covariance(
         white_noise=white_noise,
     )
     if p0_gm_m2 is not None:
-        p0g = np.broadcast_to(np.asarray(p0_gm_m2, dtype=float), (m,)).copy()
-        if not (np.isfinite(p0g).all() and (p0g >= 0).all()):
-            raise InputError("p0_gm_m2 must be finite and >= 0")
-        aug = replace(aug, p0_gm_m2=p0g)
+        aug = replace(aug, p0_gm_m2=_checked_p0_gm(p0_gm_m2, m))
     bl = broadcast_bounds(bounds, m)
     truths = broadcast_truth(truth, m, float(dt_s))
     p0b = np.asarray(p0_base, dtype=float)
     p0 = aug.initial_covariance(p0b)
-    dscale = np.diag(aug.scale)
-    ha_list = [np.hstack([h, dscale]) for h in h_list]
-    wn = np.diag(aug.scale**2 * aug.r_wn_m2)
-    ra_list = [r + wn for r in r_list]
-    ra_check = ra_list[:1] if time_invariant else ra_list
-    if np.linalg.eigvalsh(np.array(ra_check)).min() <= 0:
-        raise InputError(
-            "the filter's measurement covariance R (+ the bound's white noise) must be "
-            "positive definite"
-        )
+    ha_list, ra_list = _augmented_measurements(aug, h_list, r_list, time_invariant)
     p_filter, gains = filter_pass(aug, ha_list, ra_list, p0)
     sequences = isinstance(truths, ErrorSequences)
 
@@ -229,32 +217,78 @@ def analyze_covariance(
         p0_base=p0b,
         steady=steady,
     )
-    psd_ratio = None
-    n_paths = None
-    pt_ss = None
-    if isinstance(truths, ErrorSequences):
-        method = "monte_carlo"
-        labels = [truths.label] * m
-        p_true, n_paths = monte_carlo_covariance(rec, truths, n_steps)
-    else:
-        psd_ratio = psd_ratios(bl, truths, aug.scale, dt_s, white_noise)
-        labels = [t.label for t in truths]
-        if all(isinstance(t, ErrorProcess) for t in truths):
-            method = "state_space"
-            p_true, pt_ss = state_space_covariance(rec, truths, n_steps)  # type: ignore[arg-type]
-        else:
-            method = "psd"
-            p_true, pt_ss = psd_covariance(rec, truths, n_steps, float(dt_s))
-
+    true = _true_covariance(rec, truths, bl, aug, dt_s, white_noise, n_steps)
     return CovarianceAnalysis(
         p_filter_m2=p_filter,
-        p_true_m2=p_true,
+        p_true_m2=true.p_true,
         p_filter_ss_m2=pf_ss,
-        p_true_ss_m2=pt_ss,
-        method=method,
+        p_true_ss_m2=true.p_true_ss,
+        method=true.method,
         dt_s=float(dt_s),
-        psd_ratio_min=psd_ratio,
-        n_paths=n_paths,
-        labels=labels,
+        psd_ratio_min=true.psd_ratio,
+        n_paths=true.n_paths,
+        labels=true.labels,
         notes=notes,
     )
+
+
+def _checked_p0_gm(p0_gm_m2: ArrayLike, m: int) -> NDArray[np.float64]:
+    """Return the initial variances of the ``m`` multipath states, m^2, checked."""
+    p0g = np.broadcast_to(np.asarray(p0_gm_m2, dtype=float), (m,)).copy()
+    if not (np.isfinite(p0g).all() and (p0g >= 0).all()):
+        raise InputError("p0_gm_m2 must be finite and >= 0")
+    return p0g
+
+
+def _augmented_measurements(
+    aug: AugmentedModel,
+    h_list: list[NDArray[np.float64]],
+    r_list: list[NDArray[np.float64]],
+    time_invariant: bool,
+) -> tuple[list[NDArray[np.float64]], list[NDArray[np.float64]]]:
+    """Return ``H`` and ``R`` (m^2) of the augmented filter per step; check ``R`` is definite."""
+    dscale = np.diag(aug.scale)
+    ha_list = [np.hstack([h, dscale]) for h in h_list]
+    wn = np.diag(aug.scale**2 * aug.r_wn_m2)
+    ra_list = [r + wn for r in r_list]
+    ra_check = ra_list[:1] if time_invariant else ra_list
+    if np.linalg.eigvalsh(np.array(ra_check)).min() <= 0:
+        raise InputError(
+            "the filter's measurement covariance R (+ the bound's white noise) must be "
+            "positive definite"
+        )
+    return ha_list, ra_list
+
+
+@dataclass(frozen=True)
+class _TrueCovariance:
+    """The true error covariance (m^2) per step and in steady state, and how it was computed."""
+
+    method: str
+    labels: list[str]
+    p_true: NDArray[np.float64]
+    p_true_ss: NDArray[np.float64] | None = None
+    psd_ratio: NDArray[np.float64] | None = None
+    n_paths: int | None = None
+
+
+def _true_covariance(
+    rec: ErrorRecursion,
+    truths: list[Truth] | ErrorSequences,
+    bl: list[GaussMarkovBound],
+    aug: AugmentedModel,
+    dt_s: float,
+    white_noise: str,
+    n_steps: int,
+) -> _TrueCovariance:
+    """Propagate the true error: Monte Carlo, state space or PSD, after the truth's kind."""
+    if isinstance(truths, ErrorSequences):
+        p_true, n_paths = monte_carlo_covariance(rec, truths, n_steps)
+        return _TrueCovariance("monte_carlo", [truths.label] * rec.m, p_true, n_paths=n_paths)
+    psd_ratio = psd_ratios(bl, truths, aug.scale, dt_s, white_noise)
+    labels = [t.label for t in truths]
+    if all(isinstance(t, ErrorProcess) for t in truths):
+        p_true, pt_ss = state_space_covariance(rec, truths, n_steps)  # type: ignore[arg-type]
+        return _TrueCovariance("state_space", labels, p_true, pt_ss, psd_ratio)
+    p_true, pt_ss = psd_covariance(rec, truths, n_steps, float(dt_s))
+    return _TrueCovariance("psd", labels, p_true, pt_ss, psd_ratio)

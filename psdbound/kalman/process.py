@@ -58,23 +58,8 @@ class ErrorProcess:
     label: str = ""
 
     def __post_init__(self) -> None:
-        a = np.atleast_2d(np.asarray(self.a, dtype=float))
-        p = a.shape[0]
-        if a.shape != (p, p) or p == 0:
-            raise InputError(f"ErrorProcess: a must be square, got shape {a.shape}")
-        q = np.atleast_2d(np.asarray(self.q_m2, dtype=float))
-        c = np.atleast_1d(np.asarray(self.c, dtype=float)).reshape(-1)
-        if q.shape != (p, p):
-            raise InputError(f"ErrorProcess: q_m2 must have shape {(p, p)}, got {q.shape}")
-        if c.shape != (p,):
-            raise InputError(f"ErrorProcess: c must have {p} entries, got {c.size}")
-        for name, arr in (("a", a), ("q_m2", q), ("c", c)):
-            if not np.isfinite(arr).all():
-                raise InputError(f"ErrorProcess: {name} has non-finite entries")
-        if not np.allclose(q, q.T, rtol=1e-10, atol=1e-14 * max(1.0, np.abs(q).max())):
-            raise InputError("ErrorProcess: q_m2 must be symmetric")
-        if np.linalg.eigvalsh(q).min() < -1e-12 * max(1e-300, np.abs(q).max()):
-            raise InputError("ErrorProcess: q_m2 must be positive semi-definite")
+        a, q, c = _checked_matrices(self.a, self.q_m2, self.c)
+        _check_covariance(q)
         rho = float(np.abs(np.linalg.eigvals(a)).max())
         if rho >= 1.0:
             raise InputError(
@@ -355,3 +340,31 @@ class ErrorProcess:
         g = g[..., 0]
         val = np.einsum("ki,ij,kj->k", g, self.q_m2, g.conj()).real
         return (2.0 * self.dt_s * (val + self.r_m2)).reshape(f.shape)
+
+
+def _checked_matrices(
+    a_in: ArrayLike, q_in: ArrayLike, c_in: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Return ``a``, ``q_m2`` and ``c`` as float arrays of matching shapes, finite."""
+    a = np.atleast_2d(np.asarray(a_in, dtype=float))
+    p = a.shape[0]
+    if a.shape != (p, p) or p == 0:
+        raise InputError(f"ErrorProcess: a must be square, got shape {a.shape}")
+    q = np.atleast_2d(np.asarray(q_in, dtype=float))
+    c = np.atleast_1d(np.asarray(c_in, dtype=float)).reshape(-1)
+    if q.shape != (p, p):
+        raise InputError(f"ErrorProcess: q_m2 must have shape {(p, p)}, got {q.shape}")
+    if c.shape != (p,):
+        raise InputError(f"ErrorProcess: c must have {p} entries, got {c.size}")
+    for name, arr in (("a", a), ("q_m2", q), ("c", c)):
+        if not np.isfinite(arr).all():
+            raise InputError(f"ErrorProcess: {name} has non-finite entries")
+    return a, q, c
+
+
+def _check_covariance(q: NDArray[np.float64]) -> None:
+    """Check that the process-noise covariance (m^2) is symmetric and positive semi-definite."""
+    if not np.allclose(q, q.T, rtol=1e-10, atol=1e-14 * max(1.0, np.abs(q).max())):
+        raise InputError("ErrorProcess: q_m2 must be symmetric")
+    if np.linalg.eigvalsh(q).min() < -1e-12 * max(1e-300, np.abs(q).max()):
+        raise InputError("ErrorProcess: q_m2 must be positive semi-definite")

@@ -76,6 +76,28 @@ def lombscargle_gridfft(
     ndarray of float64
         Power at each frequency (``u^2`` for ``"psd"``).
     """
+    n, m, k = _fft_grid(t_s, frequency_hz, dt_s)
+    n_total = y.size * copies
+    w = 1.0 / n_total
+    yc = y - np.mean(y) if fit_mean else np.asarray(y, dtype=np.float64)
+    g1, g2 = _replica_sums(2.0 * np.pi * frequency_hz, copies, period_s)
+    ones = _half_spectrum(np.ones(y.size), n, m)
+    zy = w * g1 * _at(_half_spectrum(yc, n, m), k, m)
+    zw1 = w * g1 * _at(ones, k, m)
+    zw2 = w * g2 * _at(ones, 2 * k, m)
+    power = _power(zy, zw1, zw2, fit_mean)
+    if normalization == "psd":
+        return power * 0.5 * n_total
+    yy = w * copies * np.sum(yc * yc)
+    if normalization == "standard":
+        return power / yy
+    raise ValueError(f"normalization {normalization!r} not supported (psd, standard)")
+
+
+def _fft_grid(
+    t_s: NDArray[np.float64], frequency_hz: NDArray[np.float64], dt_s: float
+) -> tuple[NDArray[np.int64], int, NDArray[np.int64]]:
+    """Return the samples' grid indices, the FFT length ``M`` and the frequencies' indices."""
     n = grid_indices(t_s, dt_s)
     if n is None:
         raise ValueError("times are not on a regular grid of step dt_s")
@@ -88,23 +110,30 @@ def lombscargle_gridfft(
         raise ValueError("frequencies must be integer multiples of 1 / (M dt_s)")
     if n[-1] >= m:
         raise ValueError(f"series spans {n[-1] + 1} samples, more than the FFT length {m}")
-    n_total = y.size * copies
-    w = 1.0 / n_total
-    yc = y - np.mean(y) if fit_mean else np.asarray(y, dtype=np.float64)
+    return n, m, k
 
-    def half_spectrum(values: NDArray[np.float64]) -> NDArray[np.complex128]:
-        x = np.zeros(m)
-        x[n] = values
-        return scipy.fft.rfft(x)  # entry k: sum_i v_i exp(-2 pi j k n_i / M), k <= M/2
 
-    def at(half: NDArray[np.complex128], kk: NDArray[np.int64]) -> NDArray[np.complex128]:
-        """sum_i v_i exp(+2 pi j kk n_i / M) for any integers kk (Hermitian symmetry)."""
-        kk = kk % m
-        upper = kk > m // 2
-        vals = half[np.where(upper, m - kk, kk)]
-        return np.where(upper, vals, np.conj(vals))
+def _half_spectrum(
+    values: NDArray[np.float64], n: NDArray[np.int64], m: int
+) -> NDArray[np.complex128]:
+    """Return the rFFT of the zero-filled series: entry k is sum_i v_i exp(-2 pi j k n_i / M)."""
+    x = np.zeros(m)
+    x[n] = values
+    return scipy.fft.rfft(x)  # entry k: sum_i v_i exp(-2 pi j k n_i / M), k <= M/2
 
-    omega = 2.0 * np.pi * frequency_hz
+
+def _at(half: NDArray[np.complex128], kk: NDArray[np.int64], m: int) -> NDArray[np.complex128]:
+    """Return sum_i v_i exp(+2 pi j kk n_i / M) for any integers kk (Hermitian symmetry)."""
+    kk = kk % m
+    upper = kk > m // 2
+    vals = half[np.where(upper, m - kk, kk)]
+    return np.where(upper, vals, np.conj(vals))
+
+
+def _replica_sums(
+    omega: NDArray[np.float64], copies: int, period_s: float
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+    """Return G(w) and G(2w) of the replicas (``omega`` in rad/s, shift ``period_s`` in s)."""
     g1 = np.ones(omega.size, dtype=complex)
     g2 = np.ones(omega.size, dtype=complex)
     if copies > 1:  # G(w) = sum_r z^r, z = exp(j w P), by repeated multiplication
@@ -116,12 +145,18 @@ def lombscargle_gridfft(
             g2 += p2
             p1 *= z1
             p2 *= z2
-    ones = half_spectrum(np.ones(y.size))
-    zy = w * g1 * at(half_spectrum(yc), k)
-    zw1 = w * g1 * at(ones, k)
-    zw2 = w * g2 * at(ones, 2 * k)
+    return g1, g2
+
+
+def _power(
+    zy: NDArray[np.complex128],
+    zw1: NDArray[np.complex128],
+    zw2: NDArray[np.complex128],
+    fit_mean: bool,
+) -> NDArray[np.float64]:
+    """Return the unnormalised periodogram from the weighted data and window sums."""
     ch, sh = zy.real, zy.imag
-    c, s = (zw1.real, zw1.imag) if fit_mean else (np.zeros(k.size), np.zeros(k.size))
+    c, s = (zw1.real, zw1.imag) if fit_mean else (np.zeros(zy.size), np.zeros(zy.size))
     c2, s2 = zw2.real, zw2.imag
     two_wtau = np.arctan2(s2 - 2.0 * s * c, c2 - (c * c - s * s))
     cw, sw = np.cos(0.5 * two_wtau), np.sin(0.5 * two_wtau)
@@ -130,10 +165,4 @@ def lombscargle_gridfft(
     ys_ = sh * cw - ch * sw
     cc = 0.5 * (1.0 + c2 * c2w + s2 * s2w) - (c * cw + s * sw) ** 2
     ss = 0.5 * (1.0 - c2 * c2w - s2 * s2w) - (s * cw - c * sw) ** 2
-    power = yc_ * yc_ / cc + ys_ * ys_ / ss
-    if normalization == "psd":
-        return power * 0.5 * n_total
-    yy = w * copies * np.sum(yc * yc)
-    if normalization == "standard":
-        return power / yy
-    raise ValueError(f"normalization {normalization!r} not supported (psd, standard)")
+    return yc_ * yc_ / cc + ys_ * ys_ / ss

@@ -231,6 +231,48 @@ def _error_model_rows(r: dict[str, Any]) -> list[tuple[str, str]]:
 
 def _summary_pages(r: dict[str, Any]) -> list[Figure]:
     """Draw the summary, caveats and inputs (vector text; a second page if long)."""
+    rows = _summary_rows(r)
+    doc = _TextPages()
+    doc.text(0.08, 0.025, f"psdbound report: {_title(r)}", fontsize=14, weight="bold")
+    doc.text(0.08, 0.035, _METHOD.get(r["method"], r["method"]), fontsize=10)
+    _write_headline(doc, r)
+    doc.y -= 0.012
+    _write_rows(doc, rows)
+    doc.y -= 0.012
+    doc.text(0.08, 0.025, "Caveats", fontsize=12, weight="bold")
+    for wtext in r["warnings"] or ["None."]:
+        for line in textwrap.wrap(wtext, 118):
+            doc.text(0.08, 0.0125, line, fontsize=7)
+        doc.y -= 0.003
+    doc.y -= 0.015
+    doc.text(0.08, 0.026, "Inputs (SHA-256)", fontsize=12, weight="bold")
+    for i in r["provenance"]["inputs"]:
+        doc.text(0.08, 0.017, f"{i['role']}: {i['name']}  {i['sha256']}", fontsize=6.5,
+                 family="monospace")  # fmt: skip
+    doc.y -= 0.005
+    doc.text(0.08, 0.0, f"created {r['provenance']['created_utc']}, psdbound "
+             f"{r['provenance']['versions']['psdbound']}", fontsize=8)  # fmt: skip
+    return doc.pages
+
+
+class _TextPages:
+    """Pages of vector text written top-down at height ``y`` (figure fraction)."""
+
+    def __init__(self) -> None:
+        self.pages = [Figure(figsize=PAGE_IN)]
+        self.y = 0.95
+
+    def text(self, x: float, dy: float, line: str, **kw: Any) -> None:
+        """Write a line at the current height, then move down (a new page when full)."""
+        if self.y < 0.03:
+            self.pages.append(Figure(figsize=PAGE_IN))
+            self.y = 0.95
+        self.pages[-1].text(x, self.y, line, **kw)
+        self.y -= dy
+
+
+def _summary_rows(r: dict[str, Any]) -> list[tuple[str, str]]:
+    """Return the summary table: (name, value) rows of the bound, cutoff, windows, inputs."""
     b, s, c, w = r["bound"], r["sampling"], r["cutoff"], r["windows"]
     fc = "n/a" if c["f_c_hz"] is None else f"{c['f_c_hz']:.4g} Hz ({c['tau_c_min']:.1f} min)"
     rows = [
@@ -258,50 +300,29 @@ def _summary_pages(r: dict[str, Any]) -> list[Figure]:
                             f"sigma {100 * b['sigma']:.1f} cm (x{b['inflation']:.2f})"
                             for b in ob) or str(cm.get("status"))  # fmt: skip
         rows.append((f"code multipath {'+'.join(cm.get('codes', []))}", text_ob))
-    pages = [Figure(figsize=PAGE_IN)]
-    y = 0.95
+    return rows
 
-    def text(x: float, dy: float, line: str, **kw: Any) -> None:
-        """Write a line at the current height, then move down (a new page when full)."""
-        nonlocal y
-        if y < 0.03:
-            pages.append(Figure(figsize=PAGE_IN))
-            y = 0.95
-        pages[-1].text(x, y, line, **kw)
-        y -= dy
 
-    text(0.08, 0.025, f"psdbound report: {_title(r)}", fontsize=14, weight="bold")
-    text(0.08, 0.035, _METHOD.get(r["method"], r["method"]), fontsize=10)
+def _write_headline(doc: _TextPages, r: dict[str, Any]) -> None:
+    """Write the headline lines every output starts with (failures in red)."""
     for k, line in enumerate(_headline(r)):  # page 1 as in every output
         bad = line.endswith(" FAIL") or line.startswith(("VERDICT: NOT", "reason: "))
         wrapped = textwrap.wrap(line.strip(), 72 if k == 0 else 118) or [""]
         for part in wrapped:
-            text(0.1 if line.startswith("  ") else 0.08, 0.018 if k == 0 else 0.0112, part,
-                 fontsize=11 if k == 0 else 7, weight="bold" if k == 0 else "normal",
-                 color="#b00020" if bad else ("#176d2a" if k == 0 else "black"))  # fmt: skip
-    y -= 0.012
+            doc.text(0.1 if line.startswith("  ") else 0.08, 0.018 if k == 0 else 0.0112, part,
+                     fontsize=11 if k == 0 else 7, weight="bold" if k == 0 else "normal",
+                     color="#b00020" if bad else ("#176d2a" if k == 0 else "black"))  # fmt: skip
+
+
+def _write_rows(doc: _TextPages, rows: list[tuple[str, str]]) -> None:
+    """Write the summary table: the name left, the value (wrapped) right."""
     for k, v in rows:
         long = len(v) > 3 * 55  # long statements in a smaller face, so page 1 holds them
         lines = textwrap.wrap(v, 68 if long else 55) or [""]
-        pages[-1].text(0.08, y, k, fontsize=9)
+        doc.pages[-1].text(0.08, doc.y, k, fontsize=9)
         for j, line in enumerate(lines):
             step = (0.0115 if long else 0.014) if j < len(lines) - 1 else 0.0165
-            text(0.42, step, line, fontsize=7.5 if long else 9)
-    y -= 0.012
-    text(0.08, 0.025, "Caveats", fontsize=12, weight="bold")
-    for wtext in r["warnings"] or ["None."]:
-        for line in textwrap.wrap(wtext, 118):
-            text(0.08, 0.0125, line, fontsize=7)
-        y -= 0.003
-    y -= 0.015
-    text(0.08, 0.026, "Inputs (SHA-256)", fontsize=12, weight="bold")
-    for i in r["provenance"]["inputs"]:
-        text(0.08, 0.017, f"{i['role']}: {i['name']}  {i['sha256']}", fontsize=6.5,
-             family="monospace")  # fmt: skip
-    y -= 0.005
-    text(0.08, 0.0, f"created {r['provenance']['created_utc']}, psdbound "
-         f"{r['provenance']['versions']['psdbound']}", fontsize=8)  # fmt: skip
-    return pages
+            doc.text(0.42, step, line, fontsize=7.5 if long else 9)
 
 
 def pack_pages(heights_in: list[float], *, per_page: int = PER_PAGE) -> list[list[int]]:

@@ -39,7 +39,7 @@ import gzip
 import json
 import math
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -282,181 +282,31 @@ def simulate(scenario: Scenario, out_dir: str | os.PathLike[str]) -> SimulationR
     ['tiny-A_MO.rnx.gz']
     """
     sc = scenario
-    mp = sc.multipath
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     rng = np.random.default_rng(sc.seed)
     t0 = _start_gps_s(sc.start_gps)
     n = int(round(sc.duration_s / sc.interval_s))
     t = t0 + sc.interval_s * np.arange(n)
-
-    # geometry source, written and read back so the simulation uses what readers see
-    nav_path = out / f"{sc.name}_MN.rnx.gz"
-    if sc.nav_path is None:
-        nav_src: Navigation = nominal_navigation(t0, t[-1], systems=sc.systems, clock_seed=sc.seed)
-    else:
-        nav_src = read_nav(sc.nav_path)
-    text = format_nav_v3(nav_src, program=f"psdbound {__version__}")
-    _write_gz(nav_path, text)
-    nav = read_nav(nav_path)
-
-    rx_a = geodetic_to_ecef(sc.lat_deg, sc.lon_deg, sc.height_m)
-    rx_b = rx_a + enu_rotation(sc.lat_deg, sc.lon_deg).T @ np.asarray(sc.baseline_enu_m, float)
-    antennas = [rx_a, rx_b] if sc.dual_antenna else [rx_a]
-    header_error = enu_rotation(sc.lat_deg, sc.lon_deg).T @ np.asarray(sc.header_error_enu_m, float)
-    n_ant = len(antennas)
-    sats = tuple(s for s in nav.satellites if s[0] in sc.systems)
-    ns = len(sats)
-    clock0 = np.asarray(sc.receiver_clock_s, float)
-    drift = rng.uniform(-2e-10, 2e-10, 2)
-    local_h = ((t - t0) / 3600.0 + float(sc.start_gps[11:13]) + sc.lon_deg / 15.0) % 24.0
-
-    rho = np.full((n_ant, n, ns), np.nan)
-    el = np.full((n_ant, n, ns), np.nan)
-    dts = np.full((n, ns), np.nan)
-    for a, rx in enumerate(antennas):
-        t_true = t - (clock0[a] + drift[a] * (t - t0))
-        for j, s in enumerate(sats):
-            r, tau, sv = signal_path(nav, s, t_true, rx)
-            rho[a, :, j] = r
-            el[a, :, j] = azimuth_elevation(rx, sv)[1]
-            if a == 0:
-                dts[:, j] = nav.satellite_clock_s(s, t_true - tau)
-    tracked = el[0] >= sc.elevation_mask_deg
-    for a in range(1, n_ant):
-        tracked &= el[a] >= sc.elevation_mask_deg
-
-    # gaps: per satellite, Poisson count over the span, random lengths
-    for j in range(ns):
-        k = rng.poisson(sc.gap_rate_per_h * sc.duration_s / 3600.0)
-        for _ in range(k):
-            i0 = rng.integers(0, n)
-            length = max(1, int(rng.uniform(sc.interval_s, sc.gap_max_s) / sc.interval_s))
-            tracked[i0 : i0 + length, j] = False
-
-    # truth error per antenna, epoch, satellite, signal
-    m_el = mp.a + mp.b * np.exp(-(el**2) / (2.0 * mp.c_deg**2))
-    rho_c = sc.common_fraction if n_ant == 2 else 0.0
-    common = gauss_markov(n, mp.sigma_gm_m, mp.tau_s, sc.interval_s, rng, ns * 2)
-    common += rng.normal(0.0, mp.sigma_wn_m, common.shape)
-    truth = np.empty((n_ant, n, ns, 2))
-    lams = np.array(
-        [[SPEED_OF_LIGHT_M_S / carrier_frequency_hz(s, c) for c in SIGNALS[s[0]]] for s in sats]
-    )
-    for a in range(n_ant):
-        own = gauss_markov(n, mp.sigma_gm_m, mp.tau_s, sc.interval_s, rng, ns * 2)
-        own += rng.normal(0.0, mp.sigma_wn_m, own.shape)
-        stoch = (np.sqrt(rho_c) * common + np.sqrt(1.0 - rho_c) * own).reshape(n, ns, 2)
-        truth[a] = m_el[a][:, :, None] * stoch
-        for refl in mp.reflections:
-            for f in range(2):
-                truth[a, :, :, f] += _reflection_m(
-                    refl.kind, refl.distance_m, refl.alpha, el[a], lams[None, :, f]
-                )
-        truth[a] += rng.normal(0.0, sc.receiver_noise_m, (n, ns, 2))
-
-    # ionosphere (metres of L1-equivalent delay scaled per carrier) and troposphere
-    vtec = sc.vtec_night_tecu + (sc.vtec_day_tecu - sc.vtec_night_tecu) * 0.5 * (
-        1.0 + np.cos(2.0 * np.pi * (local_h - 14.0) / 24.0)
-    )
-    tid_phase = rng.uniform(0.0, 2.0 * np.pi, ns)
-    stec = (
-        vtec[None, :, None]
-        + sc.tid_amplitude_tecu
-        * np.sin(2.0 * np.pi * (t - t0)[None, :, None] / sc.tid_period_s + tid_phase[None, None, :])
-    ) * _obliquity(el)
-    stec = stec + _disturbance_tecu(sc, t - t0, sats)[None, :, :]
-    freqs = np.array([[carrier_frequency_hz(s, c) for c in SIGNALS[s[0]]] for s in sats])
-    iono = 40.3e16 * stec[..., None] / freqs[None, None, :, :] ** 2
-    tropo = sc.zenith_tropo_m / np.sin(np.radians(np.clip(el, 1.0, 90.0)))
-
-    # ambiguities and slips
-    amb = rng.integers(-2_000_000, 2_000_000, (n_ant, ns, 2)).astype(float)
-    amb_t = np.broadcast_to(amb[:, None, :, :], (n_ant, n, ns, 2)).copy()
-    lli = np.zeros((n_ant, n, ns, 2), dtype=np.int8)
-    slips = []
-    for a in range(n_ant):
-        for j in range(ns):
-            for _ in range(rng.poisson(sc.slip_rate_per_h * sc.duration_s / 3600.0)):
-                i0 = int(rng.integers(1, n))
-                f = int(rng.integers(0, 2))
-                cycles = int(rng.choice([-3, -2, -1, 1, 2, 3]))
-                flagged = bool(rng.random() < sc.slip_lli_fraction)
-                amb_t[a, i0:, j, f] += cycles
-                if flagged:
-                    lli[a, i0, j, f] = 1
-                slips.append(
-                    {
-                        "antenna": "AB"[a],
-                        "sat": sats[j],
-                        "t_gps_s": float(t[i0]),
-                        "signal": SIGNALS[sats[j][0]][f],
-                        "cycles": cycles,
-                        "flagged": flagged,
-                    }
-                )
+    nav_path, nav = _write_navigation(sc, out, t0, t[-1])
+    sim = _Simulation.start(sc, nav, t, t0, rng)
+    sim.geometry(nav)
+    sim.add_gaps(rng)
+    sim.add_truth_error(rng)
+    sim.add_atmosphere(rng)
+    slips = sim.add_ambiguities(rng)
 
     # assemble observations per antenna
     obs_paths = []
-    for a in range(n_ant):
-        clock_m = SPEED_OF_LIGHT_M_S * (clock0[a] + drift[a] * (t - t0))
-        common_m = rho[a] + clock_m[:, None] - SPEED_OF_LIGHT_M_S * dts + tropo[a]
-        phase_m = common_m[..., None] - iono[a] + truth[a]
-        phase_cyc = phase_m / lams[None, :, :] + amb_t[a]
-        code_m = (
-            common_m[..., None]
-            + iono[a]
-            + rng.normal(0.0, sc.code_noise_m, (n, ns, 2))
-            * (m_el[a] / (mp.a + mp.b * np.exp(-(90.0**2) / (2 * mp.c_deg**2))))[..., None]
-        )
-        snr = np.clip(30.0 + 20.0 * np.sin(np.radians(np.clip(el[a], 0, 90))), 20, 55)
-        snr_refl = _reflection_snr_db(mp.reflections, el[a], lams)
-        blocks = {}
-        for system in sc.systems:
-            cols = [j for j, s in enumerate(sats) if s[0] == system]
-            if not cols:
-                continue
-            codes = (CODES[system][0], SIGNALS[system][0], SNR[system][0],
-                     CODES[system][1], SIGNALS[system][1], SNR[system][1])  # fmt: skip
-            v = np.stack(
-                [np.round(code_m[:, cols, 0], 3), np.round(phase_cyc[:, cols, 0], 3),
-                 np.round(snr[:, cols] + snr_refl[:, cols, 0], 3),
-                 np.round(code_m[:, cols, 1], 3), np.round(phase_cyc[:, cols, 1], 3),
-                 np.round(snr[:, cols] - 3.0 + snr_refl[:, cols, 1], 3)],
-                axis=2,
-            )  # fmt: skip
-            keep = tracked[:, cols]
-            v[~keep] = np.nan
-            li = np.full(v.shape, -1, dtype=np.int8)
-            li[:, :, 1] = lli[a][:, cols, 0]
-            li[:, :, 4] = lli[a][:, cols, 1]
-            li[~keep] = -1
-            ssi = np.where(np.isfinite(v), np.clip(v // 6, 1, 9), -1).astype(np.int8)
-            ssi[:, :, [2, 5]] = -1
-            ssi[:, :, [0, 1, 3, 4]] = np.clip(snr[:, cols] // 6, 1, 9).astype(np.int8)[..., None]
-            ssi[~keep] = -1
-            blocks[system] = SystemBlock(system, tuple(sats[j] for j in cols), codes, v, li, ssi)
-        header = ObsHeader(
-            version=3.04,
-            file_system="M" if len(blocks) > 1 else sc.systems[0],
-            marker_name=f"{sc.name.upper()[:56]}-{'AB'[a]}",
-            receiver_type="PSDBOUND SIMULATOR",
-            antenna_type="SIMULATED",
-            approx_position_m=antennas[a] + (header_error if a == 1 else 0.0),
-            antenna_delta_hen_m=np.zeros(3),
-            interval_s=sc.interval_s,
-            time_system="GPS",
-            obs_types={s: b.codes for s, b in blocks.items()},
-        )
-        obs = Observations(str(out), header, t, np.zeros(n, np.int8), blocks)
+    for a in range(len(sim.antennas)):
         p = out / f"{sc.name}-{'AB'[a]}_MO.rnx.gz"
-        write_obs_v3(p, obs, program=f"psdbound {__version__}")
+        write_obs_v3(p, sim.observations(a, rng, str(out)), program=f"psdbound {__version__}")
         obs_paths.append(p)
-        truth[a][~tracked] = np.nan
-        el[a][~tracked] = np.nan
+        sim.truth[a][~sim.tracked] = np.nan
+        sim.el[a][~sim.tracked] = np.nan
 
     truth_path = out / f"{sc.name}_truth.csv.gz"
-    _write_truth_csv(truth_path, t, sats, truth, el)
+    _write_truth_csv(truth_path, t, sim.sats, sim.truth, sim.el)
     truth_json = out / f"{sc.name}_truth.json"
     meta = {
         "scenario": sc.to_dict(),
@@ -467,8 +317,8 @@ def simulate(scenario: Scenario, out_dir: str | os.PathLike[str]) -> SimulationR
         "truth_definition": "nu = m(el) (GM + WN) + reflections + receiver noise, per signal, m",
         "df_truth": "(nu_1 - nu_2) / sqrt(2)",
         "da_truth": "((nu_A,i - nu_B,i) - (nu_A,r - nu_B,r)) / 2",
-        "antenna_positions_m": [list(map(float, p)) for p in antennas],
-        "receiver_clock_drift_s_s": [float(d) for d in drift],
+        "antenna_positions_m": [list(map(float, p)) for p in sim.antennas],
+        "receiver_clock_drift_s_s": [float(d) for d in sim.drift],
         "slips": slips,
         "files": {
             "obs": [p.name for p in obs_paths],
@@ -484,11 +334,259 @@ def simulate(scenario: Scenario, out_dir: str | os.PathLike[str]) -> SimulationR
         truth_path=truth_path,
         truth_json_path=truth_json,
         t_gps_s=t,
-        sats=sats,
-        truth_m=truth,
-        elevation_deg=el,
+        sats=sim.sats,
+        truth_m=sim.truth,
+        elevation_deg=sim.el,
         slips=slips,
     )
+
+
+def _write_navigation(
+    sc: Scenario, out: Path, t0: float, t_end: float
+) -> tuple[Path, Navigation]:
+    """Write the navigation file and read it back: the simulation uses what readers see."""
+    nav_path = out / f"{sc.name}_MN.rnx.gz"
+    if sc.nav_path is None:
+        nav_src: Navigation = nominal_navigation(t0, t_end, systems=sc.systems, clock_seed=sc.seed)
+    else:
+        nav_src = read_nav(sc.nav_path)
+    text = format_nav_v3(nav_src, program=f"psdbound {__version__}")
+    _write_gz(nav_path, text)
+    return nav_path, read_nav(nav_path)
+
+
+@dataclass
+class _Simulation:
+    """The simulated quantities, filled stage by stage (metres, seconds, degrees).
+
+    Array axes: antenna, epoch, satellite, signal (as many as apply).
+    """
+
+    sc: Scenario
+    t: NDArray[np.float64]
+    t0: float
+    antennas: list[NDArray[np.float64]]
+    header_error: NDArray[np.float64]
+    sats: tuple[str, ...]
+    clock0: NDArray[np.float64]
+    drift: NDArray[np.float64]
+    lams: NDArray[np.float64]
+    rho: NDArray[np.float64] = field(init=False)
+    el: NDArray[np.float64] = field(init=False)
+    dts: NDArray[np.float64] = field(init=False)
+    tracked: NDArray[np.bool_] = field(init=False)
+    m_el: NDArray[np.float64] = field(init=False)
+    truth: NDArray[np.float64] = field(init=False)
+    iono: NDArray[np.float64] = field(init=False)
+    tropo: NDArray[np.float64] = field(init=False)
+    amb_t: NDArray[np.float64] = field(init=False)
+    lli: NDArray[np.int8] = field(init=False)
+
+    @classmethod
+    def start(
+        cls,
+        sc: Scenario,
+        nav: Navigation,
+        t: NDArray[np.float64],
+        t0: float,
+        rng: np.random.Generator,
+    ) -> _Simulation:
+        """Place the antennas, choose the satellites, draw the receiver clock drifts."""
+        rx_a = geodetic_to_ecef(sc.lat_deg, sc.lon_deg, sc.height_m)
+        rot_t = enu_rotation(sc.lat_deg, sc.lon_deg).T
+        rx_b = rx_a + rot_t @ np.asarray(sc.baseline_enu_m, float)
+        antennas = [rx_a, rx_b] if sc.dual_antenna else [rx_a]
+        header_error = enu_rotation(sc.lat_deg, sc.lon_deg).T @ np.asarray(
+            sc.header_error_enu_m, float
+        )
+        sats = tuple(s for s in nav.satellites if s[0] in sc.systems)
+        clock0 = np.asarray(sc.receiver_clock_s, float)
+        drift = rng.uniform(-2e-10, 2e-10, 2)
+        lams = np.array(
+            [[SPEED_OF_LIGHT_M_S / carrier_frequency_hz(s, c) for c in SIGNALS[s[0]]]
+             for s in sats]
+        )  # fmt: skip
+        return cls(sc, t, t0, antennas, header_error, sats, clock0, drift, lams)
+
+    def geometry(self, nav: Navigation) -> None:
+        """Ranges and elevations at the true receive times, satellite clocks, tracked epochs."""
+        t, t0, sats = self.t, self.t0, self.sats
+        n_ant, n, ns = len(self.antennas), t.size, len(sats)
+        self.rho = np.full((n_ant, n, ns), np.nan)
+        self.el = np.full((n_ant, n, ns), np.nan)
+        self.dts = np.full((n, ns), np.nan)
+        for a, rx in enumerate(self.antennas):
+            t_true = t - (self.clock0[a] + self.drift[a] * (t - t0))
+            for j, s in enumerate(sats):
+                r, tau, sv = signal_path(nav, s, t_true, rx)
+                self.rho[a, :, j] = r
+                self.el[a, :, j] = azimuth_elevation(rx, sv)[1]
+                if a == 0:
+                    self.dts[:, j] = nav.satellite_clock_s(s, t_true - tau)
+        self.tracked = self.el[0] >= self.sc.elevation_mask_deg
+        for a in range(1, n_ant):
+            self.tracked &= self.el[a] >= self.sc.elevation_mask_deg
+
+    def add_gaps(self, rng: np.random.Generator) -> None:
+        """Tracking gaps: per satellite, Poisson count over the span, random lengths."""
+        sc = self.sc
+        n = self.t.size
+        for j in range(len(self.sats)):
+            k = rng.poisson(sc.gap_rate_per_h * sc.duration_s / 3600.0)
+            for _ in range(k):
+                i0 = rng.integers(0, n)
+                length = max(1, int(rng.uniform(sc.interval_s, sc.gap_max_s) / sc.interval_s))
+                self.tracked[i0 : i0 + length, j] = False
+
+    def add_truth_error(self, rng: np.random.Generator) -> None:
+        """Truth error per antenna, epoch, satellite and signal, metres."""
+        sc, mp, el = self.sc, self.sc.multipath, self.el
+        n_ant, n, ns = len(self.antennas), self.t.size, len(self.sats)
+        self.m_el = mp.a + mp.b * np.exp(-(el**2) / (2.0 * mp.c_deg**2))
+        rho_c = sc.common_fraction if n_ant == 2 else 0.0
+        common = gauss_markov(n, mp.sigma_gm_m, mp.tau_s, sc.interval_s, rng, ns * 2)
+        common += rng.normal(0.0, mp.sigma_wn_m, common.shape)
+        truth = np.empty((n_ant, n, ns, 2))
+        for a in range(n_ant):
+            own = gauss_markov(n, mp.sigma_gm_m, mp.tau_s, sc.interval_s, rng, ns * 2)
+            own += rng.normal(0.0, mp.sigma_wn_m, own.shape)
+            stoch = (np.sqrt(rho_c) * common + np.sqrt(1.0 - rho_c) * own).reshape(n, ns, 2)
+            truth[a] = self.m_el[a][:, :, None] * stoch
+            for refl in mp.reflections:
+                for f in range(2):
+                    truth[a, :, :, f] += _reflection_m(
+                        refl.kind, refl.distance_m, refl.alpha, el[a], self.lams[None, :, f]
+                    )
+            truth[a] += rng.normal(0.0, sc.receiver_noise_m, (n, ns, 2))
+        self.truth = truth
+
+    def add_atmosphere(self, rng: np.random.Generator) -> None:
+        """Ionosphere (L1-equivalent delay scaled per carrier) and troposphere, metres."""
+        sc, t, t0, el, sats = self.sc, self.t, self.t0, self.el, self.sats
+        local_h = ((t - t0) / 3600.0 + float(sc.start_gps[11:13]) + sc.lon_deg / 15.0) % 24.0
+        vtec = sc.vtec_night_tecu + (sc.vtec_day_tecu - sc.vtec_night_tecu) * 0.5 * (
+            1.0 + np.cos(2.0 * np.pi * (local_h - 14.0) / 24.0)
+        )
+        tid_phase = rng.uniform(0.0, 2.0 * np.pi, len(sats))
+        stec = (
+            vtec[None, :, None]
+            + sc.tid_amplitude_tecu
+            * np.sin(2.0 * np.pi * (t - t0)[None, :, None] / sc.tid_period_s
+                     + tid_phase[None, None, :])
+        ) * _obliquity(el)  # fmt: skip
+        stec = stec + _disturbance_tecu(sc, t - t0, sats)[None, :, :]
+        freqs = np.array([[carrier_frequency_hz(s, c) for c in SIGNALS[s[0]]] for s in sats])
+        self.iono = 40.3e16 * stec[..., None] / freqs[None, None, :, :] ** 2
+        self.tropo = sc.zenith_tropo_m / np.sin(np.radians(np.clip(el, 1.0, 90.0)))
+
+    def add_ambiguities(self, rng: np.random.Generator) -> list[dict]:
+        """Integer ambiguities (cycles) changed by cycle slips; return the slips."""
+        sc, t, sats = self.sc, self.t, self.sats
+        n_ant, n, ns = len(self.antennas), t.size, len(sats)
+        amb = rng.integers(-2_000_000, 2_000_000, (n_ant, ns, 2)).astype(float)
+        self.amb_t = np.broadcast_to(amb[:, None, :, :], (n_ant, n, ns, 2)).copy()
+        self.lli = np.zeros((n_ant, n, ns, 2), dtype=np.int8)
+        slips = []
+        for a in range(n_ant):
+            for j in range(ns):
+                for _ in range(rng.poisson(sc.slip_rate_per_h * sc.duration_s / 3600.0)):
+                    slips.append(self._slip(a, j, rng))
+        return slips
+
+    def _slip(self, a: int, j: int, rng: np.random.Generator) -> dict:
+        """Draw one cycle slip of antenna ``a``, satellite ``j`` and apply it."""
+        i0 = int(rng.integers(1, self.t.size))
+        f = int(rng.integers(0, 2))
+        cycles = int(rng.choice([-3, -2, -1, 1, 2, 3]))
+        flagged = bool(rng.random() < self.sc.slip_lli_fraction)
+        self.amb_t[a, i0:, j, f] += cycles
+        if flagged:
+            self.lli[a, i0, j, f] = 1
+        return {
+            "antenna": "AB"[a],
+            "sat": self.sats[j],
+            "t_gps_s": float(self.t[i0]),
+            "signal": SIGNALS[self.sats[j][0]][f],
+            "cycles": cycles,
+            "flagged": flagged,
+        }
+
+    def observations(self, a: int, rng: np.random.Generator, path: str) -> Observations:
+        """Antenna ``a``'s observations: code (m), phase (cycles), SNR (dB-Hz) per system."""
+        sc, mp, t, t0, el = self.sc, self.sc.multipath, self.t, self.t0, self.el
+        n, ns = t.size, len(self.sats)
+        clock_m = SPEED_OF_LIGHT_M_S * (self.clock0[a] + self.drift[a] * (t - t0))
+        common_m = self.rho[a] + clock_m[:, None] - SPEED_OF_LIGHT_M_S * self.dts + self.tropo[a]
+        phase_m = common_m[..., None] - self.iono[a] + self.truth[a]
+        phase_cyc = phase_m / self.lams[None, :, :] + self.amb_t[a]
+        code_m = (
+            common_m[..., None]
+            + self.iono[a]
+            + rng.normal(0.0, sc.code_noise_m, (n, ns, 2))
+            * (self.m_el[a] / (mp.a + mp.b * np.exp(-(90.0**2) / (2 * mp.c_deg**2))))[..., None]
+        )
+        snr = np.clip(30.0 + 20.0 * np.sin(np.radians(np.clip(el[a], 0, 90))), 20, 55)
+        snr_refl = _reflection_snr_db(mp.reflections, el[a], self.lams)
+        blocks = {}
+        for system in sc.systems:
+            cols = [j for j, s in enumerate(self.sats) if s[0] == system]
+            if not cols:
+                continue
+            blocks[system] = _system_block(
+                system,
+                tuple(self.sats[j] for j in cols),
+                code_m[:, cols],
+                phase_cyc[:, cols],
+                snr[:, cols],
+                snr_refl[:, cols],
+                self.tracked[:, cols],
+                self.lli[a][:, cols],
+            )
+        header = ObsHeader(
+            version=3.04,
+            file_system="M" if len(blocks) > 1 else sc.systems[0],
+            marker_name=f"{sc.name.upper()[:56]}-{'AB'[a]}",
+            receiver_type="PSDBOUND SIMULATOR",
+            antenna_type="SIMULATED",
+            approx_position_m=self.antennas[a] + (self.header_error if a == 1 else 0.0),
+            antenna_delta_hen_m=np.zeros(3),
+            interval_s=sc.interval_s,
+            time_system="GPS",
+            obs_types={s: b.codes for s, b in blocks.items()},
+        )
+        return Observations(path, header, t, np.zeros(n, np.int8), blocks)
+
+
+def _system_block(
+    system: str,
+    sats: tuple[str, ...],
+    code_m: NDArray[np.float64],
+    phase_cyc: NDArray[np.float64],
+    snr: NDArray[np.float64],
+    snr_refl: NDArray[np.float64],
+    keep: NDArray[np.bool_],
+    lli: NDArray[np.int8],
+) -> SystemBlock:
+    """One system's observations as written (rounded), with LLI and signal strength flags."""
+    codes = (CODES[system][0], SIGNALS[system][0], SNR[system][0],
+             CODES[system][1], SIGNALS[system][1], SNR[system][1])  # fmt: skip
+    v = np.stack(
+        [np.round(code_m[:, :, 0], 3), np.round(phase_cyc[:, :, 0], 3),
+         np.round(snr + snr_refl[:, :, 0], 3),
+         np.round(code_m[:, :, 1], 3), np.round(phase_cyc[:, :, 1], 3),
+         np.round(snr - 3.0 + snr_refl[:, :, 1], 3)],
+        axis=2,
+    )  # fmt: skip
+    v[~keep] = np.nan
+    li = np.full(v.shape, -1, dtype=np.int8)
+    li[:, :, 1] = lli[:, :, 0]
+    li[:, :, 4] = lli[:, :, 1]
+    li[~keep] = -1
+    ssi = np.where(np.isfinite(v), np.clip(v // 6, 1, 9), -1).astype(np.int8)
+    ssi[:, :, [2, 5]] = -1
+    ssi[:, :, [0, 1, 3, 4]] = np.clip(snr // 6, 1, 9).astype(np.int8)[..., None]
+    ssi[~keep] = -1
+    return SystemBlock(system, sats, codes, v, li, ssi)
 
 
 def _write_gz(p: Path, text: str, *, compress: bool = True) -> None:

@@ -28,7 +28,7 @@ exactly (minimum margin >= 1).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
@@ -257,23 +257,10 @@ def fit_bound(
     InputError
         For no usable PSD values, an unknown objective/target, or a bad range.
     """
-    if objective not in OBJECTIVES:
-        raise InputError(f"unknown objective {objective!r}; choose from {OBJECTIVES}")
-    if target not in ("point", "upper"):
-        raise InputError(f"unknown target {target!r}; choose 'point' or 'upper'")
-    if not dt_s > 0:
-        raise InputError(f"sampling interval must be > 0 s, got {dt_s}")
+    _check_options(objective, target, dt_s)
     data = _as_arrays(psds, target, level)
-    f_all = np.concatenate([d[0] for d in data]) if data else np.zeros(0)
-    s_all = np.concatenate([d[1] for d in data]) if data else np.zeros(0)
-    if f_all.size == 0:
-        raise InputError("no positive PSD values to bound")
+    f_all, s_all = _pooled(data, dt_s)
     nyq = 0.5 / dt_s
-    if f_all.max() > nyq * (1 + 1e-9):
-        raise InputError(
-            f"PSD frequencies reach {f_all.max():g} Hz, above the Nyquist frequency {nyq:g} Hz "
-            f"of dt = {dt_s:g} s"
-        )
     f_min = float(f_all.min())
     f_max = float(f_all.max())
     f_con, s_con = f_all, s_all
@@ -282,67 +269,21 @@ def fit_bound(
         s_con = np.concatenate([s_all, np.asarray(floor[1], dtype=float)])
     fc, sc = _staircase(f_con, s_con)
     scale = float(sc.max())
-    s_norm = sc / scale
-    white = 2.0 * dt_s
-    if objective == "variance":
-
-        def cost(tau: float) -> NDArray[np.float64]:
-            return np.array([1.0, 1.0])
-    else:
-
-        def cost(tau: float) -> NDArray[np.float64]:
-            phi = np.exp(-dt_s / tau)
-            # integral of g_tau over [f_min, f_N], closed form of the AR(1) PSD
-            x = np.pi * f_min * dt_s
-            ang = 2.0 * np.arctan((1.0 + phi) / (1.0 - phi) * np.tan(x))
-            g_int = 1.0 - ang / np.pi
-            return np.array([g_int, white * (nyq - f_min)])
-
-    def solve(tau: float) -> tuple[float, NDArray[np.float64]]:
-        g = gm_psd_sampled(fc, 1.0, tau, dt_s)
-        a_ub = -np.column_stack([g, np.full(fc.size, white)])
-        res = linprog(
-            cost(tau), A_ub=a_ub, b_ub=-s_norm, bounds=[(0, None), (0, None)], method="highs"
-        )
-        if res.status != 0:
-            return np.inf, np.array([np.nan, np.nan])
-        return float(res.fun), res.x
-
+    cost = _cost_function(objective, dt_s, f_min, nyq)
+    solve = _lp_solver(fc, sc / scale, dt_s, cost)
     lo, hi = tau_range_s if tau_range_s is not None else (0.5 * dt_s, 20.0 / f_min)
     if not 0 < lo < hi:
         raise InputError(f"bad tau range {lo, hi}")
-    grid = np.geomspace(lo, hi, n_grid)
-    vals = np.array([solve(t)[0] for t in grid])
-    k = int(np.argmin(vals))
-    a, b = grid[max(k - 1, 0)], grid[min(k + 1, n_grid - 1)]
-    best_tau, best_val = grid[k], vals[k]
-    if b > a:
-        r = minimize_scalar(
-            lambda u: solve(float(np.exp(u)))[0],
-            bounds=(np.log(a), np.log(b)),
-            method="bounded",
-            options={"xatol": 1e-6},
-        )
-        if r.fun < best_val:
-            best_tau, best_val = float(np.exp(r.x)), float(r.fun)
+    grid, vals, best_tau = _search_tau(solve, lo, hi, n_grid)
     _, x = solve(best_tau)
     if not np.all(np.isfinite(x)):
         raise InputError(f"no bound could be fitted: the linear program failed at tau = "
                          f"{best_tau:.4g} s (data of {s_all.size} points)")  # fmt: skip
-    # HiGHS may return -1e-18 for a variance at its bound of 0: a variance is not negative
-    var_gm, var_wn = max(float(x[0]), 0.0) * scale, max(float(x[1]), 0.0) * scale
-    # enforce the bound exactly on every data point (and floor point)
-    model = var_gm * gm_psd_sampled(f_con, 1.0, best_tau, dt_s) + var_wn * white
-    worst = float(np.min(model / s_con))
-    if worst < 1.0:  # solver tolerance: scale up so the bound holds (1e-12 for rounding)
-        up = (1.0 + 1e-12) / worst
-        var_gm, var_wn = var_gm * up, var_wn * up
-    gap_db = 10.0 * np.log10(
-        (var_gm * gm_psd_sampled(f_all, 1.0, best_tau, dt_s) + var_wn * white) / s_all
-    )
+    var_gm, var_wn = _enforce_bound(x, scale, f_con, s_con, best_tau, dt_s)
+    gap_db = 10.0 * np.log10(_model_psd(f_all, var_gm, var_wn, best_tau, dt_s) / s_all)
     margins = []
     for f, s in data:
-        mod = var_gm * gm_psd_sampled(f, 1.0, best_tau, dt_s) + var_wn * white
+        mod = _model_psd(f, var_gm, var_wn, best_tau, dt_s)
         margins.append(float(np.min(mod / s)) if f.size else np.inf)
     obj = (
         (var_gm + var_wn)
@@ -370,3 +311,127 @@ def fit_bound(
         gap_db_median=float(np.median(gap_db)),
         gap_db_p05=float(np.percentile(gap_db, 5)),
     )
+
+
+def _check_options(objective: str, target: str, dt_s: float) -> None:
+    """Check the objective, the target and the sampling interval (s)."""
+    if objective not in OBJECTIVES:
+        raise InputError(f"unknown objective {objective!r}; choose from {OBJECTIVES}")
+    if target not in ("point", "upper"):
+        raise InputError(f"unknown target {target!r}; choose 'point' or 'upper'")
+    if not dt_s > 0:
+        raise InputError(f"sampling interval must be > 0 s, got {dt_s}")
+
+
+def _pooled(
+    data: list[tuple[NDArray[np.float64], NDArray[np.float64]]], dt_s: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """All PSDs' frequencies (Hz) and values (m^2/Hz) in one pair, checked against Nyquist."""
+    f_all = np.concatenate([d[0] for d in data]) if data else np.zeros(0)
+    s_all = np.concatenate([d[1] for d in data]) if data else np.zeros(0)
+    if f_all.size == 0:
+        raise InputError("no positive PSD values to bound")
+    nyq = 0.5 / dt_s
+    if f_all.max() > nyq * (1 + 1e-9):
+        raise InputError(
+            f"PSD frequencies reach {f_all.max():g} Hz, above the Nyquist frequency {nyq:g} Hz "
+            f"of dt = {dt_s:g} s"
+        )
+    return f_all, s_all
+
+
+def _cost_function(
+    objective: str, dt_s: float, f_min: float, nyq: float
+) -> Callable[[float], NDArray[np.float64]]:
+    """Return the objective's coefficients of ``(sigma_gm^2, sigma_wn^2)`` as a function of tau."""
+    white = 2.0 * dt_s
+    if objective == "variance":
+
+        def cost(tau: float) -> NDArray[np.float64]:
+            return np.array([1.0, 1.0])
+    else:
+
+        def cost(tau: float) -> NDArray[np.float64]:
+            phi = np.exp(-dt_s / tau)
+            # integral of g_tau over [f_min, f_N], closed form of the AR(1) PSD
+            x = np.pi * f_min * dt_s
+            ang = 2.0 * np.arctan((1.0 + phi) / (1.0 - phi) * np.tan(x))
+            g_int = 1.0 - ang / np.pi
+            return np.array([g_int, white * (nyq - f_min)])
+
+    return cost
+
+
+def _lp_solver(
+    fc: NDArray[np.float64],
+    s_norm: NDArray[np.float64],
+    dt_s: float,
+    cost: Callable[[float], NDArray[np.float64]],
+) -> Callable[[float], tuple[float, NDArray[np.float64]]]:
+    """Return the linear program of one tau: its optimum and ``(sigma_gm^2, sigma_wn^2)``.
+
+    The values are normalised by the PSD scale; the optimum is inf when the program fails.
+    """
+    white = 2.0 * dt_s
+
+    def solve(tau: float) -> tuple[float, NDArray[np.float64]]:
+        g = gm_psd_sampled(fc, 1.0, tau, dt_s)
+        a_ub = -np.column_stack([g, np.full(fc.size, white)])
+        res = linprog(
+            cost(tau), A_ub=a_ub, b_ub=-s_norm, bounds=[(0, None), (0, None)], method="highs"
+        )
+        if res.status != 0:
+            return np.inf, np.array([np.nan, np.nan])
+        return float(res.fun), res.x
+
+    return solve
+
+
+def _search_tau(
+    solve: Callable[[float], tuple[float, NDArray[np.float64]]],
+    lo: float,
+    hi: float,
+    n_grid: int,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
+    """Search tau (s): a log grid, then a bounded Brent refinement; return grid, values, best."""
+    grid = np.geomspace(lo, hi, n_grid)
+    vals = np.array([solve(t)[0] for t in grid])
+    k = int(np.argmin(vals))
+    a, b = grid[max(k - 1, 0)], grid[min(k + 1, n_grid - 1)]
+    best_tau, best_val = grid[k], vals[k]
+    if b > a:
+        r = minimize_scalar(
+            lambda u: solve(float(np.exp(u)))[0],
+            bounds=(np.log(a), np.log(b)),
+            method="bounded",
+            options={"xatol": 1e-6},
+        )
+        if r.fun < best_val:
+            best_tau, best_val = float(np.exp(r.x)), float(r.fun)
+    return grid, vals, best_tau
+
+
+def _model_psd(
+    f: NDArray[np.float64], var_gm: float, var_wn: float, tau: float, dt_s: float
+) -> NDArray[np.float64]:
+    """Return the bound's sampled PSD at ``f`` (Hz), m^2/Hz."""
+    return var_gm * gm_psd_sampled(f, 1.0, tau, dt_s) + var_wn * (2.0 * dt_s)
+
+
+def _enforce_bound(
+    x: NDArray[np.float64],
+    scale: float,
+    f_con: NDArray[np.float64],
+    s_con: NDArray[np.float64],
+    tau: float,
+    dt_s: float,
+) -> tuple[float, float]:
+    """Return the variances (m^2), scaled up so the bound holds on every constraint point."""
+    # HiGHS may return -1e-18 for a variance at its bound of 0: a variance is not negative
+    var_gm, var_wn = max(float(x[0]), 0.0) * scale, max(float(x[1]), 0.0) * scale
+    # enforce the bound exactly on every data point (and floor point)
+    worst = float(np.min(_model_psd(f_con, var_gm, var_wn, tau, dt_s) / s_con))
+    if worst < 1.0:  # solver tolerance: scale up so the bound holds (1e-12 for rounding)
+        up = (1.0 + 1e-12) / worst
+        var_gm, var_wn = var_gm * up, var_wn * up
+    return var_gm, var_wn

@@ -23,6 +23,7 @@ Samples covered by no stationary window are reported, not silently dropped.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -202,18 +203,31 @@ def window_arc(
     n_tests : int
         Number of tests run.
     """
+    _check_window_options(min_length, p_slide, p_trim, test)
+    if x.size < min_length:
+        return [], 0
+    run = _tester(x, test=test, alpha=alpha, center=center)
+    if not overlap:  # binary segmentation: disjoint windows, no untested remainders
+        return _bisect(run, x.size - 1, min_length)
+    return _slide_trim(run, x.size - 1, min_length, p_slide, p_trim)
+
+
+#: A stationarity test of the samples ``a..b`` (inclusive) of one arc.
+_Run = Callable[[int, int], StationarityTest]
+
+
+def _check_window_options(min_length: int, p_slide: float, p_trim: float, test: str) -> None:
+    """Check the windowing coefficients, the minimum length (samples) and the test's name."""
     if not p_slide > 1.0 or not 0.0 < p_trim < 1.0:
         raise InputError(f"need p_slide > 1 and 0 < p_trim < 1; got {p_slide}, {p_trim}")
     if min_length < 8:
         raise InputError(f"minimum window length must be >= 8 samples, got {min_length}")
     if test not in STATIONARITY_TESTS:
         raise InputError(f"unknown stationarity test {test!r}; use {', '.join(STATIONARITY_TESTS)}")
-    last = x.size - 1
-    s, e = 0, last
-    out: list[tuple[int, int, float, float]] = []
-    n_tests = 0
-    if x.size < min_length:
-        return out, 0
+
+
+def _tester(x: NDArray[np.float64], *, test: str, alpha: float, center: str) -> _Run:
+    """Return the stationarity test of a stretch of ``x`` (inclusive sample indices)."""
 
     def run(a: int, b: int) -> StationarityTest:
         if test == "spectral":
@@ -221,18 +235,35 @@ def window_arc(
             return StationarityTest(sp.stationary, sp.p_value, sp.p_value, alpha)
         return test_stationarity(x[a : b + 1], alpha=alpha, center=center)
 
-    if not overlap:  # binary segmentation: disjoint windows, no untested remainders
-        todo = [(0, last)]
-        while todo:
-            a, b = todo.pop()
-            res = run(a, b)
-            n_tests += 1
-            if res.stationary:
-                out.append((a, b, res.levene_p, float(res.ks_p)))
-            elif b - a + 1 >= 2 * min_length:
-                mid = (a + b) // 2
-                todo += [(mid + 1, b), (a, mid)]
-        return sorted(out), n_tests
+    return run
+
+
+def _bisect(
+    run: _Run, last: int, min_length: int
+) -> tuple[list[tuple[int, int, float, float]], int]:
+    """Binary segmentation of samples ``0..last``: disjoint windows and the number of tests."""
+    out: list[tuple[int, int, float, float]] = []
+    n_tests = 0
+    todo = [(0, last)]
+    while todo:
+        a, b = todo.pop()
+        res = run(a, b)
+        n_tests += 1
+        if res.stationary:
+            out.append((a, b, res.levene_p, float(res.ks_p)))
+        elif b - a + 1 >= 2 * min_length:
+            mid = (a + b) // 2
+            todo += [(mid + 1, b), (a, mid)]
+    return sorted(out), n_tests
+
+
+def _slide_trim(
+    run: _Run, last: int, min_length: int, p_slide: float, p_trim: float
+) -> tuple[list[tuple[int, int, float, float]], int]:
+    """Apply the thesis's slide/trim rule to samples ``0..last``; return windows, test count."""
+    s, e = 0, last
+    out: list[tuple[int, int, float, float]] = []
+    n_tests = 0
     while True:
         n_w = e - s + 1
         res = run(s, e)

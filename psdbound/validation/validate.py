@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 from numpy.typing import ArrayLike
@@ -108,32 +109,11 @@ def validate_cutoff(
     -------
     ValidationReport
     """
-    geoms = [g if isinstance(g, Reflection) else parse_geometry(g) for g in geometries]
-    if not geoms:
-        raise InputError("give at least one reflection geometry, e.g. 'wall:d=25'")
-    for c in conventions:
-        phase_scale(c)  # validates
-    src = rate if isinstance(rate, RateSource) else resolve_rate(rate, modes=modes)
-    if orbit is not None and receiver_xyz_m is None:
-        raise InputError("a satellite track needs the receiver ECEF position")
-
-    expansion: list[ExpansionCheck] = []
+    geoms, src = _checked_inputs(geometries, conventions, rate, modes, orbit, receiver_xyz_m)
+    st = _Settings(cutoff_hz, alpha, threshold, wavelength_m)
+    expansion = _rotating_checks(geoms, conventions, src, st, distance_tolerance_m)
     direct: list[DirectCheck] = []
     notes: list[str] = []
-    for g in geoms:
-        for conv in conventions:
-            expansion.append(
-                check_rotating(
-                    g,
-                    cutoff_hz=cutoff_hz,
-                    rate=src,
-                    alpha=alpha,
-                    convention=conv,
-                    threshold=threshold,
-                    wavelength_m=wavelength_m,
-                    distance_tolerance_m=distance_tolerance_m,
-                )
-            )
     if src.frequency_hz >= cutoff_hz:
         notes.append(
             f"the geometry rate {src.frequency_hz:.4g} Hz is at or above f_c: in the rotating "
@@ -147,42 +127,9 @@ def validate_cutoff(
         )
         for g in geoms:
             for conv in conventions:
-                chk = check_oscillation(
-                    g,
-                    cutoff_hz=cutoff_hz,
-                    rate=src,
-                    theta0_deg=theta0_deg,
-                    amplitude_deg=amp,
-                    alpha=alpha,
-                    convention=conv,
-                    threshold=threshold,
-                    wavelength_m=wavelength_m,
-                )
+                chk, d = _oscillation_check(g, conv, src, st, theta0_deg, amp, n_periods)
                 expansion.append(chk)
-                max_rate = math.radians(amp) * 2.0 * math.pi * src.frequency_hz
-                dt = sampling_interval_s(
-                    g, max_rate_rad_s=max_rate, convention=conv, wavelength_m=wavelength_m
-                )
-                _, theta, step = oscillation_track(
-                    src.frequency_hz,
-                    theta0_deg=theta0_deg,
-                    amplitude_deg=amp,
-                    dt_s=dt,
-                    n_periods=n_periods,
-                )
-                d = direct_check(
-                    g,
-                    theta,
-                    step,
-                    cutoff_hz=cutoff_hz,
-                    alpha=alpha,
-                    convention=conv,
-                    threshold=threshold,
-                    wavelength_m=wavelength_m,
-                    source="oscillation",
-                    label=f"{src.mode.name} {n_periods} periods",
-                )
-                direct.append(_with_expansion(d, chk.fraction_second_order))
+                direct.append(d)
     if orbit is not None:
         passes = satellite_passes(
             orbit,
@@ -198,33 +145,7 @@ def validate_cutoff(
             "reflector (azimuth ignored, as in the thesis)"
         )
         for p in passes:
-            for g in geoms:
-                for conv in conventions:
-                    dt = sampling_interval_s(
-                        g,
-                        max_rate_rad_s=p.max_rate_rad_s,
-                        convention=conv,
-                        wavelength_m=wavelength_m,
-                    )
-                    _, el = p.resample(dt)
-                    direct.append(
-                        direct_check(
-                            g,
-                            el,
-                            dt,
-                            cutoff_hz=cutoff_hz,
-                            alpha=alpha,
-                            convention=conv,
-                            threshold=threshold,
-                            wavelength_m=wavelength_m,
-                            source="satellite",
-                            label=p.label,
-                        )
-                    )
-    for chk in expansion:
-        for n in chk.notes:
-            if n not in notes:
-                notes.append(n)
+            direct.extend(_pass_checks(p, geoms, conventions, st))
     return ValidationReport(
         float(cutoff_hz),
         float(threshold),
@@ -232,8 +153,152 @@ def validate_cutoff(
         float(wavelength_m),
         tuple(expansion),
         tuple(direct),
-        tuple(notes),
+        tuple(_merged_notes(notes, expansion)),
     )
+
+
+def _checked_inputs(
+    geometries: Sequence[Reflection | str],
+    conventions: Sequence[str],
+    rate: str | float | RateSource,
+    modes: Mapping[str, DynamicMode] | None,
+    orbit: Any,
+    receiver_xyz_m: ArrayLike | None,
+) -> tuple[list[Reflection], RateSource]:
+    """Parse the geometries and the rate; check the conventions and the receiver position."""
+    geoms = [g if isinstance(g, Reflection) else parse_geometry(g) for g in geometries]
+    if not geoms:
+        raise InputError("give at least one reflection geometry, e.g. 'wall:d=25'")
+    for c in conventions:
+        phase_scale(c)  # validates
+    src = rate if isinstance(rate, RateSource) else resolve_rate(rate, modes=modes)
+    if orbit is not None and receiver_xyz_m is None:
+        raise InputError("a satellite track needs the receiver ECEF position")
+    return geoms, src
+
+
+def _merged_notes(notes: list[str], expansion: list[ExpansionCheck]) -> list[str]:
+    """Append the expansions' notes not yet in ``notes``; return ``notes``."""
+    for chk in expansion:
+        for n in chk.notes:
+            if n not in notes:
+                notes.append(n)
+    return notes
+
+
+@dataclass(frozen=True)
+class _Settings:
+    """The settings every check shares: cutoff (Hz), amplitude ratio, threshold, wavelength (m)."""
+
+    cutoff_hz: float
+    alpha: float
+    threshold: float
+    wavelength_m: float
+
+
+def _rotating_checks(
+    geoms: list[Reflection],
+    conventions: Sequence[str],
+    src: RateSource,
+    st: _Settings,
+    distance_tolerance_m: float,
+) -> list[ExpansionCheck]:
+    """Run the rotating-angle expansion of every geometry and convention."""
+    expansion: list[ExpansionCheck] = []
+    for g in geoms:
+        for conv in conventions:
+            expansion.append(
+                check_rotating(
+                    g,
+                    cutoff_hz=st.cutoff_hz,
+                    rate=src,
+                    alpha=st.alpha,
+                    convention=conv,
+                    threshold=st.threshold,
+                    wavelength_m=st.wavelength_m,
+                    distance_tolerance_m=distance_tolerance_m,
+                )
+            )
+    return expansion
+
+
+def _oscillation_check(
+    g: Reflection,
+    conv: str,
+    src: RateSource,
+    st: _Settings,
+    theta0_deg: float,
+    amp: float,
+    n_periods: int,
+) -> tuple[ExpansionCheck, DirectCheck]:
+    """Check one geometry and convention under an aircraft oscillation: expansion and direct."""
+    assert src.mode is not None
+    chk = check_oscillation(
+        g,
+        cutoff_hz=st.cutoff_hz,
+        rate=src,
+        theta0_deg=theta0_deg,
+        amplitude_deg=amp,
+        alpha=st.alpha,
+        convention=conv,
+        threshold=st.threshold,
+        wavelength_m=st.wavelength_m,
+    )
+    max_rate = math.radians(amp) * 2.0 * math.pi * src.frequency_hz
+    dt = sampling_interval_s(
+        g, max_rate_rad_s=max_rate, convention=conv, wavelength_m=st.wavelength_m
+    )
+    _, theta, step = oscillation_track(
+        src.frequency_hz,
+        theta0_deg=theta0_deg,
+        amplitude_deg=amp,
+        dt_s=dt,
+        n_periods=n_periods,
+    )
+    d = direct_check(
+        g,
+        theta,
+        step,
+        cutoff_hz=st.cutoff_hz,
+        alpha=st.alpha,
+        convention=conv,
+        threshold=st.threshold,
+        wavelength_m=st.wavelength_m,
+        source="oscillation",
+        label=f"{src.mode.name} {n_periods} periods",
+    )
+    return chk, _with_expansion(d, chk.fraction_second_order)
+
+
+def _pass_checks(
+    p: Any, geoms: list[Reflection], conventions: Sequence[str], st: _Settings
+) -> list[DirectCheck]:
+    """Simulate every geometry and convention along one satellite pass."""
+    direct: list[DirectCheck] = []
+    for g in geoms:
+        for conv in conventions:
+            dt = sampling_interval_s(
+                g,
+                max_rate_rad_s=p.max_rate_rad_s,
+                convention=conv,
+                wavelength_m=st.wavelength_m,
+            )
+            _, el = p.resample(dt)
+            direct.append(
+                direct_check(
+                    g,
+                    el,
+                    dt,
+                    cutoff_hz=st.cutoff_hz,
+                    alpha=st.alpha,
+                    convention=conv,
+                    threshold=st.threshold,
+                    wavelength_m=st.wavelength_m,
+                    source="satellite",
+                    label=p.label,
+                )
+            )
+    return direct
 
 
 def _with_expansion(d: DirectCheck, fraction: float) -> DirectCheck:
