@@ -104,7 +104,6 @@ LARGE_FUNCTIONS: dict[str, str] = {
     "psdbound.io.coverage.orbit_coverage": "not split yet",
     "psdbound.io.merge.merge_observations": "not split yet",
     "psdbound.io.obs.read_obs": "not split yet",
-    "psdbound.io.sp3.read_sp3": "not split yet",
     "psdbound.ionosphere.almanac.read_yuma": "not split yet",
     "psdbound.ionosphere.batch.select_days": "not split yet",
     "psdbound.ionosphere.cutoff.series_cutoff": "not split yet",
