@@ -32,8 +32,8 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
 from numpy.typing import NDArray
-from scipy.ndimage import median_filter
 
 from psdbound.common.notices import warn
 from psdbound.errors import InputError, NoDataError
@@ -54,6 +54,7 @@ DEFAULT_SIGNALS: dict[str, tuple[str, str]] = {
 _SLIP_WINDOW = 11  # samples in the running median of the geometry-free rate
 _NOISE_WINDOW = 61  # samples in the running robust noise level of the jumps
 _NOISE_K = 6.0  # a slip must exceed this many robust standard deviations
+_MEDIAN_CHUNK = 65536  # window samples partitioned at a time by the running median
 
 
 @dataclass(frozen=True)
@@ -290,6 +291,21 @@ class ArcSet:
         return text
 
 
+def _running_median(x: NDArray[np.float64], size: int) -> NDArray[np.float64]:
+    """Return the running median of ``x`` over ``size`` samples, the edges mirrored."""
+    # scipy.ndimage.median_filter(x, size, mode="mirror") without importing scipy.ndimage
+    # (150 ms): numpy's "reflect" is scipy's "mirror" (d c b | a b c d | c b a), an even size
+    # takes the upper middle value and reaches one sample further back; equal while
+    # size // 2 < len(x), as for min(window, len(x) | 1) (tests/io/test_running_median.py)
+    half = size // 2
+    windows = sliding_window_view(np.pad(x, (half, size - 1 - half), mode="reflect"), size)
+    out = np.empty(x.size)
+    step = max(1, _MEDIAN_CHUNK // size)  # rows at a time: the partitioned copy stays small
+    for lo in range(0, x.size, step):
+        out[lo : lo + step] = np.partition(windows[lo : lo + step], half, axis=1)[:, half]
+    return out
+
+
 def detect_slips(gf_m: NDArray[np.float64], threshold_m: float) -> NDArray[np.bool_]:
     """Return a boolean per epoch: a slip between the previous epoch and this one.
 
@@ -302,9 +318,9 @@ def detect_slips(gf_m: NDArray[np.float64], threshold_m: float) -> NDArray[np.bo
     if gf_m.size < 3:
         return out
     d = np.diff(gf_m)
-    ref = median_filter(d, size=min(_SLIP_WINDOW, d.size | 1), mode="mirror")
+    ref = _running_median(d, min(_SLIP_WINDOW, d.size | 1))
     r = np.abs(d - ref)
-    noise = 1.4826 * median_filter(r, size=min(_NOISE_WINDOW, r.size | 1), mode="mirror")
+    noise = 1.4826 * _running_median(r, min(_NOISE_WINDOW, r.size | 1))
     out[1:] = r > np.maximum(threshold_m, _NOISE_K * noise)
     return out
 
