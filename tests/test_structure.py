@@ -100,7 +100,6 @@ LARGE_FUNCTIONS: dict[str, str] = {
     "psdbound.cli.validate.add_parser": "not split yet",
     "psdbound.io._nav_rinex3.parse": "not split yet",
     "psdbound.io._source.read_bytes": "not split yet",
-    "psdbound.io.arcs.find_arcs": "not split yet",
     "psdbound.io.coverage.orbit_coverage": "not split yet",
     "psdbound.io.merge.merge_observations": "not split yet",
     "psdbound.io.obs.read_obs": "not split yet",
