@@ -98,7 +98,6 @@ LARGE_FUNCTIONS: dict[str, str] = {
     "psdbound.cli.budget.add_parser": "not split yet",
     "psdbound.cli.cutoff.add_parser": "not split yet",
     "psdbound.cli.validate.add_parser": "not split yet",
-    "psdbound.io._nav_rinex3.parse": "not split yet",
     "psdbound.io._source.read_bytes": "not split yet",
     "psdbound.io.coverage.orbit_coverage": "not split yet",
     "psdbound.io.merge.merge_observations": "not split yet",
