@@ -98,7 +98,6 @@ LARGE_FUNCTIONS: dict[str, str] = {
     "psdbound.cli.budget.add_parser": "not split yet",
     "psdbound.cli.cutoff.add_parser": "not split yet",
     "psdbound.cli.validate.add_parser": "not split yet",
-    "psdbound.ionosphere.batch.select_days": "not split yet",
     "psdbound.ionosphere.cutoff.series_cutoff": "not split yet",
     "psdbound.ionosphere.residual.residual_cutoffs": "not split yet",
     "psdbound.ionosphere.slant.simulate_slant_delay": "not split yet",
