@@ -98,7 +98,6 @@ LARGE_FUNCTIONS: dict[str, str] = {
     "psdbound.cli.budget.add_parser": "not split yet",
     "psdbound.cli.cutoff.add_parser": "not split yet",
     "psdbound.cli.validate.add_parser": "not split yet",
-    "psdbound.ionosphere.cutoff.series_cutoff": "not split yet",
     "psdbound.isolation.code._choose_phases": "not split yet",
     "psdbound.isolation.code.isolate_code_multipath": "not split yet",
     "psdbound.isolation.dual_antenna.isolate_dual_antenna": "not split yet",
