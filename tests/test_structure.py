@@ -98,22 +98,6 @@ LARGE_FUNCTIONS: dict[str, str] = {
     "psdbound.cli.budget.add_parser": "not split yet",
     "psdbound.cli.cutoff.add_parser": "not split yet",
     "psdbound.cli.validate.add_parser": "not split yet",
-    "psdbound.io._body.parse_v2": "not split yet",
-    "psdbound.io._body_fast._epoch_fields": "not split yet",
-    "psdbound.io._body_fast.scan_v3": "not split yet",
-    "psdbound.io._nav_rinex3.parse": "not split yet",
-    "psdbound.io._source.read_bytes": "not split yet",
-    "psdbound.io.arcs.find_arcs": "not split yet",
-    "psdbound.io.coverage.orbit_coverage": "not split yet",
-    "psdbound.io.merge.merge_observations": "not split yet",
-    "psdbound.io.obs.read_obs": "not split yet",
-    "psdbound.io.sp3.read_sp3": "not split yet",
-    "psdbound.ionosphere.almanac.read_yuma": "not split yet",
-    "psdbound.ionosphere.batch.select_days": "not split yet",
-    "psdbound.ionosphere.cutoff.series_cutoff": "not split yet",
-    "psdbound.ionosphere.residual.residual_cutoffs": "not split yet",
-    "psdbound.ionosphere.slant.simulate_slant_delay": "not split yet",
-    "psdbound.ionosphere.worldmap.compute_world_map": "not split yet",
 }
 
 

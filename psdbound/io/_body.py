@@ -522,6 +522,69 @@ def parse_v3(
     return acc.finish(codes_wanted, 3)
 
 
+@dataclass(frozen=True)
+class _V2Layout:
+    """Record layout of a RINEX 2 file: lines per satellite and their widths (characters)."""
+
+    n_types: int
+    per_sat: int
+    widths: list[int]
+    default_sys: str
+
+
+def _v2_layout(header: ObsHeader) -> _V2Layout:
+    """The record layout the header's observation types give (5 types per 80-column line)."""
+    n_types = len(next(iter(header.obs_types.values())))
+    per_sat = -(-n_types // 5)
+    widths = [FIELD_WIDTH * min(5, n_types - 5 * r) for r in range(per_sat)]
+    default_sys = header.file_system if header.file_system != "M" else "G"
+    return _V2Layout(n_types, per_sat, widths, default_sys)
+
+
+def _v2_sat_list(
+    acc: _Collector, lines: list[bytes], i: int, nsat: int, per_sat: int
+) -> tuple[list[str], int]:
+    """The satellite ids of the epoch record on line ``i`` and the line of its first record."""
+    n_lines = len(lines)
+    n_cont = max(-(-nsat // 12) - 1, 0)
+    if i + n_cont >= n_lines:
+        raise acc.fail("truncated epoch: its satellite list is cut short", i)
+    ids = b"".join(lines[i + c][32:68].ljust(36) for c in range(n_cont + 1))
+    sats = [ids[3 * s : 3 * s + 3].decode("ascii", "replace") for s in range(nsat)]
+    first_obs = i + 1 + n_cont
+    if first_obs + nsat * per_sat > n_lines:
+        raise acc.fail(
+            f"truncated epoch {lines[i][:26].decode('ascii', 'replace').strip()}: it announces "
+            f"{nsat} satellites x {per_sat} lines but the file ends",
+            i,
+        )
+    return sats, first_obs
+
+
+def _v2_records(
+    acc: _Collector, lines: list[bytes], sats: list[str], first_obs: int, e: int, lay: _V2Layout
+) -> None:
+    """Check and keep the records of epoch ``e`` (``lay.per_sat`` lines per satellite)."""
+    systems, per_sat, widths, default_sys = acc.systems, lay.per_sat, lay.widths, lay.default_sys
+    for s_idx, sat in enumerate(sats):
+        sys_ = sat[0] if sat[0] != " " else default_sys
+        j = first_obs + s_idx * per_sat
+        acc.seen.add(sys_)
+        if systems is not None and sys_ not in systems:
+            continue
+        parts = [lines[j + r] for r in range(per_sat)]
+        for r, (part, w) in enumerate(zip(parts, widths, strict=True)):
+            if len(part) > w and part[w:].strip():
+                raise acc.fail(
+                    f"satellite {sys_ + sat[1:]}: characters beyond column {w}, where the "
+                    f"header's {lay.n_types} observation types end on this line (observation "
+                    "types missing from the header, or columns shifted)",
+                    j + r,
+                )
+        rec = b"".join(p[:80].ljust(80) for p in parts)
+        acc.record(sys_, rec, j, e, sys_ + sat[1:].replace(" ", "0"))
+
+
 def parse_v2(
     body: bytes,
     header: ObsHeader,
@@ -532,10 +595,7 @@ def parse_v2(
     """Parse a RINEX 2.1x data section; return epochs (GPS s), flags, blocks and warnings."""
     lines = _lines(body)
     n_lines = len(lines)
-    n_types = len(next(iter(header.obs_types.values())))
-    per_sat = -(-n_types // 5)
-    widths = [FIELD_WIDTH * min(5, n_types - 5 * r) for r in range(per_sat)]
-    default_sys = header.file_system if header.file_system != "M" else "G"
+    lay = _v2_layout(header)
     acc = _Collector(header, path, systems)
     i = 0
     while i < n_lines:
@@ -545,44 +605,15 @@ def parse_v2(
             continue
         flag, nsat = _epoch_numbers(acc, ln, i, 28,
                                     "expected ' yy mm dd hh mm ss.sssssss  f nnn'")  # fmt: skip
-        n_cont = max(-(-nsat // 12) - 1, 0)
         if flag in (2, 3, 4, 5):
             if i + 1 + nsat > n_lines:
                 raise acc.fail(f"truncated event: {nsat} records announced, the file ends", i)
             _event(acc, lines, i, flag, nsat)
             i += 1 + nsat
             continue
-        if i + n_cont >= n_lines:
-            raise acc.fail("truncated epoch: its satellite list is cut short", i)
-        ids = b"".join(lines[i + c][32:68].ljust(36) for c in range(n_cont + 1))
-        sats = [ids[3 * s : 3 * s + 3].decode("ascii", "replace") for s in range(nsat)]
-        first_obs = i + 1 + n_cont
-        if first_obs + nsat * per_sat > n_lines:
-            raise acc.fail(
-                f"truncated epoch {ln[:26].decode('ascii', 'replace').strip()}: it announces "
-                f"{nsat} satellites x {per_sat} lines but the file ends",
-                i,
-            )
-        if flag == 6:  # cycle-slip records: observation layout, no observations used
-            i = first_obs + nsat * per_sat
-            continue
-        e = acc.epoch(ln, i, flag, _DATE_V2)
-        for s_idx, sat in enumerate(sats):
-            sys_ = sat[0] if sat[0] != " " else default_sys
-            j = first_obs + s_idx * per_sat
-            acc.seen.add(sys_)
-            if systems is not None and sys_ not in systems:
-                continue
-            parts = [lines[j + r] for r in range(per_sat)]
-            for r, (part, w) in enumerate(zip(parts, widths, strict=True)):
-                if len(part) > w and part[w:].strip():
-                    raise acc.fail(
-                        f"satellite {sys_ + sat[1:]}: characters beyond column {w}, where the "
-                        f"header's {n_types} observation types end on this line (observation "
-                        "types missing from the header, or columns shifted)",
-                        j + r,
-                    )
-            rec = b"".join(p[:80].ljust(80) for p in parts)
-            acc.record(sys_, rec, j, e, sys_ + sat[1:].replace(" ", "0"))
-        i = first_obs + nsat * per_sat
+        sats, first_obs = _v2_sat_list(acc, lines, i, nsat, lay.per_sat)
+        if flag != 6:  # cycle-slip records (6): observation layout, no observations used
+            e = acc.epoch(ln, i, flag, _DATE_V2)
+            _v2_records(acc, lines, sats, first_obs, e, lay)
+        i = first_obs + nsat * lay.per_sat
     return acc.finish(codes_wanted, 0)

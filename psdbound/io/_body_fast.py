@@ -96,46 +96,128 @@ def _gather(buf: NDArray[np.uint8], starts: NDArray[np.int64], lengths: NDArray[
     return out
 
 
-def _epoch_fields(chars: NDArray[np.uint8]) -> tuple[NDArray[np.float64], NDArray[np.int64],
-                                                     NDArray[np.int64]] | None:  # fmt: skip
-    """Dates, flags and satellite counts of strict epoch records; None if any is not."""
+def _is_strict_epoch(chars: NDArray[np.uint8]) -> bool:
+    """Whether every epoch record has the fixed characters and digits of the strict layout."""
     for k, c in _FIXED.items():
         if np.any(chars[:, k] != c):
-            return None
+            return False
     if (
         not _IS_DIGIT[chars[:, _DIGITS]].all()
         or not _IS_DIGIT_OR_SPACE[chars[:, _DIGIT_OR_SPACE]].all()
     ):
-        return None
-    d = chars.astype(np.int64) - _ZERO
-    dsp = np.where(chars == _SPACE, 0, d)  # "[ \d]" columns: a blank is a leading zero
-
-    def num(cols: list[int], src: NDArray[np.int64]) -> NDArray[np.int64]:
-        v = np.zeros(chars.shape[0], dtype=np.int64)
-        for c in cols:
-            v = v * 10 + src[:, c]
-        return v
-
+        return False
     # a blank inside a number ("1 2") is not what int() reads: only leading blanks
     for a, b in ((7, 8), (10, 11), (13, 14), (16, 17), (18, 19)):
         if np.any((chars[:, a] != _SPACE) & (chars[:, b] == _SPACE)):
-            return None
-    year = num([2, 3, 4, 5], d)
-    sec = num([18, 19, 20, *range(22, 29)], dsp).astype(np.float64) / 1e7
-    dates = np.column_stack([year, num([7, 8], dsp), num([10, 11], dsp), num([13, 14], dsp),
-                             num([16, 17], dsp)]).astype(np.float64)  # fmt: skip
-    dates = np.column_stack([dates, sec])
-    flag_c = chars[:, 31]
-    if not np.all((flag_c == _SPACE) | (flag_c == _ZERO) | (flag_c == _ZERO + 1)):
-        return None  # events (2-5), cycle-slip records (6) and bad flags: line by line
-    flags = np.where(flag_c == _SPACE, 0, flag_c.astype(np.int64) - _ZERO)
-    n_c = chars[:, 32:35]
+            return False
+    return True
+
+
+def _number(digits: NDArray[np.int64], cols: list[int]) -> NDArray[np.int64]:
+    """The decimal number written in columns ``cols`` of rows of digit values."""
+    v = np.zeros(digits.shape[0], dtype=np.int64)
+    for c in cols:
+        v = v * 10 + digits[:, c]
+    return v
+
+
+def _dates(chars: NDArray[np.uint8]) -> NDArray[np.float64]:
+    """Year, month, day, hour, minute, second (s) of strict epoch records."""
+    d = chars.astype(np.int64) - _ZERO
+    dsp = np.where(chars == _SPACE, 0, d)  # "[ \d]" columns: a blank is a leading zero
+    year = _number(d, [2, 3, 4, 5])
+    sec = _number(dsp, [18, 19, 20, *range(22, 29)]).astype(np.float64) / 1e7
+    fields = [year, *(_number(dsp, [c, c + 1]) for c in (7, 10, 13, 16))]
+    return np.column_stack([np.column_stack(fields).astype(np.float64), sec])
+
+
+def _sat_counts(n_c: NDArray[np.uint8]) -> NDArray[np.int64] | None:
+    """The satellite counts (3 columns, leading blanks); None if one is not in that layout."""
     if not _IS_DIGIT[n_c[:, 2]].all() or not _IS_DIGIT_OR_SPACE[n_c[:, :2]].all():
         return None
     if np.any((n_c[:, 0] != _SPACE) & (n_c[:, 1] == _SPACE)):
         return None
-    nsat = num([0, 1, 2], np.where(n_c == _SPACE, 0, n_c.astype(np.int64) - _ZERO))
+    return _number(np.where(n_c == _SPACE, 0, n_c.astype(np.int64) - _ZERO), [0, 1, 2])
+
+
+def _epoch_fields(chars: NDArray[np.uint8]) -> tuple[NDArray[np.float64], NDArray[np.int64],
+                                                     NDArray[np.int64]] | None:  # fmt: skip
+    """Dates, flags and satellite counts of strict epoch records; None if any is not."""
+    if not _is_strict_epoch(chars):
+        return None
+    dates = _dates(chars)
+    flag_c = chars[:, 31]
+    if not np.all((flag_c == _SPACE) | (flag_c == _ZERO) | (flag_c == _ZERO + 1)):
+        return None  # events (2-5), cycle-slip records (6) and bad flags: line by line
+    flags = np.where(flag_c == _SPACE, 0, flag_c.astype(np.int64) - _ZERO)
+    nsat = _sat_counts(chars[:, 32:35])
+    if nsat is None:
+        return None
     return dates, flags, nsat
+
+
+def _line_bounds(buf: NDArray[np.uint8]) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+    """Start and length (bytes) of every line, blank lines at the end dropped."""
+    nl = np.flatnonzero(buf == _NL)
+    starts = np.concatenate([[0], nl + 1]).astype(np.int64)
+    ends = np.concatenate([nl, [buf.size]]).astype(np.int64)
+    lengths = ends - starts
+    n_lines = lengths.size
+    while n_lines and (lengths[n_lines - 1] == 0 or _WHITE[
+            buf[starts[n_lines - 1] : ends[n_lines - 1]]].all()):  # fmt: skip
+        n_lines -= 1
+    return starts[:n_lines], lengths[:n_lines]
+
+
+def _epochs(
+    buf: NDArray[np.uint8],
+    starts: NDArray[np.int64],
+    lengths: NDArray[np.int64],
+    is_epoch: NDArray[np.bool_],
+    scan: Scan,
+) -> bool:
+    """Read the epoch records into ``scan``; False if they are not regular."""
+    ep_lines = np.flatnonzero(is_epoch)
+    ep_chars = _gather(buf, starts[ep_lines], lengths[ep_lines], _EPOCH_LEN)
+    if np.any(lengths[ep_lines] < _EPOCH_LEN):
+        return False
+    fields = _epoch_fields(ep_chars)
+    if fields is None:
+        return False
+    dates, flags, nsat = fields
+    if not np.array_equal(np.diff(np.append(ep_lines, lengths.size)) - 1, nsat):
+        return False
+    if dates.shape[0] > 1 and np.any((np.diff(dates, axis=0) == 0).all(axis=1)):
+        return False  # repeated epochs: compared record by record, line by line
+    scan.dates, scan.lines, scan.flags = dates, ep_lines.astype(np.int64), flags.astype(np.int8)
+    return True
+
+
+def _system_records(
+    buf: NDArray[np.uint8],
+    starts: NDArray[np.int64],
+    lengths: NDArray[np.int64],
+    sel: NDArray[np.int64],
+    s: str,
+    width: int,
+    scan: Scan,
+) -> bool:
+    """Put the records ``sel`` of system ``s`` into ``scan``; False if one is not regular."""
+    longest = int(lengths[sel].max())
+    chars = _gather(buf, starts[sel], lengths[sel], max(width, longest))
+    if longest > width:
+        if not _WHITE[chars[:, width:]].all():
+            return False
+        chars = np.ascontiguousarray(chars[:, :width])
+    ids = chars[:, :3].copy()
+    if np.any(ids >= 128):
+        return False
+    ids[ids == _SPACE] = _ZERO
+    scan.chars[s] = chars
+    scan.line_of[s] = sel.astype(np.int64)
+    scan.sat_of[s] = ids.view("S3").ravel().astype("U3").tolist()
+    scan.sat_key[s] = (ids.astype(np.int64) << np.array([16, 8, 0])).sum(axis=1)
+    return True
 
 
 def scan_v3(body: bytes, systems: Collection[str] | None,
@@ -157,36 +239,17 @@ def scan_v3(body: bytes, systems: Collection[str] | None,
         None when the section is not regular (see the module docstring).
     """
     buf = np.frombuffer(body, dtype=np.uint8)
-    nl = np.flatnonzero(buf == _NL)
-    starts = np.concatenate([[0], nl + 1]).astype(np.int64)
-    ends = np.concatenate([nl, [buf.size]]).astype(np.int64)
-    lengths = ends - starts
     # blank lines at the end are dropped; any other blank or short line: line by line
-    n_lines = lengths.size
-    while n_lines and (lengths[n_lines - 1] == 0 or _WHITE[
-            buf[starts[n_lines - 1] : ends[n_lines - 1]]].all()):  # fmt: skip
-        n_lines -= 1
-    starts, lengths = starts[:n_lines], lengths[:n_lines]
-    if n_lines == 0 or np.any(lengths < 3):
+    starts, lengths = _line_bounds(buf)
+    if lengths.size == 0 or np.any(lengths < 3):
         return None
     first = buf[starts]
     is_epoch = first == ord(">")
     if not is_epoch[0] or not np.all(is_epoch | _LETTERS[first]):
         return None
-    ep_lines = np.flatnonzero(is_epoch)
-    ep_chars = _gather(buf, starts[ep_lines], lengths[ep_lines], _EPOCH_LEN)
-    if np.any(lengths[ep_lines] < _EPOCH_LEN):
-        return None
-    fields = _epoch_fields(ep_chars)
-    if fields is None:
-        return None
-    dates, flags, nsat = fields
-    if not np.array_equal(np.diff(np.append(ep_lines, n_lines)) - 1, nsat):
-        return None
-    if dates.shape[0] > 1 and np.any((np.diff(dates, axis=0) == 0).all(axis=1)):
-        return None  # repeated epochs: compared record by record, line by line
     scan = Scan()
-    scan.dates, scan.lines, scan.flags = dates, ep_lines.astype(np.int64), flags.astype(np.int8)
+    if not _epochs(buf, starts, lengths, is_epoch, scan):
+        return None
     rec = np.flatnonzero(~is_epoch)
     epoch_idx = np.cumsum(is_epoch)[rec] - 1
     sys_of = first[rec]
@@ -196,23 +259,10 @@ def scan_v3(body: bytes, systems: Collection[str] | None,
         s = chr(int(letter))
         if systems is not None and s not in systems:
             continue
-        sel = rec[sys_of == letter]
         width = widths.get(s)
         if width is None:
             return None  # no observation types: the line-by-line scan names the record
-        longest = int(lengths[sel].max())
-        chars = _gather(buf, starts[sel], lengths[sel], max(width, longest))
-        if longest > width:
-            if not _WHITE[chars[:, width:]].all():
-                return None
-            chars = np.ascontiguousarray(chars[:, :width])
-        ids = chars[:, :3].copy()
-        if np.any(ids >= 128):
+        if not _system_records(buf, starts, lengths, rec[sys_of == letter], s, width, scan):
             return None
-        ids[ids == _SPACE] = _ZERO
-        scan.chars[s] = chars
-        scan.line_of[s] = sel.astype(np.int64)
         scan.epoch_of[s] = epoch_idx[sys_of == letter].astype(np.int64)
-        scan.sat_of[s] = ids.view("S3").ravel().astype("U3").tolist()
-        scan.sat_key[s] = (ids.astype(np.int64) << np.array([16, 8, 0])).sum(axis=1)
     return scan

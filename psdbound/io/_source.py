@@ -42,6 +42,20 @@ def read_bytes(path: str | os.PathLike[str]) -> bytes:
         corrupted Hatanaka stream.
     """
     p = Path(path)
+    raw = _read_file(p)
+    _one_member(p, raw)
+    raw = _decompress(p, raw)
+    if not raw or raw.isspace():  # (no stripped copy of a large file)
+        raise InputError("file is empty after decompression", path=p)
+    if b"\r" in raw:
+        raw = raw.replace(b"\r\n", b"\n")
+    if b"COMPACT RINEX" in raw[:200]:
+        raw = _crx_to_rnx(raw, p)
+    return raw
+
+
+def _read_file(p: Path) -> bytes:
+    """Return the file's bytes as stored; refuse a folder, a missing, unreadable or empty file."""
     if p.is_dir():
         raise InputError("is a folder, not a file", path=p)
     if not p.is_file():
@@ -52,7 +66,11 @@ def read_bytes(path: str | os.PathLike[str]) -> bytes:
         raise InputError(f"cannot read the file: {exc.strerror or exc}", path=p) from None
     if not raw:
         raise InputError("file is empty (0 bytes); expected a RINEX or SP3 file", path=p)
-    _one_member(p, raw)
+    return raw
+
+
+def _decompress(p: Path, raw: bytes) -> bytes:
+    """Return ``raw`` decompressed (gzip, Z, bz2, zip) when it starts with their magic bytes."""
     try:
         if raw[:2] == _GZIP_MAGIC:
             raw = gzip.decompress(raw)
@@ -66,12 +84,6 @@ def read_bytes(path: str | os.PathLike[str]) -> bytes:
         detail = " ".join(str(exc).split()) or type(exc).__name__
         raise InputError(f"cannot decompress: {detail} (damaged or truncated file?)",
                          path=p) from None  # fmt: skip
-    if not raw or raw.isspace():  # (no stripped copy of a large file)
-        raise InputError("file is empty after decompression", path=p)
-    if b"\r" in raw:
-        raw = raw.replace(b"\r\n", b"\n")
-    if b"COMPACT RINEX" in raw[:200]:
-        raw = _crx_to_rnx(raw, p)
     return raw
 
 

@@ -32,8 +32,8 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
 from numpy.typing import NDArray
-from scipy.ndimage import median_filter
 
 from psdbound.common.notices import warn
 from psdbound.errors import InputError, NoDataError
@@ -54,6 +54,7 @@ DEFAULT_SIGNALS: dict[str, tuple[str, str]] = {
 _SLIP_WINDOW = 11  # samples in the running median of the geometry-free rate
 _NOISE_WINDOW = 61  # samples in the running robust noise level of the jumps
 _NOISE_K = 6.0  # a slip must exceed this many robust standard deviations
+_MEDIAN_CHUNK = 65536  # window samples partitioned at a time by the running median
 
 
 @dataclass(frozen=True)
@@ -290,6 +291,21 @@ class ArcSet:
         return text
 
 
+def _running_median(x: NDArray[np.float64], size: int) -> NDArray[np.float64]:
+    """Return the running median of ``x`` over ``size`` samples, the edges mirrored."""
+    # scipy.ndimage.median_filter(x, size, mode="mirror") without importing scipy.ndimage
+    # (150 ms): numpy's "reflect" is scipy's "mirror" (d c b | a b c d | c b a), an even size
+    # takes the upper middle value and reaches one sample further back; equal while
+    # size // 2 < len(x), as for min(window, len(x) | 1) (tests/io/test_running_median.py)
+    half = size // 2
+    windows = sliding_window_view(np.pad(x, (half, size - 1 - half), mode="reflect"), size)
+    out = np.empty(x.size)
+    step = max(1, _MEDIAN_CHUNK // size)  # rows at a time: the partitioned copy stays small
+    for lo in range(0, x.size, step):
+        out[lo : lo + step] = np.partition(windows[lo : lo + step], half, axis=1)[:, half]
+    return out
+
+
 def detect_slips(gf_m: NDArray[np.float64], threshold_m: float) -> NDArray[np.bool_]:
     """Return a boolean per epoch: a slip between the previous epoch and this one.
 
@@ -302,11 +318,197 @@ def detect_slips(gf_m: NDArray[np.float64], threshold_m: float) -> NDArray[np.bo
     if gf_m.size < 3:
         return out
     d = np.diff(gf_m)
-    ref = median_filter(d, size=min(_SLIP_WINDOW, d.size | 1), mode="mirror")
+    ref = _running_median(d, min(_SLIP_WINDOW, d.size | 1))
     r = np.abs(d - ref)
-    noise = 1.4826 * median_filter(r, size=min(_NOISE_WINDOW, r.size | 1), mode="mirror")
+    noise = 1.4826 * _running_median(r, min(_NOISE_WINDOW, r.size | 1))
     out[1:] = r > np.maximum(threshold_m, _NOISE_K * noise)
     return out
+
+
+def _signal_pair(obs: Observations, signals: Sequence[str] | None, system: str) -> tuple[str, str]:
+    """Return the file's codes of the phase pair (the system's default when None), checked."""
+    if signals is None:
+        if system not in DEFAULT_SIGNALS:
+            raise InputError(f"no default signal pair for system {system!r}; give signals")
+        signals = DEFAULT_SIGNALS[system]
+    if len(signals) != 2:
+        raise InputError(f"expected a pair of phase signals, got {tuple(signals)}")
+    code_a, code_b = (obs.resolve_code(system, s) for s in signals)
+    if not (code_a.startswith("L") and code_b.startswith("L")):
+        raise InputError(f"arcs need carrier-phase codes (L..), got {code_a} and {code_b}")
+    return code_a, code_b
+
+
+def _receiver_position(
+    obs: Observations, receiver_xyz_m: NDArray[np.float64] | None
+) -> NDArray[np.float64]:
+    """Return the receiver's ECEF position (m): the one given, else the header's approximate one."""
+    if receiver_xyz_m is None:
+        receiver_xyz_m = obs.header.approx_position_m
+    if receiver_xyz_m is None:
+        raise InputError(
+            "no receiver position: the header's APPROX POSITION XYZ is missing, zero or not "
+            "near the Earth's surface; give receiver_xyz_m",
+            path=obs.path,
+        )
+    return receiver_xyz_m
+
+
+def _orbit_coverage(
+    obs: Observations, orbit: object, system: str, satellites: Sequence[str] | None
+) -> tuple[Observations, OrbitCoverage, tuple[str, ...]]:
+    """Check the orbit covers the observations, warn about its gaps; GLONASS channels added."""
+    coverage = orbit_coverage(orbit, obs, system, satellites=satellites)
+    coverage.require(system)
+    where = coverage.orbit_path or None
+    # stacklevel: warn, this generator, this function, find_arcs, the caller of find_arcs
+    notes = tuple(warn(m, path=where, stacklevel=4) for m in coverage.warnings(system))
+    channels = getattr(orbit, "glonass_channels", None)
+    if system == "R" and channels:
+        obs = obs.with_glonass_channels(channels)
+    return obs, coverage, notes
+
+
+@dataclass
+class _Track:
+    """One satellite's epochs with both phases: indices, times (s), phases (m), el/az (deg)."""
+
+    sat: str
+    idx: NDArray[np.intp]
+    t: NDArray[np.float64]
+    la: NDArray[np.float64]
+    lb: NDArray[np.float64]
+    el: NDArray[np.float64] | None = None
+    az: NDArray[np.float64] | None = None
+
+
+@dataclass
+class _Tally:
+    """What find_arcs gathers over the satellites: arcs, breaks, drops, sample counts."""
+
+    arcs: list[Arc] = field(default_factory=list)
+    breaks: Counter = field(default_factory=Counter)
+    dropped: Counter = field(default_factory=Counter)
+    dropped_s: float = 0.0
+    tracked: list[str] = field(default_factory=list)
+    below: list[str] = field(default_factory=list)
+    counts: list[int] = field(default_factory=lambda: [0, 0])
+    samples: dict[str, int] = field(
+        default_factory=lambda: {"both_signals": 0, "without_orbit": 0, "below_mask": 0}
+    )
+
+
+def _track(obs: Observations, sat: str, codes: tuple[str, str], tally: _Tally) -> _Track | None:
+    """Return the epochs where ``sat`` has both phases (None: fewer than two), counted."""
+    la = obs.phase_m(sat, codes[0])
+    lb = obs.phase_m(sat, codes[1])
+    fa, fb = np.isfinite(la), np.isfinite(lb)
+    tally.counts[0] += int(fa.sum())
+    tally.counts[1] += int(fb.sum())
+    idx = np.flatnonzero(fa & fb)
+    if idx.size < 2:
+        return None
+    tally.tracked.append(sat)
+    tally.samples["both_signals"] += int(idx.size)
+    return _Track(sat, idx, obs.t_gps_s[idx], la, lb)
+
+
+def _below_mask(
+    track: _Track,
+    orbit: object | None,
+    receiver_xyz_m: NDArray[np.float64] | None,
+    elevation_mask_deg: float,
+    samples: dict[str, int],
+) -> NDArray[np.bool_]:
+    """Set the track's elevation and azimuth (deg); return where it is below the mask."""
+    if orbit is None:
+        return np.zeros(track.idx.size, dtype=bool)
+    from psdbound.io.geometry import satellite_azel
+
+    az, el = satellite_azel(orbit, track.sat, track.t, np.asarray(receiver_xyz_m, dtype=float))
+    track.az, track.el = az, el
+    samples["without_orbit"] += int(np.isnan(el).sum())
+    samples["below_mask"] += int((el < elevation_mask_deg).sum())
+    return ~(el >= elevation_mask_deg)  # NaN (no orbit) counts as below the mask
+
+
+def _break_reasons(
+    track: _Track,
+    lli: tuple[NDArray[np.int8], NDArray[np.int8]],
+    power_fail: NDArray[np.bool_],
+    max_step_s: float,
+    low: NDArray[np.bool_],
+) -> tuple[NDArray[np.object_], NDArray[np.bool_]]:
+    """Return why an arc starts at each epoch ('' where none) and where stretches start."""
+    lli_a, lli_b = lli
+    lost = ((lli_a > 0) & (lli_a & 1 > 0)) | ((lli_b > 0) & (lli_b & 1 > 0))
+    gap = np.zeros(track.idx.size, dtype=bool)
+    gap[1:] = np.diff(track.t) > max_step_s
+    reason = np.full(track.idx.size, "", dtype=object)
+    # assign reasons in increasing priority; a later assignment wins
+    reason[power_fail] = "power failure"
+    reason[lost] = "loss of lock"
+    reason[gap] = "gap"
+    reason[0] = "first epoch"
+    starts = (reason != "") | np.r_[True, low[:-1] & ~low[1:]]
+    reason[np.r_[False, low[:-1] & ~low[1:]] & (reason == "")] = "elevation mask"
+    return reason, starts
+
+
+def _mark_slips(
+    reason: NDArray[np.object_],
+    starts: NDArray[np.bool_],
+    gf: NDArray[np.float64],
+    low: NDArray[np.bool_],
+    slip_threshold_m: float,
+) -> None:
+    """Set 'cycle slip' where ``gf`` (m) jumps, tested inside each stretch above the mask."""
+    seg_id = np.cumsum(starts)
+    for s in np.unique(seg_id):
+        m = np.flatnonzero((seg_id == s) & ~low)
+        if m.size < 3:
+            continue
+        slip = detect_slips(gf[m], slip_threshold_m)
+        reason[m[slip]] = "cycle slip"
+
+
+def _cut_arcs(
+    tally: _Tally,
+    track: _Track,
+    codes: tuple[str, str],
+    reason: NDArray[np.object_],
+    keep: NDArray[np.bool_],
+    min_length_s: float,
+) -> None:
+    """Cut the kept epochs into arcs at each reason; count the breaks and short stretches."""
+    t, idx = track.t, track.idx
+    starts = (reason != "") & keep
+    starts |= keep & np.r_[True, ~keep[:-1]]
+    bounds = np.flatnonzero(starts)
+    for b0, b1 in zip(bounds, np.r_[bounds[1:], idx.size], strict=True):
+        seg = np.arange(b0, b1)
+        seg = seg[keep[seg]]
+        r = reason[b0] or "elevation mask"
+        if b0 > 0:
+            tally.breaks[r] += 1
+        if seg.size < 2 or t[seg[-1]] - t[seg[0]] < min_length_s:
+            if seg.size:
+                tally.dropped["shorter than minimum"] += 1
+                tally.dropped_s += float(t[seg[-1]] - t[seg[0]])
+            continue
+        tally.arcs.append(
+            Arc(
+                sat=track.sat,
+                signals=codes,
+                arc_id=len(tally.arcs),
+                epoch_index=idx[seg],
+                t_gps_s=t[seg],
+                phase_m=np.column_stack([track.la[idx[seg]], track.lb[idx[seg]]]),
+                elevation_deg=None if track.el is None else track.el[seg],
+                azimuth_deg=None if track.az is None else track.az[seg],
+                start_reason=r,
+            )
+        )
 
 
 def find_arcs(
@@ -392,143 +594,55 @@ def find_arcs(
     >>> len(arcs) > 10 and all(a.duration_s >= 1800 for a in arcs)
     True
     """
-    if signals is None:
-        if system not in DEFAULT_SIGNALS:
-            raise InputError(f"no default signal pair for system {system!r}; give signals")
-        signals = DEFAULT_SIGNALS[system]
-    if len(signals) != 2:
-        raise InputError(f"expected a pair of phase signals, got {tuple(signals)}")
-    code_a, code_b = (obs.resolve_code(system, s) for s in signals)
-    if not (code_a.startswith("L") and code_b.startswith("L")):
-        raise InputError(f"arcs need carrier-phase codes (L..), got {code_a} and {code_b}")
+    code_a, code_b = _signal_pair(obs, signals, system)
     block = obs.blocks[system]
     interval_s = obs.interval_s
     coverage = None
     notes: tuple[str, ...] = ()
     if orbit is not None:
-        if receiver_xyz_m is None:
-            receiver_xyz_m = obs.header.approx_position_m
-        if receiver_xyz_m is None:
-            raise InputError(
-                "no receiver position: the header's APPROX POSITION XYZ is missing, zero or not "
-                "near the Earth's surface; give receiver_xyz_m",
-                path=obs.path,
-            )
-        from psdbound.io.geometry import satellite_azel
-
-        coverage = orbit_coverage(orbit, obs, system, satellites=satellites)
-        coverage.require(system)
-        where = coverage.orbit_path or None
-        notes = tuple(warn(m, path=where, stacklevel=3) for m in coverage.warnings(system))
-        channels = getattr(orbit, "glonass_channels", None)
-        if system == "R" and channels:
-            obs = obs.with_glonass_channels(channels)
+        receiver_xyz_m = _receiver_position(obs, receiver_xyz_m)
+        obs, coverage, notes = _orbit_coverage(obs, orbit, system, satellites)
 
     sats = block.sats if satellites is None else [s for s in block.sats if s in satellites]
     ka, kb = block.codes.index(code_a), block.codes.index(code_b)
-    t_all = obs.t_gps_s
     power_fail = obs.epoch_flag == 1
-    breaks: Counter = Counter()
-    dropped: Counter = Counter()
-    dropped_s = 0.0
-    arcs: list[Arc] = []
-    tracked: list[str] = []
-    below: list[str] = []
-    counts = [0, 0]
-    samples = {"both_signals": 0, "without_orbit": 0, "below_mask": 0}
+    tally = _Tally()
     for sat in sats:
-        i = block.sats.index(sat)
-        la = obs.phase_m(sat, code_a)
-        lb = obs.phase_m(sat, code_b)
-        fa, fb = np.isfinite(la), np.isfinite(lb)
-        counts[0] += int(fa.sum())
-        counts[1] += int(fb.sum())
-        idx = np.flatnonzero(fa & fb)
-        if idx.size < 2:
+        track = _track(obs, sat, (code_a, code_b), tally)
+        if track is None:
             continue
-        tracked.append(sat)
-        samples["both_signals"] += int(idx.size)
-        t = t_all[idx]
-        reason = np.full(idx.size, "", dtype=object)
-        reason[0] = "first epoch"
-        lli_a = block.lli[idx, i, ka]
-        lli_b = block.lli[idx, i, kb]
-        lost = ((lli_a > 0) & (lli_a & 1 > 0)) | ((lli_b > 0) & (lli_b & 1 > 0))
-        gap = np.zeros(idx.size, dtype=bool)
-        gap[1:] = np.diff(t) > gap_factor * interval_s
-        el = az = None
-        if orbit is not None:
-            az, el = satellite_azel(orbit, sat, t, np.asarray(receiver_xyz_m, dtype=float))
-            low = ~(el >= elevation_mask_deg)  # NaN (no orbit) counts as below the mask
-            samples["without_orbit"] += int(np.isnan(el).sum())
-            samples["below_mask"] += int((el < elevation_mask_deg).sum())
-        else:
-            low = np.zeros(idx.size, dtype=bool)
-        # assign reasons in increasing priority; a later assignment wins
-        reason[power_fail[idx]] = "power failure"
-        reason[lost] = "loss of lock"
-        reason[gap] = "gap"
-        reason[0] = "first epoch"
-        starts = (reason != "") | np.r_[True, low[:-1] & ~low[1:]]
-        reason[np.r_[False, low[:-1] & ~low[1:]] & (reason == "")] = "elevation mask"
+        i = block.sats.index(sat)
+        low = _below_mask(track, orbit, receiver_xyz_m, elevation_mask_deg, tally.samples)
+        lli = (block.lli[track.idx, i, ka], block.lli[track.idx, i, kb])
+        reason, starts = _break_reasons(
+            track, lli, power_fail[track.idx], gap_factor * interval_s, low
+        )
         # cycle slips, tested inside each stretch delimited so far
-        gf = la[idx] - lb[idx]
-        seg_id = np.cumsum(starts)
-        for s in np.unique(seg_id):
-            m = np.flatnonzero((seg_id == s) & ~low)
-            if m.size < 3:
-                continue
-            slip = detect_slips(gf[m], slip_threshold_m)
-            reason[m[slip]] = "cycle slip"
+        gf = track.la[track.idx] - track.lb[track.idx]
+        _mark_slips(reason, starts, gf, low, slip_threshold_m)
         keep = ~low
         if not keep.any():
-            below.append(sat)
+            tally.below.append(sat)
             continue  # never above the mask: no arc
-        starts = (reason != "") & keep
-        starts |= keep & np.r_[True, ~keep[:-1]]
-        bounds = np.flatnonzero(starts)
-        for b0, b1 in zip(bounds, np.r_[bounds[1:], idx.size], strict=True):
-            seg = np.arange(b0, b1)
-            seg = seg[keep[seg]]
-            r = reason[b0] or "elevation mask"
-            if b0 > 0:
-                breaks[r] += 1
-            if seg.size < 2 or t[seg[-1]] - t[seg[0]] < min_length_s:
-                if seg.size:
-                    dropped["shorter than minimum"] += 1
-                    dropped_s += float(t[seg[-1]] - t[seg[0]])
-                continue
-            arcs.append(
-                Arc(
-                    sat=sat,
-                    signals=(code_a, code_b),
-                    arc_id=len(arcs),
-                    epoch_index=idx[seg],
-                    t_gps_s=t[seg],
-                    phase_m=np.column_stack([la[idx[seg]], lb[idx[seg]]]),
-                    elevation_deg=None if el is None else el[seg],
-                    azimuth_deg=None if az is None else az[seg],
-                    start_reason=r,
-                )
-            )
+        _cut_arcs(tally, track, (code_a, code_b), reason, keep, min_length_s)
     result = ArcSet(
         path=obs.path,
         system=system,
         signals=(code_a, code_b),
         interval_s=interval_s,
         min_length_s=min_length_s,
-        arcs=tuple(arcs),
-        breaks=breaks,
-        dropped=dropped,
-        dropped_s=dropped_s,
+        arcs=tuple(tally.arcs),
+        breaks=tally.breaks,
+        dropped=tally.dropped,
+        dropped_s=tally.dropped_s,
         warnings=notes,
-        tracked=tuple(tracked),
-        below_mask=tuple(below),
+        tracked=tuple(tally.tracked),
+        below_mask=tuple(tally.below),
         elevation_mask_deg=None if orbit is None else float(elevation_mask_deg),
-        phase_counts=(counts[0], counts[1]),
+        phase_counts=(tally.counts[0], tally.counts[1]),
         coverage=coverage,
         glonass_channels=dict(obs.header.glonass_channels) if system == "R" else {},
-        samples=samples,
+        samples=tally.samples,
     )
     return result
 

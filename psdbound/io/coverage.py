@@ -32,7 +32,7 @@ from numpy.typing import NDArray
 
 from psdbound.errors import InputError
 from psdbound.io.navigation import Navigation
-from psdbound.io.obs import SYSTEM_NAMES, Observations
+from psdbound.io.obs import SYSTEM_NAMES, Observations, SystemBlock
 from psdbound.io.sp3 import PreciseOrbit
 from psdbound.io.timescales import gps_s_to_datetime64
 
@@ -385,6 +385,91 @@ def _sample(mask: NDArray[np.bool_], max_samples: int) -> NDArray[np.intp]:
     return idx
 
 
+def _sort_satellites(
+    orbit: object,
+    block: SystemBlock,
+    keep: list[int],
+    seen: NDArray[np.bool_],
+    usable: NDArray[np.bool_],
+    t: NDArray[np.float64],
+    present: bool | None,
+    max_samples: int,
+) -> tuple[list[str], list[str], list[str], list[str], dict[str, float]]:
+    """Return the observed satellites: covered, missing, outside, and partly covered (fraction)."""
+    observed, covered, missing, outside = [], [], [], []
+    partial: dict[str, float] = {}
+    for i in keep:
+        sat = block.sats[i]
+        if not seen[:, i].any():
+            continue
+        observed.append(sat)
+        idx = _sample(seen[:, i] & usable, max_samples)
+        if present is False:
+            missing.append(sat)
+            continue
+        if idx.size == 0:
+            outside.append(sat)
+            continue
+        pos = np.asarray(orbit.positions_ecef_m(sat, t[idx]))  # type: ignore[attr-defined]
+        frac = float(np.isfinite(pos).all(axis=1).mean())
+        if frac == 1.0:
+            covered.append(sat)
+        elif frac == 0.0:
+            missing.append(sat)
+        else:
+            partial[sat] = frac
+    return observed, covered, missing, outside, partial
+
+
+def _system_coverage(
+    orbit: object,
+    obs: Observations,
+    system: str,
+    satellites: Sequence[str] | None,
+    max_samples: int,
+) -> tuple[SystemCoverage, tuple[float, float] | None]:
+    """Return how the orbit covers one system's observed satellites, and its span (GPS s)."""
+    t = obs.t_gps_s
+    block = obs.blocks[system]
+    present, span, validity = _orbit_facts(orbit, system)
+    seen = np.isfinite(block.values).any(axis=2)  # (epoch, sat)
+    keep = [i for i, sat in enumerate(block.sats) if satellites is None or sat in satellites]
+    any_seen = seen[:, keep].any(axis=1)
+    inside = np.ones(t.shape[0], dtype=bool)
+    if span is not None:
+        inside = (t >= span[0] - validity) & (t <= span[1] + validity)
+    observed, covered, missing, outside, partial = _sort_satellites(
+        orbit, block, keep, seen, inside, t, present, max_samples
+    )
+    cov = SystemCoverage(
+        system=system,
+        in_orbit=present is not False,
+        observed=tuple(sorted(observed)),
+        covered=tuple(sorted(covered)),
+        partial=partial,
+        missing=tuple(sorted(missing)),
+        outside=tuple(sorted(outside)),
+        span_gps_s=span,
+        validity_s=validity,
+        epochs=int(any_seen.sum()),
+        epochs_outside=int((any_seen & ~inside).sum()) if present is not False else 0,
+    )
+    return cov, span
+
+
+def _whole_spans(orbit: object) -> list[tuple[float, float]]:
+    """Return the time spans (GPS s) of all the orbit's epochs or reference times, per system."""
+    spans = []
+    if isinstance(orbit, PreciseOrbit) and orbit.t_gps_s.size:
+        spans.append((float(orbit.t_gps_s[0]), float(orbit.t_gps_s[-1])))
+    elif isinstance(orbit, Navigation):
+        for s in orbit.systems:
+            tr = orbit.reference_times_gps_s(s)
+            if tr.size:
+                spans.append((float(tr[0]), float(tr[-1])))
+    return spans
+
+
 def orbit_coverage(
     orbit: object,
     obs: Observations,
@@ -431,58 +516,10 @@ def orbit_coverage(
     per: dict[str, SystemCoverage] = {}
     spans = []
     for system in wanted:
-        block = obs.blocks[system]
-        present, span, validity = _orbit_facts(orbit, system)
+        per[system], span = _system_coverage(orbit, obs, system, satellites, max_samples)
         if span is not None:
             spans.append(span)
-        observed, covered, missing, outside = [], [], [], []
-        partial: dict[str, float] = {}
-        seen = np.isfinite(block.values).any(axis=2)  # (epoch, sat)
-        keep = [i for i, sat in enumerate(block.sats) if satellites is None or sat in satellites]
-        any_seen = seen[:, keep].any(axis=1)
-        inside = np.ones(t.shape[0], dtype=bool)
-        if span is not None:
-            inside = (t >= span[0] - validity) & (t <= span[1] + validity)
-        for i in keep:
-            sat = block.sats[i]
-            if not seen[:, i].any():
-                continue
-            observed.append(sat)
-            idx = _sample(seen[:, i] & inside, max_samples)
-            if present is False:
-                missing.append(sat)
-                continue
-            if idx.size == 0:
-                outside.append(sat)
-                continue
-            pos = np.asarray(orbit.positions_ecef_m(sat, t[idx]))  # type: ignore[attr-defined]
-            frac = float(np.isfinite(pos).all(axis=1).mean())
-            if frac == 1.0:
-                covered.append(sat)
-            elif frac == 0.0:
-                missing.append(sat)
-            else:
-                partial[sat] = frac
-        per[system] = SystemCoverage(
-            system=system,
-            in_orbit=present is not False,
-            observed=tuple(sorted(observed)),
-            covered=tuple(sorted(covered)),
-            partial=partial,
-            missing=tuple(sorted(missing)),
-            outside=tuple(sorted(outside)),
-            span_gps_s=span,
-            validity_s=validity,
-            epochs=int(any_seen.sum()),
-            epochs_outside=int((any_seen & ~inside).sum()) if present is not False else 0,
-        )
-    if isinstance(orbit, PreciseOrbit) and orbit.t_gps_s.size:
-        spans.append((float(orbit.t_gps_s[0]), float(orbit.t_gps_s[-1])))
-    elif isinstance(orbit, Navigation):
-        for s in orbit.systems:
-            tr = orbit.reference_times_gps_s(s)
-            if tr.size:
-                spans.append((float(tr[0]), float(tr[-1])))
+    spans += _whole_spans(orbit)
     kind = {Navigation: "navigation file", PreciseOrbit: "SP3 file"}.get(type(orbit), "orbit")
     path = getattr(orbit, "path", "")
     return OrbitCoverage(

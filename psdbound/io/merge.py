@@ -99,6 +99,52 @@ def _scatter(block: SystemBlock, sats: list[str], codes: list[str], n: int):
     return vals, lli, ssi
 
 
+def _check_compatible(order: list[Observations]) -> None:
+    """Refuse files of another station or sampling interval than the earliest file's."""
+    first = order[0]
+    for o in order[1:]:
+        if not same_station(first, o):
+            raise InputError(
+                f"observation files of different stations: {first.path} is "
+                f"{station_key(first)!r}, {o.path} is {station_key(o)!r} (or their header "
+                f"positions differ by more than {SAME_STATION_M:g} m); give the files of one "
+                "station, or exactly two files for a dual-antenna pair"
+            )
+        if not np.isclose(o.interval_s, first.interval_s, rtol=1e-3):
+            raise InputError(
+                f"observation files with different sampling intervals: {first.path} "
+                f"({first.interval_s:g} s) and {o.path} ({o.interval_s:g} s); decimate them "
+                "to one interval first"
+            )
+
+
+def _merged_block(
+    order: list[Observations], sys_: str, keep: NDArray[np.bool_], sort: NDArray[np.intp]
+) -> SystemBlock:
+    """Return one system's block over all files: the union of satellites and codes."""
+    sats = sorted({s for o in order if sys_ in o.blocks for s in o.blocks[sys_].sats})
+    codes = list(dict.fromkeys(c for o in order if sys_ in o.blocks
+                               for c in o.blocks[sys_].codes))  # fmt: skip
+    parts_v, parts_l, parts_s = [], [], []
+    for o in order:
+        n = o.t_gps_s.size
+        if sys_ in o.blocks:
+            v, li, ss = _scatter(o.blocks[sys_], sats, codes, n)
+        else:
+            v = np.full((n, len(sats), len(codes)), np.nan)
+            li = np.full(v.shape, -1, dtype=np.int8)
+            ss = np.full(v.shape, -1, dtype=np.int8)
+        parts_v.append(v)
+        parts_l.append(li)
+        parts_s.append(ss)
+
+    def pick(parts: list[NDArray]) -> NDArray:
+        return np.concatenate(parts)[keep][sort]
+
+    return SystemBlock(sys_, tuple(sats), tuple(codes), pick(parts_v),
+                       pick(parts_l), pick(parts_s))  # fmt: skip
+
+
 def merge_observations(files: Sequence[Observations]) -> Observations:
     """Join observation files of one antenna into one data set, in time order.
 
@@ -126,20 +172,7 @@ def merge_observations(files: Sequence[Observations]) -> Observations:
         return files[0]
     order = sorted(files, key=lambda o: float(o.t_gps_s[0]) if o.t_gps_s.size else np.inf)
     first = order[0]
-    for o in order[1:]:
-        if not same_station(first, o):
-            raise InputError(
-                f"observation files of different stations: {first.path} is "
-                f"{station_key(first)!r}, {o.path} is {station_key(o)!r} (or their header "
-                f"positions differ by more than {SAME_STATION_M:g} m); give the files of one "
-                "station, or exactly two files for a dual-antenna pair"
-            )
-        if not np.isclose(o.interval_s, first.interval_s, rtol=1e-3):
-            raise InputError(
-                f"observation files with different sampling intervals: {first.path} "
-                f"({first.interval_s:g} s) and {o.path} ({o.interval_s:g} s); decimate them "
-                "to one interval first"
-            )
+    _check_compatible(order)
     t_all = np.concatenate([o.t_gps_s for o in order])
     # keep each epoch once, from the earliest file that has it
     keys = np.round(t_all * 1e3).astype(np.int64)
@@ -156,29 +189,7 @@ def merge_observations(files: Sequence[Observations]) -> Observations:
     t_keep = t_all[keep]
     sort = np.argsort(t_keep, kind="stable")
     systems = list(dict.fromkeys(s for o in order for s in o.blocks))
-    blocks: dict[str, SystemBlock] = {}
-    for sys_ in systems:
-        sats = sorted({s for o in order if sys_ in o.blocks for s in o.blocks[sys_].sats})
-        codes = list(dict.fromkeys(c for o in order if sys_ in o.blocks
-                                   for c in o.blocks[sys_].codes))  # fmt: skip
-        parts_v, parts_l, parts_s = [], [], []
-        for o in order:
-            n = o.t_gps_s.size
-            if sys_ in o.blocks:
-                v, li, ss = _scatter(o.blocks[sys_], sats, codes, n)
-            else:
-                v = np.full((n, len(sats), len(codes)), np.nan)
-                li = np.full(v.shape, -1, dtype=np.int8)
-                ss = np.full(v.shape, -1, dtype=np.int8)
-            parts_v.append(v)
-            parts_l.append(li)
-            parts_s.append(ss)
-
-        def pick(parts: list[NDArray]) -> NDArray:
-            return np.concatenate(parts)[keep][sort]
-
-        blocks[sys_] = SystemBlock(sys_, tuple(sats), tuple(codes), pick(parts_v),
-                                   pick(parts_l), pick(parts_s))  # fmt: skip
+    blocks = {sys_: _merged_block(order, sys_, keep, sort) for sys_ in systems}
     flags = np.concatenate([o.epoch_flag for o in order])[keep][sort]
     types = {s: b.codes for s, b in blocks.items()}
     return replace(

@@ -311,6 +311,64 @@ def _check_systems(p: Path, want_sys: set[str], header: ObsHeader) -> None:
         raise missing_systems(p, absent, header.obs_types, "its header's observation types")
 
 
+def _wanted_codes(
+    p: Path,
+    header: ObsHeader,
+    want_sys: set[str] | None,
+    codes: Iterable[str] | None,
+    optional_codes: Iterable[str],
+) -> set[str] | None:
+    """Return the header's codes to keep (None: all); refuse a requested code it lacks."""
+    if codes is None:
+        return None
+    want_codes = set()
+    for c in codes:
+        found = _codes_in_header(c, header, want_sys)
+        if not found:
+            avail = sorted({t for s, ts in header.obs_types.items() for t in ts
+                            if want_sys is None or s in want_sys})  # fmt: skip
+            raise InputError(
+                f"observation code {c!r} is not in the header; available: {' '.join(avail)}",
+                path=p,
+            )
+        want_codes |= found
+    for c in optional_codes:
+        want_codes |= _codes_in_header(c, header, want_sys)
+    return want_codes
+
+
+def _interval_note(t: NDArray[np.float64], header: ObsHeader, p: Path) -> str | None:
+    """Return a note when the header's INTERVAL disagrees with the epochs' spacing."""
+    hi = header.interval_s
+    if t.size >= 2 and hi:
+        dt = epoch_interval_s(t, None, p)
+        if abs(hi - dt) > 1e-3 * dt:
+            return (
+                f"the header's INTERVAL {hi:g} s disagrees with the epochs, {dt:g} s apart; "
+                "the epochs' interval is used"
+            )
+    return None
+
+
+def _check_found(p: Path, want_sys: set[str] | None, found: Iterable[str]) -> None:
+    """Refuse requested systems without any epoch of observations."""
+    if want_sys is not None:
+        missing = sorted(want_sys - set(found))
+        if missing:
+            names = ", ".join(f"{_SYSTEM_NAMES[s]} ({s})" for s in missing)
+            raise NoDataError(f"no epochs with {names} observations in the file", path=p)
+
+
+def _issue(notes: list[str], p: Path) -> tuple[str, ...]:
+    """Issue the notes as warnings (at read_obs's caller), a leading ``line N:`` as the line."""
+    issued: list[str] = []
+    for note in notes:
+        m = re.match(r"line (\d+): (.*)", note, re.S)
+        line, text = (int(m.group(1)), m.group(2)) if m else (None, note)
+        issued.append(warn(text, path=p, line=line, stacklevel=3))
+    return tuple(issued)
+
+
 def read_obs(
     path: str | os.PathLike[str],
     *,
@@ -386,21 +444,7 @@ def read_obs(
     want_sys = None if systems is None else set(systems)
     if want_sys is not None:
         _check_systems(p, want_sys, header)
-    want_codes = None
-    if codes is not None:
-        want_codes = set()
-        for c in codes:
-            found = _codes_in_header(c, header, want_sys)
-            if not found:
-                avail = sorted({t for s, ts in header.obs_types.items() for t in ts
-                                if want_sys is None or s in want_sys})  # fmt: skip
-                raise InputError(
-                    f"observation code {c!r} is not in the header; available: {' '.join(avail)}",
-                    path=p,
-                )
-            want_codes |= found
-        for c in optional_codes:
-            want_codes |= _codes_in_header(c, header, want_sys)
+    want_codes = _wanted_codes(p, header, want_sys, codes, optional_codes)
     read_codes = _with_reference_codes(header, want_sys, want_codes)
     if header.version >= 3:  # a view, not a copy of the data section (tens of MB a day at 1 Hz)
         t, flags, raw, notes = parse_v3(memoryview(text)[start:], header, p, want_sys, read_codes)
@@ -412,28 +456,14 @@ def read_obs(
     if read_codes != want_codes:
         raw = _keep_codes(raw, want_codes)
     notes = list(header.notes) + list(notes)
-    hi = header.interval_s
-    if t.size >= 2 and hi:
-        dt = epoch_interval_s(t, None, p)
-        if abs(hi - dt) > 1e-3 * dt:
-            notes.append(
-                f"the header's INTERVAL {hi:g} s disagrees with the epochs, {dt:g} s apart; "
-                "the epochs' interval is used"
-            )
-    if want_sys is not None:
-        missing = sorted(want_sys - set(raw))
-        if missing:
-            names = ", ".join(f"{_SYSTEM_NAMES[s]} ({s})" for s in missing)
-            raise NoDataError(f"no epochs with {names} observations in the file", path=p)
+    interval = _interval_note(t, header, p)
+    if interval is not None:
+        notes.append(interval)
+    _check_found(p, want_sys, raw)
     blocks = {
         s: SystemBlock(b.system, b.sats, b.codes, b.values, b.lli, b.ssi) for s, b in raw.items()
     }
-    issued: list[str] = []
-    for note in notes:
-        m = re.match(r"line (\d+): (.*)", note, re.S)
-        line, text = (int(m.group(1)), m.group(2)) if m else (None, note)
-        issued.append(warn(text, path=p, line=line))
-    return Observations(str(p), header, t, flags, blocks, tuple(issued))
+    return Observations(str(p), header, t, flags, blocks, _issue(notes, p))
 
 
 def epoch_interval_s(

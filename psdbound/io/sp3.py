@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -219,6 +219,275 @@ def _epoch_fields(path: Path, line: str, lineno: int) -> tuple[int, int, int, in
     return ep
 
 
+def _lines(p: Path) -> list[str]:
+    """Return the file's lines (Latin-1 text), without the empty one after the last newline."""
+    lines = read_bytes(p).decode("latin-1").split("\n")
+    if lines and not lines[-1]:
+        lines.pop()  # the newline ending the last line does not start a new one
+    return lines
+
+
+def _first_line(p: Path, first: str) -> int:
+    """Check line 1 (SP3-c/d, position/velocity flag); return the number of epochs it announces."""
+    if first[:1] != "#" or first[1:2] not in ("a", "b", "c", "d"):
+        what = "a RINEX file" if first[60:80].strip() == "RINEX VERSION / TYPE" else "not SP3"
+        raise _fail(
+            p,
+            f"not an SP3 file ({what}): line 1 starts with {first[:3]!r}; expected an SP3-c "
+            "or SP3-d header starting with '#c' or '#d'",
+            1,
+        )
+    version = first[1]
+    if version not in ("c", "d"):
+        raise _fail(p, f"SP3-{version} is not supported; expected SP3-c or SP3-d ('#c' / '#d')", 1)
+    if first[2:3] not in ("P", "V"):
+        raise _fail(
+            p,
+            f"line 1 column 3 is {first[2:3]!r}; expected the position/velocity flag 'P' or 'V'",
+            1,
+        )
+    try:
+        return int(first[32:39])
+    except ValueError:
+        raise _fail(
+            p, f"cannot read the number of epochs {first[32:39]!r} in columns 33-39", 1
+        ) from None
+
+
+@dataclass
+class _Header:
+    """What the SP3 header lines after line 1 hold, and where the data section starts."""
+
+    n_sat: int | None = None
+    sat_line: int = 0
+    sat_ids: list[str] = field(default_factory=list)
+    time_system: str | None = None
+    start: int = 1
+
+
+def _sat_count(p: Path, line: str, lineno: int) -> int:
+    """Read the number of satellites in columns 2-6 of the first '+' line."""
+    try:
+        return int(line[1:6])
+    except ValueError:
+        raise _fail(
+            p,
+            f"cannot read the number of satellites {line[1:6].strip()!r} in columns 2-6",
+            lineno,
+        ) from None
+
+
+def _read_header(p: Path, lines: list[str]) -> _Header:
+    """Read the satellite list and time system up to the first epoch line ('*')."""
+    h = _Header()
+    i = 1
+    n = len(lines)
+    while i < n and not lines[i].startswith("*"):
+        line = lines[i]
+        if line.startswith("+ "):
+            h.sat_line = h.sat_line or i + 1
+            if h.n_sat is None:
+                h.n_sat = _sat_count(p, line, i + 1)
+            body = line[9:60]
+            h.sat_ids.extend(body[c : c + 3] for c in range(0, len(body), 3))
+        elif line.startswith("%c") and h.time_system is None:
+            h.time_system = line[9:12].strip()
+        elif line.startswith("EOF"):
+            break
+        i += 1
+    if i >= n or not lines[i].startswith("*"):
+        raise _fail(
+            p,
+            "truncated SP3 file: no epoch line ('*  yyyy ...') after the header",
+            i + 1 if i < n else n,
+        )
+    if h.n_sat is None:
+        raise _fail(p, "no satellite list ('+' lines) in the SP3 header", i + 1)
+    h.start = i
+    return h
+
+
+def _satellites(p: Path, h: _Header) -> list[str]:
+    """Return the header's satellite ids (blanks read as zeros), checked against their count."""
+    sats = [s.replace(" ", "0") for s in h.sat_ids if s.strip() and s.strip() != "0"][: h.n_sat]
+    for s in sats:
+        lo, hi = PRN_RANGE.get(s[:1], (1, 99))
+        if not (s[1:].isdigit() and lo <= int(s[1:]) <= hi):
+            raise _fail(
+                p,
+                f"satellite id {s!r} in the header's satellite list is not valid: expected a "
+                f"system letter and a number from {lo:02d} to {hi:02d}",
+                h.sat_line,
+            )
+    if len(sats) != h.n_sat:
+        raise _fail(
+            p,
+            f"the header announces {h.n_sat} satellites but its '+' lines list {len(sats)}",
+            2,
+        )
+    return sats
+
+
+def _time_system(p: Path, time_system: str | None) -> str:
+    """Return the '%c' time system (GPS when blank or 'ccc'); refuse an unknown one."""
+    if time_system in (None, "", "ccc"):
+        time_system = "GPS"
+    if time_system not in _TIME_SYSTEMS:
+        raise _fail(
+            p,
+            f"unknown time system {time_system!r} in the '%c' line; expected one of "
+            + ", ".join(_TIME_SYSTEMS),
+        )
+    return time_system
+
+
+_ORIGIN = [0.0, 0.0, 0.0]
+
+
+def _position_values(p: Path, line: str, lineno: int, sat: str) -> tuple[list[float], float]:
+    """Return x, y, z (km) and the clock (us, NaN when blank) of a position record line."""
+    has_clock = bool(line[46:60].strip())
+    try:
+        v = [float(line[4:18]), float(line[18:32]), float(line[32:46])]
+        ck = float(line[46:60]) if has_clock else math.nan
+        ok = math.isfinite(v[0] + v[1] + v[2] + (ck if has_clock else 0.0))
+    except ValueError:
+        ok = False
+    if ok:
+        return v, ck
+    # a blank, unreadable or non-finite number: read field by field, naming the first one
+    v = [
+        _float(p, line, lineno, 4 + 14 * q, 18 + 14 * q, f"{ax} of {sat}")
+        for q, ax in enumerate(("x", "y", "z"))
+    ]
+    ck = _float(p, line, lineno, 46, 60, f"clock of {sat}") if has_clock else math.nan
+    return v, ck
+
+
+class _Records:
+    """Epochs, positions (m) and clocks (s) of an SP3 data section, filled line by line."""
+
+    def __init__(self, p: Path, sats: list[str], n_epochs_header: int, start: int) -> None:
+        self.p, self.n_sat, self.n_epochs_header = p, len(sats), n_epochs_header
+        self.col = {s: k for k, s in enumerate(sats)}
+        self.epochs: list[tuple[int, int, int, int, int, float]] = []
+        self.epoch_lines: list[int] = []
+        self.xyz = np.full((max(n_epochs_header, 1), self.n_sat, 3), np.nan)
+        self.clk = np.full((max(n_epochs_header, 1), self.n_sat), np.nan)
+        self.seen = 0  # P records in the current epoch
+        self.saw_eof = False
+        self.last_epoch_line = start
+        self.end = start  # index of the line where reading stopped (the EOF line, or n)
+
+    def epoch(self, line: str, i: int) -> int:
+        """Start an epoch at line index ``i`` (the one before must be complete); its index."""
+        if self.epochs and self.seen < self.n_sat:
+            raise _fail(
+                self.p,
+                f"incomplete epoch: {self.seen} of {self.n_sat} position records before the next "
+                "epoch line",
+                i + 1,
+            )
+        self.epochs.append(_epoch_fields(self.p, line, i + 1))
+        self.epoch_lines.append(i + 1)
+        self.last_epoch_line = i
+        self.seen = 0
+        e = len(self.epochs) - 1
+        if e >= self.xyz.shape[0]:
+            self.xyz = np.concatenate([self.xyz, np.full_like(self.xyz, np.nan)])
+            self.clk = np.concatenate([self.clk, np.full_like(self.clk, np.nan)])
+        return e
+
+    def position(self, line: str, i: int, e: int) -> None:
+        """Read the position (km -> m) and clock (us -> s) record on line index ``i``."""
+        if e < 0:
+            raise _fail(self.p, "position record before the first epoch line", i + 1)
+        sat = line[1:4].replace(" ", "0")
+        k = self.col.get(sat)
+        if k is None:
+            raise _fail(self.p, f"satellite {sat} is not in the header's satellite list", i + 1)
+        v, ck = _position_values(self.p, line, i + 1, sat)
+        # neither coordinate 999999.999999 nor all three 0.000000: a position
+        if max(abs(v[0]), abs(v[1]), abs(v[2])) < _MISSING_KM and v != _ORIGIN:
+            self.xyz[e, k] = np.multiply(v, 1000.0)
+        if abs(ck) < _MISSING_CLOCK_US:  # (NaN: a blank clock)
+            self.clk[e, k] = ck * 1e-6
+        self.seen += 1
+
+    def check_complete(self, n_lines: int) -> None:
+        """Refuse an incomplete last epoch, and fewer epochs than the header announces."""
+        n_ep = len(self.epochs)
+        end_line = self.end + 1 if self.saw_eof else n_lines  # the EOF line, or the last line
+        if self.seen < self.n_sat and n_ep:
+            raise _fail(
+                self.p,
+                f"truncated SP3 file: the last epoch (line {self.last_epoch_line + 1}) has "
+                f"{self.seen} of {self.n_sat} position records"
+                + ("" if self.saw_eof else " and there is no EOF line"),
+                end_line,
+            )
+        if n_ep < self.n_epochs_header:
+            raise _fail(
+                self.p,
+                f"truncated SP3 file: the header announces {self.n_epochs_header} epochs but the "
+                f"file holds {n_ep}" + ("" if self.saw_eof else " and ends without the EOF line"),
+                end_line,
+            )
+
+
+#: first characters of the lines the reader skips (velocities, correlations, comments)
+_SKIPPED = ("V", "E", "/", "%", "+", "#")
+
+
+def _read_records(rec: _Records, lines: list[str]) -> None:
+    """Read epoch and position lines from the first epoch line to 'EOF' or the file's end."""
+    i = rec.end
+    n = len(lines)
+    e = -1
+    while i < n:
+        line = lines[i]
+        c = line[:1]
+        if c == "*":
+            e = rec.epoch(line, i)
+        elif c == "P":
+            rec.position(line, i, e)
+        elif line.startswith("EOF"):
+            rec.saw_eof = True
+            break
+        elif c not in _SKIPPED and line.strip():
+            raise _fail(
+                rec.p,
+                f"unexpected line {line[:20]!r}; expected an epoch ('*'), position ('P'), "
+                "velocity ('V') or 'EOF' line",
+                i + 1,
+            )
+        i += 1
+    rec.end = i
+
+
+def _epoch_times(rec: _Records, time_system: str) -> NDArray[np.float64]:
+    """Return the epochs in GPS seconds; refuse epochs that do not increase."""
+    ep = np.asarray(rec.epochs, dtype=np.float64)
+    labels = calendar_to_gps_s(
+        ep[:, 0].astype(np.int64),
+        ep[:, 1].astype(np.int64),
+        ep[:, 2].astype(np.int64),
+        ep[:, 3].astype(np.int64),
+        ep[:, 4].astype(np.int64),
+        ep[:, 5],
+    )
+    t = _labels_to_gps_s(labels, time_system)
+    if np.any(np.diff(t) <= 0):
+        bad = int(np.flatnonzero(np.diff(t) <= 0)[0]) + 1
+        raise _fail(
+            rec.p,
+            f"epoch {bad + 1} is not later than the previous epoch (line "
+            f"{rec.epoch_lines[bad - 1]}); expected increasing epochs",
+            rec.epoch_lines[bad],
+        )
+    return t
+
+
 def read_sp3(path: str | os.PathLike[str]) -> PreciseOrbit:
     """Read an SP3-c or SP3-d precise orbit file.
 
@@ -242,195 +511,22 @@ def read_sp3(path: str | os.PathLike[str]) -> PreciseOrbit:
 
     """
     p = Path(path)
-    lines = read_bytes(p).decode("latin-1").split("\n")
-    if lines and not lines[-1]:
-        lines.pop()  # the newline ending the last line does not start a new one
-    first = lines[0]
-    if first[:1] != "#" or first[1:2] not in ("a", "b", "c", "d"):
-        what = "a RINEX file" if first[60:80].strip() == "RINEX VERSION / TYPE" else "not SP3"
-        raise _fail(
-            p,
-            f"not an SP3 file ({what}): line 1 starts with {first[:3]!r}; expected an SP3-c "
-            "or SP3-d header starting with '#c' or '#d'",
-            1,
-        )
-    version = first[1]
-    if version not in ("c", "d"):
-        raise _fail(p, f"SP3-{version} is not supported; expected SP3-c or SP3-d ('#c' / '#d')", 1)
-    if first[2:3] not in ("P", "V"):
-        raise _fail(
-            p,
-            f"line 1 column 3 is {first[2:3]!r}; expected the position/velocity flag 'P' or 'V'",
-            1,
-        )
-    try:
-        n_epochs_header = int(first[32:39])
-    except ValueError:
-        raise _fail(
-            p, f"cannot read the number of epochs {first[32:39]!r} in columns 33-39", 1
-        ) from None
-
-    # ---- header
-    n_sat: int | None = None
-    sat_line = 0
-    sat_ids: list[str] = []
-    time_system: str | None = None
-    i = 1
-    n = len(lines)
-    while i < n and not lines[i].startswith("*"):
-        line = lines[i]
-        if line.startswith("+ "):
-            sat_line = sat_line or i + 1
-            if n_sat is None:
-                try:
-                    n_sat = int(line[1:6])
-                except ValueError:
-                    raise _fail(
-                        p,
-                        f"cannot read the number of satellites {line[1:6].strip()!r} in "
-                        "columns 2-6",
-                        i + 1,
-                    ) from None
-            body = line[9:60]
-            sat_ids.extend(body[c : c + 3] for c in range(0, len(body), 3))
-        elif line.startswith("%c") and time_system is None:
-            time_system = line[9:12].strip()
-        elif line.startswith("EOF"):
-            break
-        i += 1
-    if i >= n or not lines[i].startswith("*"):
-        raise _fail(
-            p,
-            "truncated SP3 file: no epoch line ('*  yyyy ...') after the header",
-            i + 1 if i < n else n,
-        )
-    if n_sat is None:
-        raise _fail(p, "no satellite list ('+' lines) in the SP3 header", i + 1)
-    sats = [s.replace(" ", "0") for s in sat_ids if s.strip() and s.strip() != "0"][:n_sat]
-    for s in sats:
-        lo, hi = PRN_RANGE.get(s[:1], (1, 99))
-        if not (s[1:].isdigit() and lo <= int(s[1:]) <= hi):
-            raise _fail(
-                p,
-                f"satellite id {s!r} in the header's satellite list is not valid: expected a "
-                f"system letter and a number from {lo:02d} to {hi:02d}",
-                sat_line,
-            )
-    if len(sats) != n_sat:
-        raise _fail(
-            p,
-            f"the header announces {n_sat} satellites but its '+' lines list {len(sats)}",
-            2,
-        )
-    if time_system in (None, "", "ccc"):
-        time_system = "GPS"
-    if time_system not in _TIME_SYSTEMS:
-        raise _fail(
-            p,
-            f"unknown time system {time_system!r} in the '%c' line; expected one of "
-            + ", ".join(_TIME_SYSTEMS),
-        )
-
-    # ---- data
-    col = {s: k for k, s in enumerate(sats)}
-    epochs: list[tuple[int, int, int, int, int, float]] = []
-    epoch_lines: list[int] = []
-    xyz = np.full((max(n_epochs_header, 1), n_sat, 3), np.nan)
-    clk = np.full((max(n_epochs_header, 1), n_sat), np.nan)
-    seen = 0  # P records in the current epoch
-    saw_eof = False
-    last_epoch_line = i
-    while i < n:
-        line = lines[i]
-        c = line[:1]
-        if c == "*":
-            if epochs and seen < n_sat:
-                raise _fail(
-                    p,
-                    f"incomplete epoch: {seen} of {n_sat} position records before the next "
-                    "epoch line",
-                    i + 1,
-                )
-            epochs.append(_epoch_fields(p, line, i + 1))
-            epoch_lines.append(i + 1)
-            last_epoch_line = i
-            seen = 0
-            e = len(epochs) - 1
-            if e >= xyz.shape[0]:
-                xyz = np.concatenate([xyz, np.full_like(xyz, np.nan)])
-                clk = np.concatenate([clk, np.full_like(clk, np.nan)])
-        elif c == "P":
-            if not epochs:
-                raise _fail(p, "position record before the first epoch line", i + 1)
-            sat = line[1:4].replace(" ", "0")
-            k = col.get(sat)
-            if k is None:
-                raise _fail(p, f"satellite {sat} is not in the header's satellite list", i + 1)
-            v = [
-                _float(p, line, i + 1, 4 + 14 * q, 18 + 14 * q, f"{ax} of {sat}")
-                for q, ax in enumerate(("x", "y", "z"))
-            ]
-            if not any(abs(x) >= _MISSING_KM for x in v) and not all(x == 0.0 for x in v):
-                xyz[e, k] = np.multiply(v, 1000.0)
-            if line[46:60].strip():
-                ck = _float(p, line, i + 1, 46, 60, f"clock of {sat}")
-                if abs(ck) < _MISSING_CLOCK_US:
-                    clk[e, k] = ck * 1e-6
-            seen += 1
-        elif line.startswith("EOF"):
-            saw_eof = True
-            break
-        elif c in ("V", "E", "/", "%", "+", "#") or not line.strip():
-            pass
-        else:
-            raise _fail(
-                p,
-                f"unexpected line {line[:20]!r}; expected an epoch ('*'), position ('P'), "
-                "velocity ('V') or 'EOF' line",
-                i + 1,
-            )
-        i += 1
-
-    n_ep = len(epochs)
-    end_line = i + 1 if saw_eof else n  # the EOF line, or the last line of the file
-    if seen < n_sat and n_ep:
-        raise _fail(
-            p,
-            f"truncated SP3 file: the last epoch (line {last_epoch_line + 1}) has {seen} of "
-            f"{n_sat} position records" + ("" if saw_eof else " and there is no EOF line"),
-            end_line,
-        )
-    if n_ep < n_epochs_header:
-        raise _fail(
-            p,
-            f"truncated SP3 file: the header announces {n_epochs_header} epochs but the file "
-            f"holds {n_ep}" + ("" if saw_eof else " and ends without the EOF line"),
-            end_line,
-        )
-    ep = np.asarray(epochs, dtype=np.float64)
-    labels = calendar_to_gps_s(
-        ep[:, 0].astype(np.int64),
-        ep[:, 1].astype(np.int64),
-        ep[:, 2].astype(np.int64),
-        ep[:, 3].astype(np.int64),
-        ep[:, 4].astype(np.int64),
-        ep[:, 5],
-    )
-    t = _labels_to_gps_s(labels, time_system)
-    if np.any(np.diff(t) <= 0):
-        bad = int(np.flatnonzero(np.diff(t) <= 0)[0]) + 1
-        raise _fail(
-            p,
-            f"epoch {bad + 1} is not later than the previous epoch (line "
-            f"{epoch_lines[bad - 1]}); expected increasing epochs",
-            epoch_lines[bad],
-        )
+    lines = _lines(p)
+    n_epochs_header = _first_line(p, lines[0])
+    head = _read_header(p, lines)
+    sats = _satellites(p, head)
+    time_system = _time_system(p, head.time_system)
+    rec = _Records(p, sats, n_epochs_header, head.start)
+    _read_records(rec, lines)
+    rec.check_complete(len(lines))
+    t = _epoch_times(rec, time_system)
+    n_ep = len(rec.epochs)
     return PreciseOrbit(
         path=p,
         t_gps_s=t,
         sats=tuple(sats),
-        xyz_m=xyz[:n_ep],
-        clock_s=clk[:n_ep],
+        xyz_m=rec.xyz[:n_ep],
+        clock_s=rec.clk[:n_ep],
         time_system=time_system,
     )
 

@@ -177,6 +177,61 @@ def _resolve_week(week: int, toa_sow: float, near_gps_s: float | None) -> float:
     return full * SECONDS_PER_WEEK + toa_sow
 
 
+def _check_header(line: str, p: Path, i: int) -> None:
+    """Refuse a block header line (starting with '*') not in the YUMA layout."""
+    if not _HEADER_RE.match(line):
+        raise InputError(
+            f"expected a block header like '******** Week 109 almanac for PRN-01 "
+            f"********', got {line[:60]!r}",
+            path=p,
+            line=i,
+        )
+
+
+def _field(line: str, p: Path, i: int) -> tuple[str, float] | None:
+    """Return the field name and value of a 'Label: value' line (None: a label not used)."""
+    label, value = line.split(":", 1)
+    key = _FIELDS.get(re.sub(r"\s+", " ", label.strip().lower()))
+    if key is None:
+        return None
+    try:
+        return key, float(value.strip())
+    except ValueError:
+        raise InputError(
+            f"cannot read {label.strip()!r}: {value.strip()!r} is not a number", path=p, line=i
+        ) from None
+
+
+def _yuma_blocks(lines: list[str], p: Path) -> list[dict[str, float]]:
+    """Return the fields of every PRN block, each checked complete."""
+    blocks: list[dict[str, float]] = []
+    current: dict[str, float] | None = None
+    start_line = 0
+    for i, raw in enumerate(lines, start=1):
+        line = raw.strip()
+        if not line:
+            continue
+        if line.startswith("*"):
+            if current is not None:
+                blocks.append(_check_block(current, p, start_line))
+            _check_header(line, p, i)
+            current, start_line = {}, i
+            continue
+        if current is None or ":" not in line:
+            raise InputError(
+                f"expected a YUMA almanac 'Label: value' line inside a PRN block, got "
+                f"{line[:60]!r}",
+                path=p,
+                line=i,
+            )
+        item = _field(line, p, i)
+        if item is not None:
+            current[item[0]] = item[1]
+    if current is not None:
+        blocks.append(_check_block(current, p, start_line))
+    return blocks
+
+
 def read_yuma(path: str | os.PathLike[str], *, near_gps_s: float | None = None) -> Almanac:
     """Read a YUMA almanac file.
 
@@ -204,44 +259,7 @@ def read_yuma(path: str | os.PathLike[str], *, near_gps_s: float | None = None) 
         lines = p.read_text(encoding="latin-1").splitlines()
     except OSError as exc:
         raise InputError(f"cannot read the almanac file: {exc.strerror}", path=p) from None
-    blocks: list[dict[str, float]] = []
-    current: dict[str, float] | None = None
-    start_line = 0
-    for i, raw in enumerate(lines, start=1):
-        line = raw.strip()
-        if not line:
-            continue
-        if line.startswith("*"):
-            if current is not None:
-                blocks.append(_check_block(current, p, start_line))
-            if not _HEADER_RE.match(line):
-                raise InputError(
-                    f"expected a block header like '******** Week 109 almanac for PRN-01 "
-                    f"********', got {line[:60]!r}",
-                    path=p,
-                    line=i,
-                )
-            current, start_line = {}, i
-            continue
-        if current is None or ":" not in line:
-            raise InputError(
-                f"expected a YUMA almanac 'Label: value' line inside a PRN block, got "
-                f"{line[:60]!r}",
-                path=p,
-                line=i,
-            )
-        label, value = line.split(":", 1)
-        key = _FIELDS.get(re.sub(r"\s+", " ", label.strip().lower()))
-        if key is None:
-            continue
-        try:
-            current[key] = float(value.strip())
-        except ValueError:
-            raise InputError(
-                f"cannot read {label.strip()!r}: {value.strip()!r} is not a number", path=p, line=i
-            ) from None
-    if current is not None:
-        blocks.append(_check_block(current, p, start_line))
+    blocks = _yuma_blocks(lines, p)
     if not blocks:
         raise InputError("no satellite block found; is this a YUMA almanac?", path=p)
     sats = tuple(f"G{int(b['prn']):02d}" for b in blocks)

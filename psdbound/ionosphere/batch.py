@@ -59,6 +59,34 @@ def default_cache_dir() -> Path:
     return compute.default_cache_dir("cutoff")
 
 
+def _months(text: str) -> range | list[int]:
+    """Return the months (1-12) of ``first-monday-of-MM[,MM...]``, all for the other names."""
+    if not text.startswith("first-monday-of-"):
+        return range(1, 13)
+    try:
+        months = [int(m) for m in text[len("first-monday-of-") :].split(",")]
+    except ValueError:
+        raise InputError(f"cannot read the month in {text!r}") from None
+    for m in months:
+        if not 1 <= m <= 12:
+            raise InputError(f"month {m} in {text!r} is not 1-12")
+    return months
+
+
+def _first_mondays(year: int, text: str) -> list[_dt.date]:
+    """Return the first Monday of each month the named selection ``text`` gives."""
+    if not isinstance(year, int) or isinstance(year, bool):
+        raise InputError(f"year {year!r} must be an integer")
+    days = []
+    for m in _months(text):
+        first = _dt.date(year, m, 1) if 1 <= year <= 9999 else None
+        if first is None:
+            raise InputError(f"year {year} is not a calendar year")
+        offset = (calendar.MONDAY - first.weekday()) % 7
+        days.append(parse_date(first + _dt.timedelta(days=offset)))
+    return days
+
+
 def select_days(year: int, spec: str = "first-monday-each-month") -> list[_dt.date]:
     """Days of a run.
 
@@ -88,25 +116,7 @@ def select_days(year: int, spec: str = "first-monday-each-month") -> list[_dt.da
     if text == "first-monday-quarterly":
         text = "first-monday-of-03,06,09,12"
     if text == "first-monday-each-month" or text.startswith("first-monday-of-"):
-        if not isinstance(year, int) or isinstance(year, bool):
-            raise InputError(f"year {year!r} must be an integer")
-        months = range(1, 13)
-        if text.startswith("first-monday-of-"):
-            try:
-                months = [int(m) for m in text[len("first-monday-of-") :].split(",")]
-            except ValueError:
-                raise InputError(f"cannot read the month in {text!r}") from None
-            for m in months:
-                if not 1 <= m <= 12:
-                    raise InputError(f"month {m} in {text!r} is not 1-12")
-        days = []
-        for m in months:
-            first = _dt.date(year, m, 1) if 1 <= year <= 9999 else None
-            if first is None:
-                raise InputError(f"year {year} is not a calendar year")
-            offset = (calendar.MONDAY - first.weekday()) % 7
-            days.append(parse_date(first + _dt.timedelta(days=offset)))
-        return days
+        return _first_mondays(year, text)
     parts = [p.strip() for p in text.split(",") if p.strip()]
     if not parts:
         raise InputError(

@@ -318,6 +318,38 @@ class SeriesCutoff:
         }
 
 
+def _check_criterion(criterion: str, reference: str) -> None:
+    """Refuse an unknown criterion or reference."""
+    if criterion not in CRITERIA:
+        raise InputError(f"unknown criterion {criterion!r}; expected one of {', '.join(CRITERIA)}")
+    if reference not in REFERENCES:
+        raise InputError(
+            f"unknown reference {reference!r}; expected one of {', '.join(REFERENCES)}"
+        )
+
+
+def _apply_criterion(
+    env: Envelope,
+    f: NDArray[np.float64],
+    nyq: float,
+    criterion: str,
+    drop_db: float,
+    ref_level: float | None,
+    variance_m2: float,
+) -> tuple[float, float, float, bool, float]:
+    """Return the cutoff (Hz), threshold and reference (m^2/Hz), reached, residual (m^2)."""
+    if criterion == "relative":
+        f_c, thr, ref, reached = relative_cutoff(env, f, drop_db=drop_db, reference_level=ref_level)
+        residual = absolute_cutoff_tail(env, f_c, nyq)
+    else:
+        f_c, residual = absolute_cutoff(
+            env, f_low_hz=float(f[0]), nyquist_hz=nyq, variance_m2=variance_m2
+        )
+        thr = ref = float("nan")
+        reached = True
+    return f_c, thr, ref, reached, residual
+
+
 def series_cutoff(
     t_s: ArrayLike,
     y_m: ArrayLike,
@@ -382,12 +414,7 @@ def series_cutoff(
         For an unknown criterion or reference, too short a series, or bad
         spectrum/envelope settings.
     """
-    if criterion not in CRITERIA:
-        raise InputError(f"unknown criterion {criterion!r}; expected one of {', '.join(CRITERIA)}")
-    if reference not in REFERENCES:
-        raise InputError(
-            f"unknown reference {reference!r}; expected one of {', '.join(REFERENCES)}"
-        )
+    _check_criterion(criterion, reference)
     t = np.asarray(t_s, dtype=np.float64)
     y = np.asarray(y_m, dtype=np.float64)
     if t.size < 3:
@@ -406,17 +433,10 @@ def series_cutoff(
         bins_per_decade=bins_per_decade,
     )
     j_max = int(np.argmax(psd))
-    nyq = 0.5 / dt_s
-    if criterion == "relative":
-        ref_level = float(psd[j_max]) if reference == "psd" else None
-        f_c, thr, ref, reached = relative_cutoff(env, f, drop_db=drop_db, reference_level=ref_level)
-        residual = absolute_cutoff_tail(env, f_c, nyq)
-    else:
-        f_c, residual = absolute_cutoff(
-            env, f_low_hz=float(f[0]), nyquist_hz=nyq, variance_m2=variance_m2
-        )
-        thr = ref = float("nan")
-        reached = True
+    ref_level = float(psd[j_max]) if reference == "psd" else None
+    f_c, thr, ref, reached, residual = _apply_criterion(
+        env, f, 0.5 / dt_s, criterion, drop_db, ref_level, variance_m2
+    )
     settings = {
         "dt_s": dt_s,
         "copies": copies,

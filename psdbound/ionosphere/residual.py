@@ -349,6 +349,94 @@ def _crossing(f_hi: float, r_hi: float, f_lo: float, r_lo: float, thr: float) ->
     return float(np.exp(np.log(f_lo) + frac * (np.log(f_hi) - np.log(f_lo))))
 
 
+def _search_grid(
+    thr: list[float],
+    scale: float,
+    dt_s: float,
+    nyquist_fraction: float,
+    f_min_hz: float,
+    points_per_decade: int,
+) -> NDArray[np.float64]:
+    """Check the thresholds and search settings; return the cutoff grid, Hz, descending."""
+    if not thr or min(thr) <= 0 or not scale > 0:
+        raise InputError(f"need thresholds > 0 and scale > 0, got {thr}, {scale}")
+    if points_per_decade < 1:
+        raise InputError(f"points_per_decade = {points_per_decade} must be >= 1")
+    f_top = nyquist_fraction * 0.5 / dt_s
+    if not 0 < f_min_hz < f_top:
+        raise InputError(f"need 0 < f_min_hz < {f_top:g} Hz, got {f_min_hz}")
+    return np.geomspace(f_top, f_min_hz, int(np.ceil(np.log10(f_top / f_min_hz)
+                                                     * points_per_decade)) + 1)  # fmt: skip
+
+
+def _sums_at(
+    arcs: list[list[NDArray[np.float64]]],
+    idx: list[int],
+    f: float,
+    dt_s: float,
+    hp: HighPass,
+    min_kept_s: float,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Return the high-passed sum of squares (m^2) and samples of the series ``idx`` at ``f``."""
+    owner, batch = [], []
+    for i in idx:
+        for a, ok in zip(arcs[i], _usable(arcs[i], dt_s, f, hp, min_kept_s),
+                         strict=True):  # fmt: skip
+            if ok:
+                owner.append(i)
+                batch.append(a)
+    ss = np.zeros(len(arcs))
+    cnt = np.zeros(len(arcs))
+    if batch:
+        s_arc, c_arc = _zero_phase_sumsq(batch, dt_s, f, hp)
+        np.add.at(ss, owner, s_arc)
+        np.add.at(cnt, owner, c_arc)
+    return ss, cnt
+
+
+def _scan(
+    arcs: list[list[NDArray[np.float64]]],
+    grid: NDArray[np.float64],
+    dt_s: float,
+    hp: HighPass,
+    min_kept_s: float,
+    scale: float,
+    top: float,
+) -> list[list[float]]:
+    """Return each series' residual RMS (m) down the grid, until it first exceeds ``top``."""
+    curves: list[list[float]] = [[] for _ in arcs]
+    active = [True] * len(arcs)
+    for f in grid:
+        idx = [i for i in range(len(arcs)) if active[i]]
+        if not idx:
+            break
+        ss, cnt = _sums_at(arcs, idx, float(f), dt_s, hp, min_kept_s)
+        for i in idx:
+            r = scale * float(np.sqrt(ss[i] / cnt[i])) if cnt[i] > 0 else 0.0
+            curves[i].append(r)
+            if r > top:
+                active[i] = False
+    return curves
+
+
+def _by_threshold(
+    r: NDArray[np.float64], f: NDArray[np.float64], grid: NDArray[np.float64], thr: list[float]
+) -> dict[float, float]:
+    """Return the cutoff (Hz) per threshold, interpolated where the curve ``r`` first exceeds it."""
+    by_thr = {}
+    for th in thr:
+        above = np.flatnonzero(r > th)
+        if above.size == 0:
+            by_thr[th] = float(grid[-1])
+        elif above[0] == 0:
+            by_thr[th] = float(grid[0])
+        else:
+            j = int(above[0])
+            by_thr[th] = _crossing(float(f[j - 1]), float(r[j - 1]), float(f[j]),
+                                   float(r[j]), th)  # fmt: skip
+    return by_thr
+
+
 def residual_cutoffs(
     series: list[tuple[ArrayLike, ArrayLike]],
     *,
@@ -410,60 +498,18 @@ def residual_cutoffs(
         For a non-positive threshold or scale, or bad search settings.
     """
     thr = [float(v) for v in np.atleast_1d(np.asarray(thresholds_m, dtype=np.float64))]
-    if not thr or min(thr) <= 0 or not scale > 0:
-        raise InputError(f"need thresholds > 0 and scale > 0, got {thr}, {scale}")
-    if points_per_decade < 1:
-        raise InputError(f"points_per_decade = {points_per_decade} must be >= 1")
+    grid = _search_grid(thr, scale, dt_s, nyquist_fraction, f_min_hz, points_per_decade)
     hp = HighPass() if highpass is None else highpass
-    f_top = nyquist_fraction * 0.5 / dt_s
-    if not 0 < f_min_hz < f_top:
-        raise InputError(f"need 0 < f_min_hz < {f_top:g} Hz, got {f_min_hz}")
-    grid = np.geomspace(f_top, f_min_hz, int(np.ceil(np.log10(f_top / f_min_hz)
-                                                     * points_per_decade)) + 1)  # fmt: skip
     ys = [np.asarray(y, dtype=np.float64) for _, y in series]
     arcs = [
         [a - a.mean() for a in split_arcs(t, y, dt_s)] for (t, _), y in zip(series, ys, strict=True)
     ]
-    curves: list[list[float]] = [[] for _ in series]
-    active = [True] * len(series)
-    top = max(thr)
-    for f in grid:
-        idx = [i for i in range(len(series)) if active[i]]
-        if not idx:
-            break
-        owner, batch = [], []
-        for i in idx:
-            for a, ok in zip(arcs[i], _usable(arcs[i], dt_s, float(f), hp, min_kept_s),
-                             strict=True):  # fmt: skip
-                if ok:
-                    owner.append(i)
-                    batch.append(a)
-        ss = np.zeros(len(series))
-        cnt = np.zeros(len(series))
-        if batch:
-            s_arc, c_arc = _zero_phase_sumsq(batch, dt_s, float(f), hp)
-            np.add.at(ss, owner, s_arc)
-            np.add.at(cnt, owner, c_arc)
-        for i in idx:
-            r = scale * float(np.sqrt(ss[i] / cnt[i])) if cnt[i] > 0 else 0.0
-            curves[i].append(r)
-            if r > top:
-                active[i] = False
+    curves = _scan(arcs, grid, dt_s, hp, min_kept_s, scale, max(thr))
     out = []
     for i, y in enumerate(ys):
         r = np.asarray(curves[i])
         f = grid[: r.size]
-        by_thr = {}
-        for th in thr:
-            above = np.flatnonzero(r > th)
-            if above.size == 0:
-                by_thr[th] = float(grid[-1])
-            elif above[0] == 0:
-                by_thr[th] = float(grid[0])
-            else:
-                j = int(above[0])
-                by_thr[th] = _crossing(float(f[j - 1]), float(r[j - 1]), float(f[j]),
-                                       float(r[j]), th)  # fmt: skip
+        by_thr = _by_threshold(r, f, grid, thr)
         first = np.flatnonzero(r > thr[0])
         out.append(
             ResidualCutoff(

@@ -178,6 +178,168 @@ def _check_options(
         raise InputError(f"sampling interval {sampling_s} s must be positive")
 
 
+def _check_altitudes(alt_range_km: tuple[float, float]) -> None:
+    """Refuse an altitude range (km) that is not increasing and non-negative."""
+    if not alt_range_km[0] < alt_range_km[1] or alt_range_km[0] < 0:
+        raise InputError(f"altitude range {alt_range_km} km must be increasing and non-negative")
+
+
+def _n_ut(ut_step_h: float) -> int:
+    """Return the number of UT nodes a day of ``ut_step_h`` hours holds (it must divide 24)."""
+    n_ut = int(round(24.0 / ut_step_h))
+    if abs(n_ut * ut_step_h - 24.0) > 1e-9:
+        raise InputError(f"ut_step_h = {ut_step_h} h must divide 24 h")
+    return n_ut
+
+
+def _day_epochs(
+    day: _dt.date, sampling_s: float, duration_s: float
+) -> tuple[float, NDArray[np.float64]]:
+    """Return 00:00 UTC of ``day`` and the epochs from it, GPS seconds."""
+    t0 = float(utc_to_gps_s(calendar_to_gps_s(day.year, day.month, day.day, 0, 0, 0.0))[0])
+    n_ep = int(np.ceil(duration_s / sampling_s - 1e-9))
+    return t0, t0 + sampling_s * np.arange(n_ep)
+
+
+def _in_view(
+    orbit: OrbitSource,
+    satellites: tuple[str, ...] | list[str] | None,
+    t: NDArray[np.float64],
+    rx: NDArray[np.float64],
+    elevation_mask_deg: float,
+    day: _dt.date,
+    lat_lon: tuple[float, float],
+    source: str,
+) -> tuple[list[str], NDArray[np.float64], NDArray[np.float64]]:
+    """Return the satellites above the mask at some epoch, their elevations and azimuths, deg."""
+    where = f"{lat_lon[0]:.2f} {lat_lon[1]:.2f} on {day.isoformat()} (orbit: {source})"
+    sats_all = tuple(satellites) if satellites is not None else tuple(orbit.satellites)
+    kept, els, azs, any_position = [], [], [], False
+    for sat in sats_all:
+        az, el = satellite_azel(orbit, sat, t, rx)
+        any_position |= bool(np.any(np.isfinite(el)))
+        if np.any(el >= elevation_mask_deg):
+            kept.append(sat)
+            els.append(el)
+            azs.append(az)
+    if not any_position:
+        raise NoDataError(
+            f"the orbit source gives no satellite position on {day.isoformat()}; "
+            f"does it cover that day? ({source})"
+        )
+    if not kept:
+        raise NoDataError(
+            f"no satellite rises above the {elevation_mask_deg:g} deg elevation mask at {where}"
+        )
+    return kept, np.array(els), np.array(azs)
+
+
+@dataclass(frozen=True)
+class _Model:
+    """The ionosphere model of a run: profile, altitude nodes (km), grid, UT nodes (h)."""
+
+    method: str
+    iri_model: str
+    f107_sfu: float
+    alt_km: NDArray[np.float64]
+    shell_height_km: float
+    grid_size: int
+    ut_step_h: float
+    n_ut: int
+
+
+def _layer_fields(
+    day: _dt.date,
+    lat: float,
+    lon: float,
+    min_el_deg: float,
+    radius_m: float,
+    m: _Model,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], HorizontalGrid]:
+    """Return the density (el/m^3) or vertical TEC (el/m^2) fields, layer heights (km), grid."""
+    mask_eff = np.radians(max(min_el_deg, 0.0))
+    h_top = m.alt_km[-1] if m.method == "line-of-sight" else m.shell_height_km
+    psi_max = np.degrees(central_angle_rad(radius_m, np.array(h_top * 1e3), np.array(mask_eff)))
+    grid = HorizontalGrid(lat, lon, float(psi_max) + GRID_MARGIN_DEG, m.grid_size)
+    ut_nodes = m.ut_step_h * np.arange(m.n_ut)
+    lon_g, lat_g = grid.lon_deg.ravel(), grid.lat_deg.ravel()
+    edp = pyiri_density(
+        day, ut_nodes, lon_g, lat_g, m.alt_km, m.f107_sfu, m.iri_model
+    )  # (n_ut, n_alt, n_grid), el/m^3
+    if m.method == "thin-shell":
+        vtec = np.trapezoid(edp, m.alt_km * 1e3, axis=1)  # (n_ut, n_grid), el/m^2
+        fields = vtec.reshape(m.n_ut, 1, m.grid_size, m.grid_size)
+        layer_h_km = np.array([m.shell_height_km])
+    else:
+        fields = edp.reshape(m.n_ut, m.alt_km.size, m.grid_size, m.grid_size)
+        layer_h_km = m.alt_km
+    return fields, layer_h_km, grid
+
+
+def _slant_tec(
+    fields: NDArray[np.float64],
+    layer_h_km: NDArray[np.float64],
+    grid: HorizontalGrid,
+    ut_idx: NDArray[np.float64],
+    radius_m: float,
+    el_r: NDArray[np.float64],
+    az_r: NDArray[np.float64],
+    m: _Model,
+) -> NDArray[np.float64]:
+    """Return the slant TEC (el/m^2) of rays at elevations and azimuths ``el_r``, ``az_r`` (rad)."""
+    values = np.empty((layer_h_km.size, el_r.size))
+    for i, h in enumerate(layer_h_km):
+        values[i] = interpolate_layer(fields[:, i], grid, ut_idx, radius_m, h * 1e3, el_r, az_r)
+    if m.method == "thin-shell":
+        h = m.shell_height_km * 1e3
+        obliq = 1.0 / np.sqrt(1.0 - (radius_m * np.cos(el_r) / (radius_m + h)) ** 2)
+        return values[0] * obliq
+    r_h = radius_m + m.alt_km[:, None] * 1e3
+    ds_dh = r_h / np.sqrt(r_h**2 - (radius_m * np.cos(el_r)[None, :]) ** 2)
+    return np.trapezoid(values * ds_dh, m.alt_km * 1e3, axis=0)
+
+
+def _ray_tec(
+    el_deg: NDArray[np.float64],
+    az_deg: NDArray[np.float64],
+    visible: NDArray[np.bool_],
+    t_day_s: NDArray[np.float64],
+    radius_m: float,
+    layers: tuple[NDArray[np.float64], NDArray[np.float64], HorizontalGrid],
+    ray_stride: int,
+    m: _Model,
+) -> tuple[NDArray[np.float64], NDArray[np.intp], list[tuple[int, int, int, int, int]]]:
+    """Return the slant TEC (el/m^2) at the ray nodes, their epoch indices and the arcs."""
+    fields, layer_h_km, grid = layers
+    # ray integrals on the visible samples every `ray_stride` epochs (plus each
+    # arc's last epoch), then a cubic spline in time along each arc
+    (js, ks), arcs = _ray_nodes(visible, ray_stride)
+    el_r = np.radians(el_deg[js, ks])
+    az_r = np.radians(az_deg[js, ks])
+    ut_idx = np.mod(t_day_s[ks] / 3600.0, 24.0) / m.ut_step_h + UT_PAD
+    return _slant_tec(fields, layer_h_km, grid, ut_idx, radius_m, el_r, az_r, m), ks, arcs
+
+
+def _along_arcs(
+    stec: NDArray[np.float64],
+    ks: NDArray[np.intp],
+    arcs: list[tuple[int, int, int, int, int]],
+    shape: tuple[int, ...],
+    k_delay: float,
+) -> NDArray[np.float64]:
+    """Return the delay (m) at every epoch of each arc: a cubic spline through its ray nodes."""
+    delay = np.full(shape, np.nan)
+    for j, k0, k1, n0, n1 in arcs:
+        kn, yn = ks[n0:n1], stec[n0:n1]
+        if kn.size >= 4:
+            from scipy.interpolate import CubicSpline
+
+            delay[j, k0:k1] = k_delay * CubicSpline(kn, yn)(np.arange(k0, k1))
+        else:
+            delay[j, k0:k1] = k_delay * np.interp(np.arange(k0, k1), kn, yn)
+    return delay
+
+
 def simulate_slant_delay(
     lat_deg: float,
     lon_deg: float,
@@ -272,89 +434,29 @@ def simulate_slant_delay(
     lat, lon = validate_station(lat_deg, lon_deg)
     day = parse_date(date)
     _check_options(method, iri_model, f107_sfu, elevation_mask_deg, sampling_s)
-    if not alt_range_km[0] < alt_range_km[1] or alt_range_km[0] < 0:
-        raise InputError(f"altitude range {alt_range_km} km must be increasing and non-negative")
+    _check_altitudes(alt_range_km)
     k_delay = _delay_factor(frequency_hz, second_frequency_hz)
     if orbit is None:
         orbit = nominal_constellation("G")
-    n_ut = int(round(24.0 / ut_step_h))
-    if abs(n_ut * ut_step_h - 24.0) > 1e-9:
-        raise InputError(f"ut_step_h = {ut_step_h} h must divide 24 h")
+    n_ut = _n_ut(ut_step_h)
 
-    t0 = float(utc_to_gps_s(calendar_to_gps_s(day.year, day.month, day.day, 0, 0, 0.0))[0])
-    n_ep = int(np.ceil(duration_s / sampling_s - 1e-9))
-    t = t0 + sampling_s * np.arange(n_ep)
+    t0, t = _day_epochs(day, sampling_s, duration_s)
     rx = geodetic_to_ecef(lat, lon, height_m)
     radius_m = float(np.linalg.norm(rx))
-
-    sats_all = tuple(satellites) if satellites is not None else tuple(orbit.satellites)
-    kept, els, azs, any_position = [], [], [], False
-    for sat in sats_all:
-        az, el = satellite_azel(orbit, sat, t, rx)
-        any_position |= bool(np.any(np.isfinite(el)))
-        if np.any(el >= elevation_mask_deg):
-            kept.append(sat)
-            els.append(el)
-            azs.append(az)
     source = getattr(orbit, "source_id", None) or f"file:{getattr(orbit, 'path', '?')}"
-    where = f"{lat:.2f} {lon:.2f} on {day.isoformat()} (orbit: {source})"
-    if not any_position:
-        raise NoDataError(
-            f"the orbit source gives no satellite position on {day.isoformat()}; "
-            f"does it cover that day? ({source})"
-        )
-    if not kept:
-        raise NoDataError(
-            f"no satellite rises above the {elevation_mask_deg:g} deg elevation mask at {where}"
-        )
-    el_deg = np.array(els)
-    az_deg = np.array(azs)
+    kept, el_deg, az_deg = _in_view(
+        orbit, satellites, t, rx, elevation_mask_deg, day, (lat, lon), source
+    )
     visible = el_deg >= elevation_mask_deg
 
     alt_km = altitude_nodes_km(*alt_range_km, resolution=alt_resolution)
-    mask_eff = np.radians(max(min(elevation_mask_deg, float(np.nanmin(el_deg[visible]))), 0.0))
-    h_top = alt_km[-1] if method == "line-of-sight" else shell_height_km
-    psi_max = np.degrees(central_angle_rad(radius_m, np.array(h_top * 1e3), np.array(mask_eff)))
-    grid = HorizontalGrid(lat, lon, float(psi_max) + GRID_MARGIN_DEG, grid_size)
-    ut_nodes = ut_step_h * np.arange(n_ut)
-    edp = pyiri_density(
-        day, ut_nodes, grid.lon_deg.ravel(), grid.lat_deg.ravel(), alt_km, f107_sfu, iri_model
-    )  # (n_ut, n_alt, n_grid), el/m^3
-    if method == "thin-shell":
-        vtec = np.trapezoid(edp, alt_km * 1e3, axis=1)  # (n_ut, n_grid), el/m^2
-        fields = vtec.reshape(n_ut, 1, grid_size, grid_size)
-        layer_h_km = np.array([shell_height_km])
-    else:
-        fields = edp.reshape(n_ut, alt_km.size, grid_size, grid_size)
-        layer_h_km = alt_km
-
-    # ray integrals on the visible samples every `ray_stride` epochs (plus each
-    # arc's last epoch), then a cubic spline in time along each arc
-    nodes, arcs = _ray_nodes(visible, ray_stride)
-    js, ks = nodes
-    el_r = np.radians(el_deg[js, ks])
-    az_r = np.radians(az_deg[js, ks])
-    ut_idx = np.mod((t[ks] - t0) / 3600.0, 24.0) / ut_step_h + UT_PAD
-    values = np.empty((layer_h_km.size, js.size))
-    for i, h in enumerate(layer_h_km):
-        values[i] = interpolate_layer(fields[:, i], grid, ut_idx, radius_m, h * 1e3, el_r, az_r)
-    if method == "thin-shell":
-        h = shell_height_km * 1e3
-        obliq = 1.0 / np.sqrt(1.0 - (radius_m * np.cos(el_r) / (radius_m + h)) ** 2)
-        stec = values[0] * obliq
-    else:
-        r_h = radius_m + alt_km[:, None] * 1e3
-        ds_dh = r_h / np.sqrt(r_h**2 - (radius_m * np.cos(el_r)[None, :]) ** 2)
-        stec = np.trapezoid(values * ds_dh, alt_km * 1e3, axis=0)
-    delay = np.full(el_deg.shape, np.nan)
-    for j, k0, k1, n0, n1 in arcs:
-        kn, yn = ks[n0:n1], stec[n0:n1]
-        if kn.size >= 4:
-            from scipy.interpolate import CubicSpline
-
-            delay[j, k0:k1] = k_delay * CubicSpline(kn, yn)(np.arange(k0, k1))
-        else:
-            delay[j, k0:k1] = k_delay * np.interp(np.arange(k0, k1), kn, yn)
+    model = _Model(
+        method, iri_model, f107_sfu, alt_km, shell_height_km, grid_size, ut_step_h, n_ut
+    )
+    min_el = min(elevation_mask_deg, float(np.nanmin(el_deg[visible])))
+    layers = _layer_fields(day, lat, lon, min_el, radius_m, model)
+    stec, ks, arcs = _ray_tec(el_deg, az_deg, visible, t - t0, radius_m, layers, ray_stride, model)
+    delay = _along_arcs(stec, ks, arcs, el_deg.shape, k_delay)
 
     info = {
         "f107_sfu": float(f107_sfu),

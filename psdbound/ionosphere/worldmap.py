@@ -168,6 +168,85 @@ def _site_entry(sc: StationCutoffs) -> dict[str, Any]:
     }
 
 
+def _map_groups(
+    layers: Sequence[MapLayer],
+    sites: list[Station],
+    days: str,
+    settings: CutoffSettings,
+    orbit: Any,
+) -> tuple[list[tuple[Any, ...]], list[tuple[MapLayer, CutoffSettings, list[_dt.date]]]]:
+    """Return the batch's groups (site, height, day specs, settings) and each layer's days."""
+    groups = []
+    layer_info = []
+    for layer in layers:
+        s_l = dataclasses.replace(settings, f107_sfu=layer.flux())
+        day_list = select_days(layer.year, days)
+        layer_info.append((layer, s_l, day_list))
+        for site in sites:
+            specs = day_specs(site, 0.0, day_list, orbit, None, s_l, False)
+            groups.append((site, 0.0, specs, s_l))
+    return groups, layer_info
+
+
+def _layer_doc(
+    layer: MapLayer,
+    s_l: CutoffSettings,
+    day_list: list[_dt.date],
+    res: list[StationCutoffs],
+    stations: Sequence[Station],
+    shape: tuple[int, int],
+) -> dict[str, Any]:
+    """Return one layer of the map document: its grid fields and named stations."""
+    entries = [_site_entry(sc) for sc in res]
+    st_entries = [
+        {"name": st.name, "lat_deg": st.lat_deg, "lon_deg": st.lon_deg, **e}
+        for st, e in zip(stations, entries[: len(stations)], strict=True)
+    ]
+    g = entries[len(stations) :]
+
+    def field(key: str, g: list[dict[str, Any]] = g, shape: tuple[int, int] = shape) -> list:
+        return np.array([e[key] for e in g], dtype=object).reshape(shape).tolist()
+
+    margins = list(g[0]["by_margin_hz"]) if g else []
+    return {
+        "name": layer.name,
+        "year": layer.year,
+        "f107_sfu": round(s_l.f107_sfu, 2),
+        "f107_source": "given" if layer.f107_sfu is not None else
+        f"mean monthly F10.7 of {layer.year} ({f107_table()['source']})",
+        "days": [d.isoformat() for d in day_list],
+        "grid": {
+            "recommended_f_c_hz": field("recommended_f_c_hz"),
+            "mean_f_c_hz": field("mean_f_c_hz"),
+            "min_f_c_hz": field("min_f_c_hz"),
+            "n_series": field("n_series"),
+            "by_margin_hz": {
+                m: np.array([e["by_margin_hz"][m] for e in g], dtype=object)
+                .reshape(shape)
+                .tolist()
+                for m in margins
+            },
+        },
+        "stations": st_entries,
+    }  # fmt: skip
+
+
+def _criterion_doc(settings: CutoffSettings) -> dict[str, Any]:
+    """Return the map document's description of the criterion and the fit's filter."""
+    return {
+        "name": settings.criterion,
+        "mp_sigma_m": settings.mp_sigma_m,
+        "margin_db": settings.margin_db,
+        "threshold_m": settings.thresholds_m()[0],
+        "scale": settings.residual_scale,
+        "filter": {
+            "kind": settings.filter_kind,
+            "order": settings.filter_order,
+            "edge": settings.filter_edge,
+        },
+    }
+
+
 def compute_world_map(
     *,
     layers: Sequence[MapLayer] = DEFAULT_LAYERS,
@@ -212,15 +291,7 @@ def compute_world_map(
     orbit = prepare_orbit(None, settings)
     grid = grid_sites(*grid_step_deg)
     sites = [*stations, *grid]
-    groups = []
-    layer_info = []
-    for layer in layers:
-        s_l = dataclasses.replace(settings, f107_sfu=layer.flux())
-        day_list = select_days(layer.year, days)
-        layer_info.append((layer, s_l, day_list))
-        for site in sites:
-            specs = day_specs(site, 0.0, day_list, orbit, None, s_l, False)
-            groups.append((site, 0.0, specs, s_l))
+    groups, layer_info = _map_groups(layers, sites, days, settings, orbit)
     results = run_groups(
         groups,
         orbit=orbit,
@@ -231,45 +302,12 @@ def compute_world_map(
         progress=progress,
     )
     lat_axis, lon_axis = _axes(*grid_step_deg)
-    out_layers = []
     n_sites = len(sites)
+    shape = (lat_axis.size, lon_axis.size)
+    out_layers = []
     for k, (layer, s_l, day_list) in enumerate(layer_info):
         res = results[k * n_sites : (k + 1) * n_sites]
-        entries = [_site_entry(sc) for sc in res]
-        st_entries = [
-            {"name": st.name, "lat_deg": st.lat_deg, "lon_deg": st.lon_deg, **e}
-            for st, e in zip(stations, entries[: len(stations)], strict=True)
-        ]
-        g = entries[len(stations) :]
-        shape = (lat_axis.size, lon_axis.size)
-
-        def field(key: str, g: list[dict[str, Any]] = g, shape: tuple[int, int] = shape) -> list:
-            return np.array([e[key] for e in g], dtype=object).reshape(shape).tolist()
-
-        margins = list(g[0]["by_margin_hz"]) if g else []
-        out_layers.append(
-            {
-                "name": layer.name,
-                "year": layer.year,
-                "f107_sfu": round(s_l.f107_sfu, 2),
-                "f107_source": "given" if layer.f107_sfu is not None else
-                f"mean monthly F10.7 of {layer.year} ({f107_table()['source']})",
-                "days": [d.isoformat() for d in day_list],
-                "grid": {
-                    "recommended_f_c_hz": field("recommended_f_c_hz"),
-                    "mean_f_c_hz": field("mean_f_c_hz"),
-                    "min_f_c_hz": field("min_f_c_hz"),
-                    "n_series": field("n_series"),
-                    "by_margin_hz": {
-                        m: np.array([e["by_margin_hz"][m] for e in g], dtype=object)
-                        .reshape(shape)
-                        .tolist()
-                        for m in margins
-                    },
-                },
-                "stations": st_entries,
-            }
-        )  # fmt: skip
+        out_layers.append(_layer_doc(layer, s_l, day_list, res, stations, shape))
     import PyIRI
 
     source, description = orbit_identity(orbit)
@@ -281,18 +319,7 @@ def compute_world_map(
         "psdbound_version": __version__,
         "pyiri_version": getattr(PyIRI, "__version__", "?"),
         "python": platform.python_version(),
-        "criterion": {
-            "name": settings.criterion,
-            "mp_sigma_m": settings.mp_sigma_m,
-            "margin_db": settings.margin_db,
-            "threshold_m": settings.thresholds_m()[0],
-            "scale": settings.residual_scale,
-            "filter": {
-                "kind": settings.filter_kind,
-                "order": settings.filter_order,
-                "edge": settings.filter_edge,
-            },
-        },  # fmt: skip
+        "criterion": _criterion_doc(settings),
         "settings": s_doc,
         "days": days,
         "orbit_source": source,
