@@ -291,12 +291,20 @@ class ArcSet:
         return text
 
 
+#: Samples above which the running median imports scipy.ndimage (150 ms once) to run faster.
+_SCIPY_MEDIAN_FROM = 4000
+
+
 def _running_median(x: NDArray[np.float64], size: int) -> NDArray[np.float64]:
     """Return the running median of ``x`` over ``size`` samples, the edges mirrored."""
     # scipy.ndimage.median_filter(x, size, mode="mirror") without importing scipy.ndimage
     # (150 ms): numpy's "reflect" is scipy's "mirror" (d c b | a b c d | c b a), an even size
     # takes the upper middle value and reaches one sample further back; equal while
     # size // 2 < len(x), as for min(window, len(x) | 1) (tests/io/test_running_median.py)
+    if x.size > _SCIPY_MEDIAN_FROM:  # long 1 Hz arcs: scipy's filter is 2-4 times faster
+        from scipy.ndimage import median_filter
+
+        return median_filter(x, size=size, mode="mirror")
     half = size // 2
     windows = sliding_window_view(np.pad(x, (half, size - 1 - half), mode="reflect"), size)
     out = np.empty(x.size)

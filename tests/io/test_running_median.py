@@ -36,3 +36,12 @@ def test_sizes_cover_series_shorter_than_the_windows():
     short = [n for n in LENGTHS if n < _SLIP_WINDOW]
     assert short and all(min(_SLIP_WINDOW, n | 1) == n | 1 for n in short)
     assert any(n < _NOISE_WINDOW <= m for n in LENGTHS for m in LENGTHS)
+
+
+def test_numpy_path_is_the_one_compared_and_long_arcs_agree():
+    from psdbound.io.arcs import _SCIPY_MEDIAN_FROM
+
+    assert max(LENGTHS) < _SCIPY_MEDIAN_FROM  # the cross-check above runs the numpy code
+    x = np.random.default_rng(7).normal(size=_SCIPY_MEDIAN_FROM + 1)
+    np.testing.assert_array_equal(_running_median(x, _SLIP_WINDOW),
+                                  median_filter(x, size=_SLIP_WINDOW, mode="mirror"))
