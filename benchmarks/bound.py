@@ -15,7 +15,8 @@ import sys
 import time
 from pathlib import Path
 
-from psdbound.io import find_arcs, read_obs, read_orbit
+from psdbound.arcs import find_arcs
+from psdbound.io import read_obs, read_orbit
 from psdbound.isolation import isolate_dual_frequency
 from psdbound.spectra import BoundModel
 from psdbound.stationarity import find_stationary_windows

@@ -14,7 +14,8 @@ import sys
 import time
 from pathlib import Path
 
-from psdbound.io import find_arcs, read_obs, read_orbit
+from psdbound.arcs import find_arcs
+from psdbound.io import read_obs, read_orbit
 from psdbound.isolation import isolate_dual_frequency
 
 DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "rinex"

@@ -47,8 +47,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 def _options(args: argparse.Namespace) -> tuple[list[str] | None, float, float]:
     """Check the options before any file is read; return (signals, min length s, mask deg)."""
+    from psdbound.arcs import ArcOptions
     from psdbound.common.options import Choice, Number, OptionError, Text, Tuple
-    from psdbound.io import ArcOptions
 
     Number(lo=0.0, hi=1440.0, lo_open=True, unit="min")("--min-arc-min", args.min_arc_min)
     try:
@@ -75,7 +75,8 @@ def _options(args: argparse.Namespace) -> tuple[list[str] | None, float, float]:
 
 def run(args: argparse.Namespace) -> int:
     """Print file summaries and arcs; return the exit code."""
-    from psdbound.io import find_arcs, orbit_coverage, read_obs, read_orbit
+    from psdbound.arcs import find_arcs
+    from psdbound.io import orbit_coverage, read_obs, read_orbit
 
     signals, min_length_s, mask_deg = _options(args)
     orbit = read_orbit(args.nav) if args.nav else None

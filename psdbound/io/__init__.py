@@ -1,4 +1,4 @@
-"""Reading and geometry: RINEX observations, orbits, satellite geometry, arcs.
+"""Reading and geometry: RINEX observations, orbits, satellite geometry.
 
 Public surface:
 
@@ -9,8 +9,8 @@ Public surface:
 * :func:`orbit_coverage` -> :class:`OrbitCoverage`: does an orbit cover the
   observed satellites and epochs, and if not why
 * :func:`satellite_azel`, :func:`azimuth_elevation`, :func:`ecef_to_geodetic`
-* :func:`find_arcs` -> :class:`ArcSet` of :class:`Arc`; :func:`add_third_carrier` reads a
-  third carrier's phase alongside the pair (:data:`THIRD_SIGNALS`)
+
+Tracking arcs are the next stage's (:mod:`psdbound.arcs`).
 """
 
 from __future__ import annotations
@@ -20,22 +20,15 @@ from typing import TYPE_CHECKING
 from psdbound.common.lazy import lazy_exports
 
 if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
-    from psdbound.io.arcs import DEFAULT_SIGNALS, Arc, ArcSet, find_arcs, require_arcs
     from psdbound.io.coverage import OrbitCoverage, SystemCoverage, orbit_coverage
     from psdbound.io.geometry import azimuth_elevation, ecef_to_geodetic, satellite_azel
     from psdbound.io.glonass import GlonassEphemerides
     from psdbound.io.nav import Navigation, read_nav
     from psdbound.io.obs import Observations, ObsHeader, SystemBlock, read_obs
-    from psdbound.io.options import ArcOptions
     from psdbound.io.orbits import read_orbit
     from psdbound.io.sp3 import PreciseOrbit, read_sp3
-    from psdbound.io.third import THIRD_SIGNALS, add_third_carrier
 
 __all__ = [
-    "ArcOptions",
-    "Arc",
-    "ArcSet",
-    "DEFAULT_SIGNALS",
     "GlonassEphemerides",
     "Navigation",
     "ObsHeader",
@@ -44,27 +37,18 @@ __all__ = [
     "PreciseOrbit",
     "SystemBlock",
     "SystemCoverage",
-    "THIRD_SIGNALS",
-    "add_third_carrier",
     "azimuth_elevation",
     "ecef_to_geodetic",
-    "find_arcs",
     "orbit_coverage",
     "read_nav",
     "read_obs",
     "read_orbit",
     "read_sp3",
-    "require_arcs",
     "satellite_azel",
 ]
 
 #: Where each public name lives (imported on first use: importing the package stays cheap).
 _EXPORTS = {
-    "DEFAULT_SIGNALS": ("psdbound.io.arcs", "DEFAULT_SIGNALS"),
-    "Arc": ("psdbound.io.arcs", "Arc"),
-    "ArcSet": ("psdbound.io.arcs", "ArcSet"),
-    "find_arcs": ("psdbound.io.arcs", "find_arcs"),
-    "require_arcs": ("psdbound.io.arcs", "require_arcs"),
     "OrbitCoverage": ("psdbound.io.coverage", "OrbitCoverage"),
     "SystemCoverage": ("psdbound.io.coverage", "SystemCoverage"),
     "orbit_coverage": ("psdbound.io.coverage", "orbit_coverage"),
@@ -78,12 +62,9 @@ _EXPORTS = {
     "ObsHeader": ("psdbound.io.obs", "ObsHeader"),
     "SystemBlock": ("psdbound.io.obs", "SystemBlock"),
     "read_obs": ("psdbound.io.obs", "read_obs"),
-    "ArcOptions": ("psdbound.io.options", "ArcOptions"),
     "read_orbit": ("psdbound.io.orbits", "read_orbit"),
     "PreciseOrbit": ("psdbound.io.sp3", "PreciseOrbit"),
     "read_sp3": ("psdbound.io.sp3", "read_sp3"),
-    "THIRD_SIGNALS": ("psdbound.io.third", "THIRD_SIGNALS"),
-    "add_third_carrier": ("psdbound.io.third", "add_third_carrier"),
 }
 
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

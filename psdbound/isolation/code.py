@@ -25,9 +25,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from psdbound.arcs.find import DEFAULT_SIGNALS, find_arcs
 from psdbound.common.notices import warn
 from psdbound.errors import InputError, NoDataError
-from psdbound.io.arcs import DEFAULT_SIGNALS, find_arcs
 from psdbound.io.obs import SYSTEM_NAMES, Observations
 from psdbound.io.signals import RINEX2_TO_RINEX3, carrier_frequency_hz
 from psdbound.isolation.series import MultipathSeries
@@ -152,11 +152,11 @@ def isolate_code_multipath(
         (for two codes, ``Phi_j`` on the second code's band). Default: the
         file's phase on the code's band with the code's attribute, else
         another phase on that band; for one code, ``Phi_j`` is the carrier of
-        :data:`psdbound.io.DEFAULT_SIGNALS` on another band (else the file's
+        :data:`psdbound.arcs.DEFAULT_SIGNALS` on another band (else the file's
         first phase on another band).
     orbit : OrbitSource, optional
         Orbit for elevations and the elevation mask (see
-        :func:`psdbound.io.find_arcs`); GLONASS channels are taken from it too.
+        :func:`psdbound.arcs.find_arcs`); GLONASS channels are taken from it too.
     receiver_xyz_m : ndarray of shape (3,), optional
         Receiver ECEF position, metres; default the header's.
     system : str, optional
@@ -208,12 +208,12 @@ def isolate_code_multipath(
     PsdboundWarning
         For each arc with samples beyond ``outlier_m`` (naming the satellite
         and the arc's index in the result), and for the orbit's coverage (see
-        :func:`psdbound.io.find_arcs`).
+        :func:`psdbound.arcs.find_arcs`).
 
     See Also
     --------
     rms_by_satellite : RMS of the result per satellite.
-    psdbound.io.find_arcs : The arcs.
+    psdbound.arcs.find_arcs : The arcs.
     isolate_dual_frequency : Carrier-phase multipath.
 
     References

@@ -54,8 +54,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from psdbound.arcs.find import ArcSet, find_arcs
 from psdbound.errors import InputError, NoDataError
-from psdbound.io.arcs import ArcSet, find_arcs
 from psdbound.io.geometry import (
     OrbitSource,
 )
@@ -131,7 +131,7 @@ def isolate_dual_antenna(
         accept their own codes, e.g. ``"L1"``).
     slip_signal : str or None, default "L2W"
         Second phase signal of each receiver used only to find cycle slips
-        (geometry-free test, see :func:`psdbound.io.find_arcs`). With None,
+        (geometry-free test, see :func:`psdbound.arcs.find_arcs`). With None,
         arcs are broken on gaps, loss-of-lock flags and power failures only
         (plus the double-difference jump test below).
     system : str, default "G"

@@ -11,7 +11,7 @@ high-pass filter at ``cutoff_hz``; what is left is the difference of two
 independent per-carrier multipath + noise terms, divided by sqrt(2) to
 compare with one signal (thesis appendix B).
 
-Where the arcs carry a third carrier ``c`` (:func:`psdbound.io.add_third_carrier`),
+Where the arcs carry a third carrier ``c`` (:func:`psdbound.arcs.add_third_carrier`),
 ``L_a - L_c`` is kept unfiltered beside ``L_a - L_b`` (``MultipathSeries.third_m``)
 for the three-frequency screening test; the isolated series itself is unchanged.
 """
@@ -20,8 +20,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from psdbound.arcs.find import ArcSet
 from psdbound.errors import NoDataError
-from psdbound.io.arcs import ArcSet
 from psdbound.isolation.filters import HighPass
 from psdbound.isolation.series import MultipathSeries
 
@@ -43,7 +43,7 @@ def isolate_dual_frequency(
     Parameters
     ----------
     arcs : ArcSet
-        Arcs of one system and signal pair from :func:`psdbound.io.find_arcs`,
+        Arcs of one system and signal pair from :func:`psdbound.arcs.find_arcs`,
         preferably with elevations (an orbit given to ``find_arcs``).
     cutoff_hz : float
         High-pass cutoff frequency, Hz (e.g. 9.55e-4 Hz, the thesis's
@@ -84,7 +84,8 @@ def isolate_dual_frequency(
 
     Examples
     --------
-    >>> from psdbound.io import find_arcs, read_obs, read_orbit
+    >>> from psdbound.arcs import find_arcs
+    >>> from psdbound.io import read_obs, read_orbit
     >>> from psdbound.simulate import demo_data
     >>> d = demo_data()
     >>> arcs = find_arcs(read_obs(d.obs_paths[0], systems="G"), ("L1C", "L2W"),

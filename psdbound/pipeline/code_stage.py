@@ -16,10 +16,10 @@ from typing import Any
 
 import numpy as np
 
+from psdbound.arcs.options import ArcOptions
 from psdbound.aviation.code_samples import describe_code_series, overbound_code_series
 from psdbound.aviation.options import CodeMultipathOptions
 from psdbound.errors import InputError, NoDataError
-from psdbound.io.options import ArcOptions
 from psdbound.isolation import isolate_code_multipath
 from psdbound.pipeline.inputs import Progress, quiet
 from psdbound.pipeline.products import CodeOverbound, InputData

@@ -1,7 +1,7 @@
 """Configuration of a ``fit`` run: every option, settable from TOML or the CLI.
 
 A :class:`FitConfig` composes the small frozen options dataclasses that live
-next to their stages (:class:`~psdbound.io.ArcOptions`,
+next to their stages (:class:`~psdbound.arcs.ArcOptions`,
 :class:`~psdbound.ionosphere.CutoffOptions`,
 :class:`~psdbound.isolation.HighPass`,
 :class:`~psdbound.stationarity.MappingOptions`,
@@ -40,6 +40,7 @@ from dataclasses import asdict, dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
+from psdbound.arcs.options import ArcOptions
 from psdbound.aviation.options import CodeMultipathOptions
 from psdbound.common.options import (
     Boolean,
@@ -57,7 +58,6 @@ from psdbound.common.options import (
 from psdbound.common.tomlfile import read_toml
 from psdbound.errors import InputError
 from psdbound.io.archive import zip_members
-from psdbound.io.options import ArcOptions
 from psdbound.ionosphere.policy import CUTOFF_SOURCES, CutoffOptions
 from psdbound.isolation import HighPass
 from psdbound.isolation.names import BASELINE_MODES, BASELINE_TOLERANCE_M
@@ -496,7 +496,7 @@ def _rule_method_options(cfg: FitConfig, label: Label) -> None:
     elif method in ("df", "demo"):
         _rule_no_da_options(cfg, label)
     if method == "df" and not inp.signals:
-        from psdbound.io import DEFAULT_SIGNALS
+        from psdbound.arcs import DEFAULT_SIGNALS
 
         if inp.system not in DEFAULT_SIGNALS:
             system = _show(label("inputs", "system"), inp.system)

@@ -112,9 +112,9 @@ def _read_observations(
     ``codes``: the only observation codes kept (a dual-frequency run needs its
     phase pair only: a third of the memory of a typical file), with the first
     carrier's SNR and the phases that could be a third carrier
-    (:func:`psdbound.io.third.third_candidates`) where the file has them.
+    (:func:`psdbound.arcs.third.third_candidates`) where the file has them.
     """
-    from psdbound.io.third import third_candidates
+    from psdbound.arcs.third import third_candidates
     from psdbound.validation.site import snr_signal
 
     optional = (snr_signal(codes[0]), *third_candidates(system, codes)) if codes else ()
@@ -185,7 +185,7 @@ def _refuse_repeats(paths: Sequence[Path]) -> None:
 
 def _codes_needed(options: InputsConfig) -> tuple[str, ...] | None:
     """Return the codes a run reads: the phase pair for dual-frequency, everything for a pair."""
-    from psdbound.io import DEFAULT_SIGNALS
+    from psdbound.arcs import DEFAULT_SIGNALS
 
     if options.pair or options.method.lower() != "df" and options.method.lower() != "auto":
         return None  # dual-antenna: the clock estimate may use any pseudorange

@@ -9,7 +9,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from psdbound.io import ArcSet, Observations
+from psdbound.arcs import ArcSet
+from psdbound.io import Observations
 from psdbound.isolation import MultipathSeries
 from psdbound.screening import Screening
 from psdbound.stationarity import ElevationMapping, WindowSet

@@ -31,9 +31,9 @@ from typing import Any
 
 import numpy as np
 
+from psdbound.arcs import ArcSet, add_third_carrier, find_arcs
+from psdbound.arcs.options import ArcOptions
 from psdbound.errors import InputError, NoDataError
-from psdbound.io import ArcSet, add_third_carrier, find_arcs
-from psdbound.io.options import ArcOptions
 from psdbound.io.signals import wavelength_m
 from psdbound.ionosphere.policy import CutoffChoice, CutoffOptions
 from psdbound.ionosphere.policy import choose_cutoff as _choose_cutoff

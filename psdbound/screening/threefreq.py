@@ -88,7 +88,7 @@ under 3 mm: 0.65 against 0.68; 0.3 under 8 mm: 0.49 against 0.44).
 
 The test needs the third phase on both sides of each 30-s difference; a
 third-carrier slip or loss of lock leaves the difference out (see
-:func:`psdbound.io.add_third_carrier`). Where a series has no third
+:func:`psdbound.arcs.add_third_carrier`). Where a series has no third
 carrier, or too few blocks with one to fit the null (fewer than
 :data:`psdbound.screening.null.MIN_BLOCKS`), nothing changes, and a series
 without a third carrier is screened exactly as before.

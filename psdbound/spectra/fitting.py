@@ -162,7 +162,8 @@ class BoundModel:
 
     Examples
     --------
-    >>> from psdbound.io import find_arcs, read_obs, read_orbit
+    >>> from psdbound.arcs import find_arcs
+    >>> from psdbound.io import read_obs, read_orbit
     >>> from psdbound.isolation import isolate_dual_frequency
     >>> from psdbound.stationarity import find_stationary_windows
     >>> from psdbound.simulate import demo_data

@@ -352,7 +352,8 @@ def find_stationary_windows(
 
     Examples
     --------
-    >>> from psdbound.io import find_arcs, read_obs, read_orbit
+    >>> from psdbound.arcs import find_arcs
+    >>> from psdbound.io import read_obs, read_orbit
     >>> from psdbound.isolation import isolate_dual_frequency
     >>> from psdbound.simulate import demo_data
     >>> d = demo_data()

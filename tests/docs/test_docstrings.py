@@ -14,7 +14,7 @@ ENTRY_POINTS = [
     "psdbound:load",
     "psdbound.io:read_obs",
     "psdbound.io:read_orbit",
-    "psdbound.io:find_arcs",
+    "psdbound.arcs:find_arcs",
     "psdbound.isolation:isolate_dual_frequency",
     "psdbound.isolation:isolate_dual_antenna",
     "psdbound.isolation:isolate_code_multipath",

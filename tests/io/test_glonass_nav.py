@@ -7,8 +7,9 @@ import pytest
 from conftest import ESBC_NAV, ESBC_OBS, ESBC_SP3, shared_file
 from scipy.integrate import solve_ivp
 
+from psdbound.arcs import find_arcs
 from psdbound.constants import GLONASS_GM_M3_S2, GLONASS_OMEGA_E_RAD_S
-from psdbound.io import find_arcs, read_nav, read_obs, read_orbit
+from psdbound.io import read_nav, read_obs, read_orbit
 from psdbound.io.glonass import (
     GlonassEphemerides,
     glonass_acceleration,

@@ -10,9 +10,10 @@ import pytest
 from conftest import ESBC_NAV, ESBC_OBS, ESBC_SP3, GRAS_OBS, shared_file
 from orbit_samples import T2020, T2022, geometric_observations, nominal
 
+from psdbound.arcs import find_arcs
 from psdbound.common.notices import PsdboundWarning
 from psdbound.errors import InputError, NoDataError
-from psdbound.io import Navigation, PreciseOrbit, find_arcs, orbit_coverage, read_obs, read_orbit
+from psdbound.io import Navigation, PreciseOrbit, orbit_coverage, read_obs, read_orbit
 from psdbound.isolation import isolate_dual_frequency
 
 FC = 9.55e-4

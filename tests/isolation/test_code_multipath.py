@@ -11,9 +11,10 @@ import numpy as np
 import pytest
 from conftest import ESBC_NAV, ESBC_OBS, UPC1_OBS, UPC_NAV, shared_file
 
+from psdbound.arcs import find_arcs
 from psdbound.common.notices import PsdboundWarning
 from psdbound.errors import InputError, NoDataError
-from psdbound.io import ObsHeader, find_arcs, read_obs, read_orbit
+from psdbound.io import ObsHeader, read_obs, read_orbit
 from psdbound.io.obs import Observations, SystemBlock
 from psdbound.io.signals import carrier_frequency_hz
 from psdbound.isolation import isolate_code_multipath, level_shifts, rms_by_satellite

@@ -7,8 +7,9 @@ import pytest
 from conftest import ESBC_NAV, ESBC_OBS, GRAS_OBS, NYA1_NAV, NYA1_OBS, shared_file
 from samples import LAM1, LAM2, make_obs
 
+from psdbound.arcs import find_arcs
 from psdbound.errors import InputError, NoDataError
-from psdbound.io import find_arcs, read_obs, read_orbit
+from psdbound.io import read_obs, read_orbit
 from psdbound.isolation import (
     DF_SCALING,
     HighPass,

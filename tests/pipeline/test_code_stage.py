@@ -12,10 +12,10 @@ import pytest
 from conftest import ESBC_NAV, ESBC_OBS, shared_file
 
 import psdbound
+from psdbound.arcs.options import ArcOptions
 from psdbound.aviation.options import CodeMultipathOptions
 from psdbound.common.options import OptionError
 from psdbound.errors import InputError
-from psdbound.io.options import ArcOptions
 from psdbound.pipeline import FitConfig, stages
 from psdbound.pipeline.code_stage import code_overbound
 from psdbound.pipeline.config import InputsConfig

@@ -156,8 +156,9 @@ def test_a_day_whose_typical_block_is_ionosphere_is_named_not_kept():
 
 
 def _real(obs_name, nav_name):
-    from psdbound.io import add_third_carrier, find_arcs, read_obs, read_orbit
-    from psdbound.io.third import third_candidates
+    from psdbound.arcs import add_third_carrier, find_arcs
+    from psdbound.arcs.third import third_candidates
+    from psdbound.io import read_obs, read_orbit
     from psdbound.isolation import isolate_dual_frequency
 
     pair = ("L1C", "L2W")

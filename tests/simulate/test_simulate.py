@@ -5,9 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from psdbound.arcs import find_arcs
 from psdbound.cli import main
 from psdbound.errors import InputError
-from psdbound.io import find_arcs, read_obs, read_orbit
+from psdbound.io import read_obs, read_orbit
 from psdbound.isolation import isolate_dual_antenna, isolate_dual_frequency
 from psdbound.simulate import MultipathModel, demo_data, gauss_markov, preset, simulate
 

@@ -7,9 +7,10 @@ import math
 import numpy as np
 import pytest
 
+from psdbound.arcs import find_arcs
 from psdbound.common.options import OptionError
 from psdbound.errors import InputError
-from psdbound.io import find_arcs, read_obs, read_orbit
+from psdbound.io import read_obs, read_orbit
 from psdbound.isolation import isolate_dual_frequency
 from psdbound.simulate import (
     IonoDisturbance,

@@ -7,8 +7,9 @@ import pytest
 from conftest import ESBC_NAV, ESBC_OBS, UPC1_OBS, UPC2_OBS, UPC_NAV, shared_file
 from scipy.signal import lfilter
 
+from psdbound.arcs import find_arcs
 from psdbound.errors import InputError, NoDataError
-from psdbound.io import find_arcs, read_obs, read_orbit
+from psdbound.io import read_obs, read_orbit
 from psdbound.isolation import MultipathSeries, isolate_dual_antenna, isolate_dual_frequency
 from psdbound.spectra import BoundModel, estimate_psd, fit_bound
 from psdbound.stationarity import find_stationary_windows

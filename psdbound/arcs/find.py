@@ -40,7 +40,7 @@ from psdbound.errors import InputError, NoDataError
 from psdbound.io.coverage import OrbitCoverage, orbit_coverage
 from psdbound.io.obs import Observations
 
-__all__ = ["Arc", "ArcSet", "find_arcs", "detect_slips", "DEFAULT_SIGNALS"]
+__all__ = ["Arc", "ArcSet", "find_arcs", "detect_slips", "require_arcs", "DEFAULT_SIGNALS"]
 
 #: Default signal pair per system for dual-frequency work.
 DEFAULT_SIGNALS: dict[str, tuple[str, str]] = {
@@ -84,7 +84,7 @@ class Arc:
         ``"elevation mask"``).
     third_m : ndarray of float64 or None
         Carrier phase of a third signal at the arc's epochs, metres
-        (:func:`psdbound.io.third.add_third_carrier`): NaN where it is missing
+        (:func:`psdbound.arcs.third.add_third_carrier`): NaN where it is missing
         and at the first epoch after each of its losses of lock or cycle
         slips, so that no difference of consecutive samples spans one; None
         without a third signal.
@@ -159,7 +159,7 @@ class ArcSet:
         The orbit's coverage of the observations (None without an orbit).
     third_signal : str or None
         Phase code of the third signal the arcs carry in
-        :attr:`Arc.third_m` (None: none; :func:`psdbound.io.third.add_third_carrier`).
+        :attr:`Arc.third_m` (None: none; :func:`psdbound.arcs.third.add_third_carrier`).
     samples : dict of str to int
         (Satellite, epoch) samples with both phases (``"both_signals"``), of
         them without an orbit position (``"without_orbit"``) and below the
@@ -595,6 +595,8 @@ def find_arcs(
 
     Examples
     --------
+    >>> from psdbound.arcs import find_arcs
+    >>> from psdbound.io import read_obs, read_orbit
     >>> from psdbound.simulate import demo_data
     >>> d = demo_data()
     >>> obs, nav = read_obs(d.obs_paths[0], systems="G"), read_orbit(d.nav_path)

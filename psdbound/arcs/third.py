@@ -5,7 +5,7 @@ screening tell ionosphere from multipath
 (:mod:`psdbound.screening.threefreq`): the first-order ionosphere scales as
 ``1/f^2`` on every carrier, so one geometry-free combination of three
 carriers holds none of it. The arcs stay those of the pair
-(:func:`psdbound.io.find_arcs`); the third phase is read alongside, at the
+(:func:`psdbound.arcs.find_arcs`); the third phase is read alongside, at the
 arcs' epochs, and nothing else changes.
 
 The third signal is chosen like the pair: from a fixed preference list per
@@ -13,7 +13,7 @@ system (:data:`THIRD_SIGNALS`), the first code whose band differs from the
 pair's and that the file holds with phases. Its own breaks do not break the
 arc: a loss of lock (bit 0 of its indicator) or a cycle slip of the
 geometry-free phase ``L_a - L_c`` (the same test as the pair's,
-:func:`psdbound.io.arcs.detect_slips`) sets the third phase to NaN at the
+:func:`psdbound.arcs.find.detect_slips`) sets the third phase to NaN at the
 first epoch after it, so that no difference of consecutive samples spans one.
 """
 
@@ -25,7 +25,7 @@ from dataclasses import replace
 import numpy as np
 from numpy.typing import NDArray
 
-from psdbound.io.arcs import Arc, ArcSet, detect_slips
+from psdbound.arcs.find import Arc, ArcSet, detect_slips
 from psdbound.io.obs import Observations
 from psdbound.io.signals import RINEX2_TO_RINEX3
 
@@ -124,7 +124,7 @@ def add_third_carrier(arcs: ArcSet, obs: Observations, signal: str | None = None
     Parameters
     ----------
     arcs : ArcSet
-        Arcs of a phase pair from :func:`psdbound.io.find_arcs` on ``obs``.
+        Arcs of a phase pair from :func:`psdbound.arcs.find_arcs` on ``obs``.
     obs : Observations
         The observations the arcs were formed from.
     signal : str, optional

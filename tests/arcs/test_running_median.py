@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from scipy.ndimage import median_filter
 
-from psdbound.io.arcs import _NOISE_WINDOW, _SLIP_WINDOW, _running_median
+from psdbound.arcs.find import _NOISE_WINDOW, _SLIP_WINDOW, _running_median
 
 LENGTHS = [1, 2, 3, 4, 5, 6, 7, 10, 11, 12, 30, 60, 61, 62, 63, 200, 1001]
 
@@ -39,7 +39,7 @@ def test_sizes_cover_series_shorter_than_the_windows():
 
 
 def test_numpy_path_is_the_one_compared_and_long_arcs_agree():
-    from psdbound.io.arcs import _SCIPY_MEDIAN_FROM
+    from psdbound.arcs.find import _SCIPY_MEDIAN_FROM
 
     assert max(LENGTHS) < _SCIPY_MEDIAN_FROM  # the cross-check above runs the numpy code
     x = np.random.default_rng(7).normal(size=_SCIPY_MEDIAN_FROM + 1)

@@ -6,10 +6,11 @@ import numpy as np
 import pytest
 from conftest import shared_file
 
-from psdbound.io import ObsHeader, add_third_carrier, find_arcs, read_obs, read_orbit
+from psdbound.arcs import add_third_carrier, find_arcs
+from psdbound.arcs.third import choose_third_signal, third_candidates
+from psdbound.io import ObsHeader, read_obs, read_orbit
 from psdbound.io.obs import Observations, SystemBlock
 from psdbound.io.signals import wavelength_m
-from psdbound.io.third import choose_third_signal, third_candidates
 from psdbound.isolation import isolate_dual_frequency
 
 CODES = ("L1C", "L2W", "L5Q")
