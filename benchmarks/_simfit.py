@@ -33,8 +33,13 @@ def checkout_env() -> dict[str, str]:
 
 def run_cli(args: list[str], cwd: Path) -> subprocess.CompletedProcess[str]:
     """Run ``python -m psdbound ARGS`` with this checkout's package; never raises on exit codes."""
-    return subprocess.run([sys.executable, "-m", "psdbound", *args], cwd=cwd, env=checkout_env(),
-                          capture_output=True, text=True)  # fmt: skip
+    return subprocess.run(
+        [sys.executable, "-m", "psdbound", *args],
+        cwd=cwd,
+        env=checkout_env(),
+        capture_output=True,
+        text=True,
+    )
 
 
 def tail(proc: subprocess.CompletedProcess[str], n: int = 4) -> str:
@@ -69,6 +74,7 @@ def fit_simulated(truth: Path, out: Path) -> tuple[int, str]:
     files = json.loads(truth.read_text())["files"]
     obs = [str(truth.parent / f) for f in files["obs"]]
     nav = str(truth.parent / files["nav"])
-    proc = run_cli(["fit", *obs, "--nav", nav, "--out", str(out), "--no-pdf", "--quiet"],
-                   out.parent)  # fmt: skip
+    proc = run_cli(
+        ["fit", *obs, "--nav", nav, "--out", str(out), "--no-pdf", "--quiet"], out.parent
+    )
     return proc.returncode, tail(proc)

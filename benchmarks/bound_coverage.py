@@ -114,15 +114,40 @@ CLASSES = ("hom", "ln0.15", "ln0.3", "ln0.6", "slow", "mixed", "few", "unequal")
 #: Interval (s) and window-length range (samples) of the two variants of a class.
 SAMPLINGS = {30.0: (120, 480), 1.0: (900, 3600)}
 FIELDS = (
-    "variant", "cls", "dt_s", "run", "seed", "m", "n_min", "n_max",
-    "sigma_gm_mm", "tau_s", "sigma_wn_mm", "ref_var_mm2",
-    "bound_sigma_gm_mm", "bound_tau_s", "bound_sigma_wn_mm",
-    "verdict", "covered", "n_uncovered", "allowed", "min_psd_ratio", "f_at_min_hz",
+    "variant",
+    "cls",
+    "dt_s",
+    "run",
+    "seed",
+    "m",
+    "n_min",
+    "n_max",
+    "sigma_gm_mm",
+    "tau_s",
+    "sigma_wn_mm",
+    "ref_var_mm2",
+    "bound_sigma_gm_mm",
+    "bound_tau_s",
+    "bound_sigma_wn_mm",
+    "verdict",
+    "covered",
+    "n_uncovered",
+    "allowed",
+    "min_psd_ratio",
+    "f_at_min_hz",
     "params_in_set",
-    "worst_window", "var_ratio", "var_ratio_bands", "low_status",
-    "f_min_hz", "fmin_T", "n_groups",
-    "confidence_level", "coverage", "run_s", "error",
-)  # fmt: skip
+    "worst_window",
+    "var_ratio",
+    "var_ratio_bands",
+    "low_status",
+    "f_min_hz",
+    "fmin_T",
+    "n_groups",
+    "confidence_level",
+    "coverage",
+    "run_s",
+    "error",
+)
 
 Truth = list[tuple[int, float, float, float]]  # per window: N, sigma_gm, tau, sigma_wn (m, s)
 
@@ -181,15 +206,23 @@ def draw_truth(cls: str, dt: float, rng: np.random.Generator) -> tuple[Truth, di
             wins[i] = (n, 2.0 * sg, min(t * float(rng.uniform(5.0, 10.0)), n * dt), w)
     elif cls == "mixed":
         r2 = math.sqrt(2.0)
-        wins = [(n, _log_uniform(rng, sigma / r2, sigma * r2), _log_uniform(rng, tau / 2, tau * 2),
-                 float(rng.uniform(wn / r2, wn * r2))) for n, _, _, _ in wins]  # fmt: skip
+        wins = [
+            (
+                n,
+                _log_uniform(rng, sigma / r2, sigma * r2),
+                _log_uniform(rng, tau / 2, tau * 2),
+                float(rng.uniform(wn / r2, wn * r2)),
+            )
+            for n, _, _, _ in wins
+        ]
     elif cls not in ("hom", "few", "unequal"):
         raise ValueError(f"unknown class {cls!r}; choose from {CLASSES}")
     return wins, {"sigma_gm_m": sigma, "tau_s": tau, "sigma_wn_m": wn}
 
 
-def simulate_window(n: int, sigma: float, tau: float, wn: float, dt: float,
-                    rng: np.random.Generator) -> np.ndarray:  # fmt: skip
+def simulate_window(
+    n: int, sigma: float, tau: float, wn: float, dt: float, rng: np.random.Generator
+) -> np.ndarray:
     """Exact AR(1) (GM sampled at ``dt``, stationary start) plus white noise, ``n`` samples."""
     phi = math.exp(-dt / tau)
     e = rng.normal(0.0, sigma * math.sqrt(1.0 - phi**2), n)
@@ -207,11 +240,18 @@ def _in_model_set(res: Any, wins: list[tuple[int, float, float, float]]) -> str:
     ms = res.model_set
     if ms is None:
         return ""
+
     def inside(v: float, iv: tuple[float, float]) -> bool:
         return iv[0] * (1 - 1e-9) <= v <= iv[1] * (1 + 1e-9)
 
-    return str(all(inside(sg, ms.sigma_gm_interval_m) and inside(t, ms.tau_interval_s)
-                   and inside(w, ms.sigma_wn_interval_m) for _, sg, t, w in wins))
+    return str(
+        all(
+            inside(sg, ms.sigma_gm_interval_m)
+            and inside(t, ms.tau_interval_s)
+            and inside(w, ms.sigma_wn_interval_m)
+            for _, sg, t, w in wins
+        )
+    )
 
 
 def _number_or_text(value: str) -> Any:
@@ -246,17 +286,28 @@ def run_one(cls: str, dt: float, run: int, seed: int, join_nan: bool = False) ->
     from psdbound.spectra import gm_psd_sampled
 
     t0 = time.perf_counter()
-    rec: dict[str, Any] = {"variant": variant_label(cls, dt), "cls": cls, "dt_s": dt,
-                           "run": run, "seed": seed}  # fmt: skip
+    rec: dict[str, Any] = {
+        "variant": variant_label(cls, dt),
+        "cls": cls,
+        "dt_s": dt,
+        "run": run,
+        "seed": seed,
+    }
     try:
         rng = np.random.default_rng(seed)
         wins, centre = draw_truth(cls, dt, rng)
         xs = [simulate_window(n, sg, t, w, dt, rng) for n, sg, t, w in wins]
         ns = [n for n, _, _, _ in wins]
         ref_var = float(np.median([sg**2 + w**2 for _, sg, _, w in wins]))
-        rec.update(m=len(wins), n_min=min(ns), n_max=max(ns),
-                   sigma_gm_mm=1e3 * centre["sigma_gm_m"], tau_s=centre["tau_s"],
-                   sigma_wn_mm=1e3 * centre["sigma_wn_m"], ref_var_mm2=1e6 * ref_var)  # fmt: skip
+        rec.update(
+            m=len(wins),
+            n_min=min(ns),
+            n_max=max(ns),
+            sigma_gm_mm=1e3 * centre["sigma_gm_m"],
+            tau_s=centre["tau_s"],
+            sigma_wn_mm=1e3 * centre["sigma_wn_m"],
+            ref_var_mm2=1e6 * ref_var,
+        )
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             series = np.concatenate([np.r_[x, np.nan] for x in xs])[:-1] if join_nan else xs
@@ -264,25 +315,40 @@ def run_one(cls: str, dt: float, run: int, seed: int, join_nan: bool = False) ->
         b = res.bound
         f = np.geomspace(res.f_min_hz, 0.5 / dt, N_GRID)
         bound_psd = b.sampled_psd(f)
-        ratios = np.array([np.min(bound_psd / (gm_psd_sampled(f, sg, t, dt) + 2.0 * dt * w**2))
-                           for _, sg, t, w in wins])  # fmt: skip
+        ratios = np.array(
+            [
+                np.min(bound_psd / (gm_psd_sampled(f, sg, t, dt) + 2.0 * dt * w**2))
+                for _, sg, t, w in wins
+            ]
+        )
         worst = int(np.argmin(ratios))
         truth_w = wins[worst]
-        ratio_f = bound_psd / (gm_psd_sampled(f, truth_w[1], truth_w[2], dt)
-                               + 2.0 * dt * truth_w[3] ** 2)  # fmt: skip
+        ratio_f = bound_psd / (
+            gm_psd_sampled(f, truth_w[1], truth_w[2], dt) + 2.0 * dt * truth_w[3] ** 2
+        )
         n_unc = int(np.sum(ratios < 1.0 - RTOL))
         allowed = int(np.floor((1.0 - res.limits.coverage) * len(wins) + 1e-9))
         rec.update(
-            bound_sigma_gm_mm=1e3 * b.sigma_gm_m, bound_tau_s=b.tau_s,
-            bound_sigma_wn_mm=1e3 * b.sigma_wn_m, verdict=res.verdict,
-            covered=n_unc <= allowed, n_uncovered=n_unc, allowed=allowed,
-            min_psd_ratio=float(ratios[worst]), f_at_min_hz=float(f[np.argmin(ratio_f)]),
-            worst_window=worst, var_ratio=(b.sigma_gm_m**2 + b.sigma_wn_m**2) / ref_var,
+            bound_sigma_gm_mm=1e3 * b.sigma_gm_m,
+            bound_tau_s=b.tau_s,
+            bound_sigma_wn_mm=1e3 * b.sigma_wn_m,
+            verdict=res.verdict,
+            covered=n_unc <= allowed,
+            n_uncovered=n_unc,
+            allowed=allowed,
+            min_psd_ratio=float(ratios[worst]),
+            f_at_min_hz=float(f[np.argmin(ratio_f)]),
+            worst_window=worst,
+            var_ratio=(b.sigma_gm_m**2 + b.sigma_wn_m**2) / ref_var,
             var_ratio_bands=_bands_only_ratio(res, ref_var),
             low_status=res.low_frequency.status if res.low_frequency else "",
-            f_min_hz=res.f_min_hz, fmin_T=res.f_min_hz * max(ns) * dt,
-            n_groups=res.limits.n_groups, confidence_level=res.limits.confidence_level,
-            coverage=res.limits.coverage, params_in_set=_in_model_set(res, wins))  # fmt: skip
+            f_min_hz=res.f_min_hz,
+            fmin_T=res.f_min_hz * max(ns) * dt,
+            n_groups=res.limits.n_groups,
+            confidence_level=res.limits.confidence_level,
+            coverage=res.limits.coverage,
+            params_in_set=_in_model_set(res, wins),
+        )
     except Exception as exc:  # a failing run is a result, not a crash
         rec["error"] = f"{type(exc).__name__}: {' '.join(str(exc).split())}"[:300]
     rec["run_s"] = time.perf_counter() - t0
@@ -319,17 +385,25 @@ def summarise(recs: list[dict[str, Any]]) -> dict[str, Any]:
     done = [r for r in recs if "error" not in r]
     mins = [r["min_psd_ratio"] for r in bd]
     return {
-        "n": len(recs), "bounded": len(bd), "not_bounded": len(nb), "errors": len(err),
-        "coverage": p, "mcse": se,
+        "n": len(recs),
+        "bounded": len(bd),
+        "not_bounded": len(nb),
+        "errors": len(err),
+        "coverage": p,
+        "mcse": se,
         "pass": bool(n_eval) and not err and p + 2.0 * se >= TARGET_COVERAGE,
-        "var_ratio": _med(done, "var_ratio"), "fmin_T": _med(done, "fmin_T"),
-        "groups": _med(done, "n_groups"), "min_ratio_med": _med(bd, "min_psd_ratio"),
+        "var_ratio": _med(done, "var_ratio"),
+        "fmin_T": _med(done, "fmin_T"),
+        "groups": _med(done, "n_groups"),
+        "min_ratio_med": _med(bd, "min_psd_ratio"),
         "min_ratio_min": float(min(mins)) if mins else float("nan"),
         "run_s": _med(recs, "run_s"),
-        "in_set": float(np.mean([r["params_in_set"] == "True" for r in bd
-                                 if r.get("params_in_set")])) if any(
-            r.get("params_in_set") for r in bd) else float("nan"),
-    }  # fmt: skip
+        "in_set": float(
+            np.mean([r["params_in_set"] == "True" for r in bd if r.get("params_in_set")])
+        )
+        if any(r.get("params_in_set") for r in bd)
+        else float("nan"),
+    }
 
 
 def _f(v: float, spec: str = ".3f") -> str:
@@ -338,15 +412,19 @@ def _f(v: float, spec: str = ".3f") -> str:
 
 def print_table(stats: dict[str, dict[str, Any]]) -> None:
     """One line per class-variant."""
-    print(f"{'class':<14}{'runs':>5}{'bnd':>5}{'cover':>7}{'mcse':>7}{'pass':>5}{'notb':>5}"
-          f"{'err':>4}{'varR':>7}{'fminT':>7}{'grp':>5}{'minR_med':>9}{'minR_min':>9}"
-          f"{'s/run':>7}")  # fmt: skip
+    print(
+        f"{'class':<14}{'runs':>5}{'bnd':>5}{'cover':>7}{'mcse':>7}{'pass':>5}{'notb':>5}"
+        f"{'err':>4}{'varR':>7}{'fminT':>7}{'grp':>5}{'minR_med':>9}{'minR_min':>9}"
+        f"{'s/run':>7}"
+    )
     for label, s in stats.items():
-        print(f"{label:<14}{s['n']:>5}{s['bounded']:>5}{_f(s['coverage']):>7}{_f(s['mcse']):>7}"
-              f"{'yes' if s['pass'] else 'NO':>5}{s['not_bounded']:>5}{s['errors']:>4}"
-              f"{_f(s['var_ratio']):>7}{_f(s['fmin_T'], '.2f'):>7}{_f(s['groups'], '.1f'):>5}"
-              f"{_f(s['min_ratio_med']):>9}{_f(s['min_ratio_min']):>9}"
-              f"{_f(s['run_s'], '.2f'):>7}")  # fmt: skip
+        print(
+            f"{label:<14}{s['n']:>5}{s['bounded']:>5}{_f(s['coverage']):>7}{_f(s['mcse']):>7}"
+            f"{'yes' if s['pass'] else 'NO':>5}{s['not_bounded']:>5}{s['errors']:>4}"
+            f"{_f(s['var_ratio']):>7}{_f(s['fmin_T'], '.2f'):>7}{_f(s['groups'], '.1f'):>5}"
+            f"{_f(s['min_ratio_med']):>9}{_f(s['min_ratio_min']):>9}"
+            f"{_f(s['run_s'], '.2f'):>7}"
+        )
     print(
         "cover: covered share of bounded (+errored) runs; mcse sqrt(p(1-p)/n); pass: "
         f"cover + 2 mcse >= {TARGET_COVERAGE} and no errors; varR: median bound variance / "
@@ -368,8 +446,12 @@ def write_csv(recs: list[dict[str, Any]], path: Path) -> None:
 def main(argv: list[str] | None = None) -> int:
     """Run the benchmark; return the exit status (0, also when targets are missed)."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--option", action="append", default=[],
-                    help="key=value passed to bound_series (repeatable; default its defaults)")
+    ap.add_argument(
+        "--option",
+        action="append",
+        default=[],
+        help="key=value passed to bound_series (repeatable; default its defaults)",
+    )
     ap.add_argument("--n", type=int, default=200, help="runs per class-variant (default 200)")
     ap.add_argument("--quick", action="store_true", help="20 runs per class-variant")
     ap.add_argument("--seed", type=int, default=20_000, help="base seed (run i: seed + i)")
@@ -380,8 +462,11 @@ def main(argv: list[str] | None = None) -> int:
         default=DEFAULT_OUT / "bound_coverage_runs.csv",
         help="per-run CSV (default benchmarks/out/bound_coverage_runs.csv)",
     )
-    ap.add_argument("--join-nan", action="store_true",
-                    help="pass each run's windows as one NaN-separated series")  # fmt: skip
+    ap.add_argument(
+        "--join-nan",
+        action="store_true",
+        help="pass each run's windows as one NaN-separated series",
+    )
     args = ap.parse_args(argv)
     for item in args.option:
         key, _, value = item.partition("=")
@@ -436,14 +521,20 @@ def main(argv: list[str] | None = None) -> int:
 
     cov = {k: s["coverage"] for k, s in stats.items() if not math.isnan(s["coverage"])}
     worst = min(cov, key=cov.get) if cov else "-"
-    fmin_t = max((s["fmin_T"] for s in stats.values() if not math.isnan(s["fmin_T"])),
-                 default=float("nan"))  # fmt: skip
-    hom = {dt: stats.get(variant_label("hom", dt), {}).get("var_ratio", float("nan"))
-           for dt in SAMPLINGS}  # fmt: skip
-    in_set = {dt: stats.get(variant_label("hom", dt), {}).get("in_set", float("nan"))
-              for dt in SAMPLINGS}  # fmt: skip
-    print("model set (tau, sigma_GM, sigma_WN intervals) containing the homogeneous truth: "
-          + ", ".join(f"{dt:g} s {_f(v)}" for dt, v in in_set.items()))
+    fmin_t = max(
+        (s["fmin_T"] for s in stats.values() if not math.isnan(s["fmin_T"])), default=float("nan")
+    )
+    hom = {
+        dt: stats.get(variant_label("hom", dt), {}).get("var_ratio", float("nan"))
+        for dt in SAMPLINGS
+    }
+    in_set = {
+        dt: stats.get(variant_label("hom", dt), {}).get("in_set", float("nan")) for dt in SAMPLINGS
+    }
+    print(
+        "model set (tau, sigma_GM, sigma_WN intervals) containing the homogeneous truth: "
+        + ", ".join(f"{dt:g} s {_f(v)}" for dt, v in in_set.items())
+    )
     all_pass = bool(stats) and all(s["pass"] for s in stats.values())
     var_pass = all(not math.isnan(v) and v <= TARGET_VAR_RATIO for v in hom.values())
     print(

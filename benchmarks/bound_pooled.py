@@ -43,13 +43,23 @@ def _half(series: MultipathSeries, first: bool) -> MultipathSeries:
         t = series.t_gps_s[lo:hi]
         keep = t < t_mid if first else t >= t_mid
         if keep.sum() >= 2:
-            arcs.append({"sats": series.arc_sats[k], "t_gps_s": t[keep],
-                         "value_m": series.value_m[lo:hi][keep],
-                         "elevation_deg": series.elevation_deg[lo:hi][keep]})  # fmt: skip
+            arcs.append(
+                {
+                    "sats": series.arc_sats[k],
+                    "t_gps_s": t[keep],
+                    "value_m": series.value_m[lo:hi][keep],
+                    "elevation_deg": series.elevation_deg[lo:hi][keep],
+                }
+            )
     return MultipathSeries.from_arcs(
-        series.method, arcs, signals=series.signals, scaling=series.scaling,
-        interval_s=series.interval_s, cutoff_hz=series.cutoff_hz, meta=series.meta,
-    )  # fmt: skip
+        series.method,
+        arcs,
+        signals=series.signals,
+        scaling=series.scaling,
+        interval_s=series.interval_s,
+        cutoff_hz=series.cutoff_hz,
+        meta=series.meta,
+    )
 
 
 def _bound(cfg: FitConfig, screened: Screened, cutoff, **changes):
@@ -57,8 +67,9 @@ def _bound(cfg: FitConfig, screened: Screened, cutoff, **changes):
     bound_opt = replace(cfg.bound, **{k: v for k, v in changes.items() if k == "rule"})
     mapping = stages.map_elevation(screened.series, cfg.mapping)
     windowed = stages.window(screened, mapping=mapping, options=cfg.stationarity)
-    return stages.bound(windowed, spectra=spectra, options=bound_opt, cutoff=cutoff,
-                        highpass=cfg.filter).bound  # fmt: skip
+    return stages.bound(
+        windowed, spectra=spectra, options=bound_opt, cutoff=cutoff, highpass=cfg.filter
+    ).bound
 
 
 def run_day(name: str) -> dict[str, float]:
@@ -71,8 +82,9 @@ def run_day(name: str) -> dict[str, float]:
     rows = {}
     rows["whole"] = _bound(cfg, screened, cutoff)
     for label, first in (("first half", True), ("second half", False)):
-        part = replace(screened, screening=replace(screened.screening,
-                                                   series=_half(screened.series, first)))
+        part = replace(
+            screened, screening=replace(screened.screening, series=_half(screened.series, first))
+        )
         rows[label] = _bound(cfg, part, cutoff)
     for est in ("welch", "blackman-tukey"):  # the default is multitaper
         rows[est] = _bound(cfg, screened, cutoff, estimator=est)
@@ -80,8 +92,10 @@ def run_day(name: str) -> dict[str, float]:
     print(f"\n{name}: mapping a={m.a:.3g} b={m.b:.3g} c={m.c_deg:.3g} deg")
     print(f"{'case':<26}{'sigma_GM mm':>12}{'tau s':>8}{'sigma_WN mm':>12}{'variance m2':>13}")
     for label, b in rows.items():
-        print(f"{label:<26}{1e3 * b.sigma_gm_m:>12.3f}{b.tau_s:>8.1f}{1e3 * b.sigma_wn_m:>12.3f}"
-              f"{b.total_variance_m2:>13.4g}")  # fmt: skip
+        print(
+            f"{label:<26}{1e3 * b.sigma_gm_m:>12.3f}{b.tau_s:>8.1f}{1e3 * b.sigma_wn_m:>12.3f}"
+            f"{b.total_variance_m2:>13.4g}"
+        )
     var = {k: b.total_variance_m2 for k, b in rows.items()}
     est_var = [var["whole"], var["welch"], var["blackman-tukey"]]
     return {

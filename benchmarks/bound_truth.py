@@ -133,9 +133,12 @@ def run_one(item: dict[str, Any]) -> dict[str, Any]:
                 sim.obs_paths,
                 sim.nav_path,
                 mapping={"kind": "fixed", "a": mp.a, "b": mp.b, "c_deg": mp.c_deg},
-                screening=({"ionosphere": False, "plausibility": False}
-                           if item.get("screening") == "off" else {}),
-            )  # fmt: skip
+                screening=(
+                    {"ionosphere": False, "plausibility": False}
+                    if item.get("screening") == "off"
+                    else {}
+                ),
+            )
             rec.update(evaluate(res, truth))
     except Exception as exc:  # a failing run is a result, not a crash
         rec["error"] = f"{type(exc).__name__}: {' '.join(str(exc).split())}"[:300]
@@ -449,10 +452,14 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--workers", type=int, default=2, help="Dask workers (1: in this process)")
     ap.add_argument("--seed", type=int, default=2024, help="seed of the random truths")
     ap.add_argument("--out", type=Path, default=DEFAULT_OUT, help="folder for the CSV and PNG")
-    ap.add_argument("--screening", choices=("off", "on"), default="off",
-                    help="part B: ionosphere and plausibility screening (default off: the random "
-                    "truths' multipath reaches the ROTI threshold and the quarter-wave limit, "
-                    "which is the screening's problem, not the bound's)")
+    ap.add_argument(
+        "--screening",
+        choices=("off", "on"),
+        default="off",
+        help="part B: ionosphere and plausibility screening (default off: the random "
+        "truths' multipath reaches the ROTI threshold and the quarter-wave limit, "
+        "which is the screening's problem, not the bound's)",
+    )
     args = ap.parse_args(argv)
     if args.hours < 0 or args.n < 0 or args.workers < 1:
         ap.error("--hours and --n must be >= 0 and --workers >= 1")

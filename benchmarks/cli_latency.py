@@ -28,8 +28,18 @@ import time
 
 from _simfit import checkout_env
 
-COMMANDS = ("fit", "export", "campaign", "simulate", "inspect", "cutoff", "validate", "overbound",
-            "budget", "report")  # fmt: skip
+COMMANDS = (
+    "fit",
+    "export",
+    "campaign",
+    "simulate",
+    "inspect",
+    "cutoff",
+    "validate",
+    "overbound",
+    "budget",
+    "report",
+)
 TARGET_S = 0.3
 
 
@@ -60,8 +70,10 @@ def main() -> int:
             print(f"{cmd + ' ' + label:<34}{t:>8.3f}")
     worst = max(rows, key=lambda r: r[1])
     ok = all(t <= TARGET_S for _, t in rows)
-    print(f"RESULT python_s={base:.3f} worst_s={worst[1]:.3f} worst={worst[0].replace(' ', '_')} "
-          f"n_commands={len(COMMANDS)} all_under_0.3s={str(ok).lower()}")  # fmt: skip
+    print(
+        f"RESULT python_s={base:.3f} worst_s={worst[1]:.3f} worst={worst[0].replace(' ', '_')} "
+        f"n_commands={len(COMMANDS)} all_under_0.3s={str(ok).lower()}"
+    )
     return 0
 
 

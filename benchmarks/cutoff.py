@@ -53,8 +53,10 @@ def _head_tree(tmp: Path) -> Path | None:
     try:
         blob = subprocess.run(
             ["git", "-C", str(REPO), "archive", "--format=tar", "HEAD", "psdbound"],
-            check=True, capture_output=True, timeout=60,
-        ).stdout  # fmt: skip
+            check=True,
+            capture_output=True,
+            timeout=60,
+        ).stdout
     except (OSError, subprocess.SubprocessError):
         return None
     tar = tmp / "head.tar"
@@ -72,17 +74,27 @@ def _reference(tmp: Path, k: int) -> tuple[float, dict, str]:
         env = {**os.environ, "PYTHONPATH": str(head)}
         out = subprocess.run(
             [sys.executable, str(script), str(head), str(tmp / f"cache-head-{k}")],
-            check=True, capture_output=True, text=True, env=env, cwd=tmp, timeout=900,
-        ).stdout  # fmt: skip
+            check=True,
+            capture_output=True,
+            text=True,
+            env=env,
+            cwd=tmp,
+            timeout=900,
+        ).stdout
         d = json.loads(out.strip().splitlines()[-1])
         return d["elapsed_s"], d["summary"], "git HEAD (subprocess)"
     from psdbound.ionosphere import CHICAGO, CutoffSettings, select_days, station_cutoffs
 
     t = time.perf_counter()
     res = station_cutoffs(
-        CHICAGO.lat_deg, CHICAGO.lon_deg, select_days(2020), name="CHICAGO", workers=2,
-        settings=CutoffSettings.legacy(), cache_dir=tmp / f"cache-legacy-{k}",
-    )  # fmt: skip
+        CHICAGO.lat_deg,
+        CHICAGO.lon_deg,
+        select_days(2020),
+        name="CHICAGO",
+        workers=2,
+        settings=CutoffSettings.legacy(),
+        cache_dir=tmp / f"cache-legacy-{k}",
+    )
     return time.perf_counter() - t, res.summary(), "CutoffSettings.legacy() (no git)"
 
 
@@ -108,9 +120,13 @@ def main() -> int:
         for k in range(repeat):
             t0 = time.perf_counter()
             res = station_cutoffs(
-                CHICAGO.lat_deg, CHICAGO.lon_deg, days, name="CHICAGO", workers=2,
+                CHICAGO.lat_deg,
+                CHICAGO.lon_deg,
+                days,
+                name="CHICAGO",
+                workers=2,
                 cache_dir=tmp / f"cache-new-{k}",
-            )  # fmt: skip
+            )
             new_times.append(time.perf_counter() - t0)
             ref_s, ref, ref_label = _reference(tmp, k)
             ref_times.append(ref_s)

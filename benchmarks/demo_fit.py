@@ -25,8 +25,11 @@ def main() -> int:
             t0 = time.perf_counter()
             r = subprocess.run(
                 [sys.executable, "-m", "psdbound", "fit", "--quiet"],
-                cwd=work, env=env, capture_output=True, text=True,
-            )  # fmt: skip
+                cwd=work,
+                env=env,
+                capture_output=True,
+                text=True,
+            )
             times.append(time.perf_counter() - t0)
             if r.returncode != 0:
                 print(r.stderr, file=sys.stderr)

@@ -50,9 +50,17 @@ def simulated() -> list[tuple[Path, Path]]:
             folder = OUT / name
             obs = folder / f"{name}-A_MO.rnx.gz"
             if not obs.is_file():
-                sc = Scenario(name=name, duration_s=86400.0, interval_s=30.0, dual_antenna=False,
-                              lat_deg=lat, lon_deg=lon, start_gps=f"2021-01-{doy:02d}T00:00:00",
-                              seed=1000 * s + doy, nav_path=str(nav) if nav else None)  # fmt: skip
+                sc = Scenario(
+                    name=name,
+                    duration_s=86400.0,
+                    interval_s=30.0,
+                    dual_antenna=False,
+                    lat_deg=lat,
+                    lon_deg=lon,
+                    start_gps=f"2021-01-{doy:02d}T00:00:00",
+                    seed=1000 * s + doy,
+                    nav_path=str(nav) if nav else None,
+                )
                 simulate(sc, folder)
             if nav is None:
                 nav = folder / f"{name}_MN.rnx.gz"
@@ -84,14 +92,32 @@ def run_campaign(files: list[tuple[Path, Path]], workers: int) -> tuple[float, f
     obs = [str(o) for o, _ in files]
     navs = sorted({str(n) for _, n in files})
     with tempfile.TemporaryDirectory() as work:
-        cmd = [sys.executable, "-m", "psdbound", "campaign", *obs, "--nav", *navs,
-               "--out", str(Path(work) / "campaign"), "--workers", str(workers),
-               "--cache-dir", str(Path(work) / "cache")]  # fmt: skip
+        cmd = [
+            sys.executable,
+            "-m",
+            "psdbound",
+            "campaign",
+            *obs,
+            "--nav",
+            *navs,
+            "--out",
+            str(Path(work) / "campaign"),
+            "--workers",
+            str(workers),
+            "--cache-dir",
+            str(Path(work) / "cache"),
+        ]
         peaks: dict[int, float] = {}
         stop = threading.Event()
         t0 = time.perf_counter()
-        proc = subprocess.Popen(cmd, cwd=work, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                text=True, env=dict(os.environ))  # fmt: skip
+        proc = subprocess.Popen(
+            cmd,
+            cwd=work,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+            env=dict(os.environ),
+        )
         watcher = threading.Thread(target=_watch, args=(proc.pid, stop, peaks), daemon=True)
         watcher.start()
         main_peak = 0.0

@@ -39,8 +39,14 @@ def simulated() -> tuple[Path, Path]:
         from psdbound.simulate import Scenario, simulate
 
         t0 = time.perf_counter()
-        sc = Scenario(name=NAME, duration_s=86400.0, interval_s=1.0, dual_antenna=False,
-                      start_gps="2020-11-24T00:00:00", seed=18)  # fmt: skip
+        sc = Scenario(
+            name=NAME,
+            duration_s=86400.0,
+            interval_s=1.0,
+            dual_antenna=False,
+            start_gps="2020-11-24T00:00:00",
+            seed=18,
+        )
         simulate(sc, OUT)
         print(f"simulated {obs.name} in {time.perf_counter() - t0:.1f} s")
     return obs, nav
@@ -54,12 +60,23 @@ def _peak_mb(stderr: str) -> float:
 def run_fit(obs: Path, nav: Path) -> tuple[float, float, int, str]:
     """Run the CLI fit once; return (wall s, peak MB, exit code, stdout)."""
     with tempfile.TemporaryDirectory() as work:
-        cmd = [sys.executable, "-m", "psdbound", "fit", str(obs), "--nav", str(nav),
-               "--out", str(Path(work) / "fit"), "--quiet"]  # fmt: skip
+        cmd = [
+            sys.executable,
+            "-m",
+            "psdbound",
+            "fit",
+            str(obs),
+            "--nav",
+            str(nav),
+            "--out",
+            str(Path(work) / "fit"),
+            "--quiet",
+        ]
         timer = ["/usr/bin/time", "-v"] if Path("/usr/bin/time").is_file() else []
         t0 = time.perf_counter()
-        r = subprocess.run(timer + cmd, capture_output=True, text=True, cwd=work,
-                           env=dict(os.environ))  # fmt: skip
+        r = subprocess.run(
+            timer + cmd, capture_output=True, text=True, cwd=work, env=dict(os.environ)
+        )
         wall = time.perf_counter() - t0
     peak = _peak_mb(r.stderr)
     if not timer:  # no GNU time: the largest child waited for so far
@@ -79,8 +96,9 @@ def run_library_fit(obs: Path, nav: Path) -> tuple[float, float]:
         "rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024\n"
         "print(time.perf_counter() - t0, rss)\n"
     )
-    r = subprocess.run([sys.executable, "-c", code, str(obs), str(nav)], capture_output=True,
-                       text=True, check=True)  # fmt: skip
+    r = subprocess.run(
+        [sys.executable, "-c", code, str(obs), str(nav)], capture_output=True, text=True, check=True
+    )
     wall, peak = map(float, r.stdout.split()[-2:])
     return wall, peak
 
@@ -96,8 +114,9 @@ def time_read(obs: Path, repeat: int) -> tuple[float, float]:
         "    best = min(best, time.perf_counter() - t0)\n"
         "print(best, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)\n"
     )
-    r = subprocess.run([sys.executable, "-c", code, str(obs)], capture_output=True, text=True,
-                       check=True)  # fmt: skip
+    r = subprocess.run(
+        [sys.executable, "-c", code, str(obs)], capture_output=True, text=True, check=True
+    )
     best, peak = map(float, r.stdout.split()[-2:])
     return best, peak
 
@@ -119,9 +138,11 @@ def main() -> int:
     lib_s, lib_peak = run_library_fit(obs, nav)
     print(f"library fit (psdbound.fit, no report): {lib_s:.2f} s, peak {lib_peak:.0f} MB")
     read_s, read_peak = time_read(obs, 2)
-    print(f"RESULT fit24h_1hz_s={wall:.2f} fit24h_1hz_peak_mb={peak:.0f} "
-          f"fit24h_1hz_library_s={lib_s:.2f} fit24h_1hz_library_peak_mb={lib_peak:.0f} "
-          f"read_s={read_s:.2f} read_peak_mb={read_peak:.0f}")  # fmt: skip
+    print(
+        f"RESULT fit24h_1hz_s={wall:.2f} fit24h_1hz_peak_mb={peak:.0f} "
+        f"fit24h_1hz_library_s={lib_s:.2f} fit24h_1hz_library_peak_mb={lib_peak:.0f} "
+        f"read_s={read_s:.2f} read_peak_mb={read_peak:.0f}"
+    )
     return 0
 
 

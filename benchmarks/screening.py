@@ -153,9 +153,19 @@ MP_MAX_IONO_PCT = 2.0
 DIST_MIN_DETECTED_PCT = 95.0
 BOUND_MAX_CHANGE_PCT = 10.0
 
-QUICK = ("mp_s4_t10", "mp_s7_t30", "mp_s10_t60",
-         "lo_r0.3_d15_n1", "lo_r0.6_d60_n6", "lo_r1.0_d15_n6", "lo_r0.3_d60_n1",
-         "hi_r0.3_d15_n1", "hi_r0.6_d60_n6", "hi_r1.0_d15_n6", "hi_r0.3_d60_n1")  # fmt: skip
+QUICK = (
+    "mp_s4_t10",
+    "mp_s7_t30",
+    "mp_s10_t60",
+    "lo_r0.3_d15_n1",
+    "lo_r0.6_d60_n6",
+    "lo_r1.0_d15_n6",
+    "lo_r0.3_d60_n1",
+    "hi_r0.3_d15_n1",
+    "hi_r0.6_d60_n6",
+    "hi_r1.0_d15_n6",
+    "hi_r0.3_d60_n1",
+)
 
 
 @dataclass(frozen=True)
@@ -208,8 +218,20 @@ def build_cases(quick: bool) -> list[Case]:
         for roti in ROTIS:
             for dur in DURATIONS_MIN:
                 for ns in N_SATS:
-                    cases.append(Case(f"{band}_r{roti:.1f}_d{dur}_n{ns}", "dist", sg, tau, wn,
-                                      REF_SEED_OFFSET, band, roti, dur, ns))  # fmt: skip
+                    cases.append(
+                        Case(
+                            f"{band}_r{roti:.1f}_d{dur}_n{ns}",
+                            "dist",
+                            sg,
+                            tau,
+                            wn,
+                            REF_SEED_OFFSET,
+                            band,
+                            roti,
+                            dur,
+                            ns,
+                        )
+                    )
     if quick:
         cases = [c for c in cases if c.label in QUICK or c.kind == "ref"]
     return cases
@@ -219,13 +241,17 @@ def build_cases(quick: bool) -> list[Case]:
 def scenario_toml(case: Case, spans: list[tuple[str, float]]) -> str:
     """The ``--scenario`` file: ``[multipath]`` and one ``[[disturbances]]`` per span."""
     a, b, c = MAPPING
-    text = (f'name = "scr"\n\n[multipath]\nsigma_gm_m = {case.sigma_gm_m!r}\n'
-            f"tau_s = {case.tau_s!r}\nsigma_wn_m = {case.sigma_wn_m!r}\n"
-            f"mapping = [{a!r}, {b!r}, {c!r}]\n")  # fmt: skip
+    text = (
+        f'name = "scr"\n\n[multipath]\nsigma_gm_m = {case.sigma_gm_m!r}\n'
+        f"tau_s = {case.tau_s!r}\nsigma_wn_m = {case.sigma_wn_m!r}\n"
+        f"mapping = [{a!r}, {b!r}, {c!r}]\n"
+    )
     for sat, start_s in spans:
-        text += (f"\n[[disturbances]]\nstart_s = {start_s!r}\n"
-                 f"duration_s = {60.0 * case.duration_min!r}\n"
-                 f'roti_tecu_min = {case.roti!r}\nsats = ["{sat}"]\n')  # fmt: skip
+        text += (
+            f"\n[[disturbances]]\nstart_s = {start_s!r}\n"
+            f"duration_s = {60.0 * case.duration_min!r}\n"
+            f'roti_tecu_min = {case.roti!r}\nsats = ["{sat}"]\n'
+        )
     return text
 
 
@@ -240,9 +266,23 @@ def simulate(case: Case, seed: int, folder: Path, spans: list[tuple[str, float]]
     folder.mkdir(parents=True, exist_ok=True)
     toml = folder / "scenario.toml"
     toml.write_text(scenario_toml(case, spans))
-    proc = run_cli(["simulate", "--single-antenna", "--duration-h", f"{HOURS:g}", "--interval-s",
-                    f"{DT_S:g}", "--seed", str(seed), "--scenario", str(toml), "--out",
-                    str(folder)], folder.parent)  # fmt: skip
+    proc = run_cli(
+        [
+            "simulate",
+            "--single-antenna",
+            "--duration-h",
+            f"{HOURS:g}",
+            "--interval-s",
+            f"{DT_S:g}",
+            "--seed",
+            str(seed),
+            "--scenario",
+            str(toml),
+            "--out",
+            str(folder),
+        ],
+        folder.parent,
+    )
     if proc.returncode != 0:
         raise RuntimeError(f"simulate exit {proc.returncode}: {tail(proc)}")
     return simulated_truth(folder)
@@ -255,13 +295,19 @@ def read_truth(truth_json: Path) -> dict[str, Any]:
     with gzip.open(truth_json.parent / meta["files"]["truth"], "rt") as fh:
         header = fh.readline().strip().split(",")
         col = {name: i for i, name in enumerate(header)}
-        rows = [r for r in (line.rstrip("\n").split(",") for line in fh if line.strip())
-                if r[col["antenna"]] == "A"]  # fmt: skip
+        rows = [
+            r
+            for r in (line.rstrip("\n").split(",") for line in fh if line.strip())
+            if r[col["antenna"]] == "A"
+        ]
     t = np.array([float(r[col["t_gps_s"]]) for r in rows])
     sat = np.array([r[col["sat"]] for r in rows])
     el = np.array([float(r[col["elevation_deg"]]) for r in rows])
-    slips = [(s["sat"], float(s["t_gps_s"])) for s in meta.get("slips", [])
-             if s.get("antenna", "A") == "A"]  # fmt: skip
+    slips = [
+        (s["sat"], float(s["t_gps_s"]))
+        for s in meta.get("slips", [])
+        if s.get("antenna", "A") == "A"
+    ]
     sc = meta["scenario"]
     t0 = float((np.datetime64(sc["start_gps"], "ns") - GPS_EPOCH) / np.timedelta64(1, "s"))
     n = int(round(sc["duration_s"] / sc["interval_s"]))
@@ -280,8 +326,13 @@ def _window_all(ok: np.ndarray, lo: int, length: int) -> np.ndarray:
     return out
 
 
-def place(truth: dict[str, Any], band: tuple[float, float], duration_s: float, n_sats: int,
-          mask_deg: float) -> tuple[list[tuple[str, float]], float]:  # fmt: skip
+def place(
+    truth: dict[str, Any],
+    band: tuple[float, float],
+    duration_s: float,
+    n_sats: int,
+    mask_deg: float,
+) -> tuple[list[tuple[str, float]], float]:
     """Choose satellites and start times (seconds after the start) of the disturbed spans.
 
     Returns
@@ -330,8 +381,9 @@ def place(truth: dict[str, Any], band: tuple[float, float], duration_s: float, n
     return best, MARGINS_S[-1]
 
 
-def disturbed_mask(truth: dict[str, Any], spans: list[tuple[str, float]], duration_s: float,
-                   mask_deg: float) -> np.ndarray:  # fmt: skip
+def disturbed_mask(
+    truth: dict[str, Any], spans: list[tuple[str, float]], duration_s: float, mask_deg: float
+) -> np.ndarray:
     """Rows of the truth inside a disturbed span of their satellite, at or above the mask."""
     rel = truth["t"] - truth["t0"]
     out = np.zeros(rel.size, bool)
@@ -402,8 +454,9 @@ def run_case(case: Case, seed: int, work: Path, ref: dict[str, Any] | None) -> d
             if ref is None or "truth" not in ref or "result" not in ref:
                 raise RuntimeError("the clean reference day (ref) failed")
             lo_hi = BANDS[str(case.band)]
-            spans, margin = place(ref["truth"], lo_hi, 60.0 * case.duration_min, case.n_sats,
-                                  ref["mask_deg"])  # fmt: skip
+            spans, margin = place(
+                ref["truth"], lo_hi, 60.0 * case.duration_min, case.n_sats, ref["mask_deg"]
+            )
             if not spans:
                 raise RuntimeError(f"no satellite fits {case.band} for {case.duration_min} min")
             rec.update(spans=spans, margin_s=margin)
@@ -420,19 +473,26 @@ def run_case(case: Case, seed: int, work: Path, ref: dict[str, Any] | None) -> d
         bnd = result.get("bound") or {}
         input_s = float(scr.get("input_s", math.nan))
         iono = iono_spans(result)
-        rec.update(verdict=result.get("verdict"), reasons=list(result.get("verdict_reasons", [])),
-                   iono_pct=100.0 * excluded_share(iono, input_s),
-                   total_pct=100.0 * float(scr.get("excluded_fraction", math.nan)),
-                   n_iono=len(iono), result=result, mask_deg=fit_mask_deg(result),
-                   sgm=float(bnd.get("sigma_gm_m", math.nan)),
-                   var=float(bnd.get("total_variance_m2", math.nan)))  # fmt: skip
+        rec.update(
+            verdict=result.get("verdict"),
+            reasons=list(result.get("verdict_reasons", [])),
+            iono_pct=100.0 * excluded_share(iono, input_s),
+            total_pct=100.0 * float(scr.get("excluded_fraction", math.nan)),
+            n_iono=len(iono),
+            result=result,
+            mask_deg=fit_mask_deg(result),
+            sgm=float(bnd.get("sigma_gm_m", math.nan)),
+            var=float(bnd.get("total_variance_m2", math.nan)),
+        )
         if case.kind in ("ref", "dist"):
             truth = read_truth(truth_json)
             if case.kind == "dist":
                 r = ref["truth"]  # type: ignore[index]
-                same = (np.array_equal(truth["t"], r["t"])
-                        and np.array_equal(truth["sat"], r["sat"])
-                        and np.array_equal(truth["el"], r["el"]))  # fmt: skip
+                same = (
+                    np.array_equal(truth["t"], r["t"])
+                    and np.array_equal(truth["sat"], r["sat"])
+                    and np.array_equal(truth["el"], r["el"])
+                )
                 if not same:
                     raise RuntimeError("the disturbed day's geometry differs from the clean day")
                 dur_s = 60.0 * case.duration_min
@@ -445,9 +505,12 @@ def run_case(case: Case, seed: int, work: Path, ref: dict[str, Any] | None) -> d
                 n_rows = int(rows.sum())
                 extra = 0
                 for e in iono:
-                    touches = any(e["sat"] == s and e["start_gps_s"] < truth["t0"] + a + dur_s
-                                  and e["stop_gps_s"] >= truth["t0"] + a
-                                  for s, a in spans)  # fmt: skip
+                    touches = any(
+                        e["sat"] == s
+                        and e["start_gps_s"] < truth["t0"] + a + dur_s
+                        and e["stop_gps_s"] >= truth["t0"] + a
+                        for s, a in spans
+                    )
                     extra += not touches
                 el_d = truth["el"][rows]
                 rec.update(
@@ -461,7 +524,7 @@ def run_case(case: Case, seed: int, work: Path, ref: dict[str, Any] | None) -> d
                     el_range=(float(el_d.min()), float(el_d.max())) if n_rows else None,
                     var_ratio=rec["var"] / ref["var"],  # type: ignore[index]
                     sgm_ratio=rec["sgm"] / ref["sgm"],  # type: ignore[index]
-                )  # fmt: skip
+                )
             rec["truth"] = truth
     except Exception as exc:  # a failing case is a result, not a crash
         rec["error"] = f"{type(exc).__name__}: {' '.join(str(exc).split())}"[:400]
@@ -496,23 +559,27 @@ def judge(rec: dict[str, Any]) -> str:
 
 def print_table(recs: list[dict[str, Any]]) -> None:
     """One line per day."""
-    print(f"{'case':<16}{'rc':>3} {'verdict':<12}{'iono%':>7}{'total%':>7}{'n_iono':>7}"
-          f"{'det%':>7}{'any%':>7}{'seen%':>7}{'det|seen%':>10}{'leak%':>7}{'extra':>6}"
-          f"{'varR':>7}{'sgmR':>7}{'sgm_mm':>7}{'sec':>5}  {'check':<10}")  # fmt: skip
+    print(
+        f"{'case':<16}{'rc':>3} {'verdict':<12}{'iono%':>7}{'total%':>7}{'n_iono':>7}"
+        f"{'det%':>7}{'any%':>7}{'seen%':>7}{'det|seen%':>10}{'leak%':>7}{'extra':>6}"
+        f"{'varR':>7}{'sgmR':>7}{'sgm_mm':>7}{'sec':>5}  {'check':<10}"
+    )
     for r in recs:
         c = r["case"]
         if "error" in r and "verdict" not in r:
             print(f"{c.label:<16}{fmt(r.get('rc'), 'd'):>3} error: {r['error']}")
             continue
-        print(f"{c.label:<16}{fmt(r.get('rc'), 'd'):>3} {str(r.get('verdict')):<12}"
-              f"{fmt(r.get('iono_pct'), '.2f'):>7}{fmt(r.get('total_pct'), '.2f'):>7}"
-              f"{fmt(r.get('n_iono'), 'd'):>7}{fmt(r.get('det_pct'), '.1f'):>7}"
-              f"{fmt(r.get('det_any_pct'), '.1f'):>7}{fmt(r.get('seen_pct'), '.1f'):>7}"
-              f"{fmt(r.get('det_seen_pct'), '.1f'):>10}{fmt(r.get('leak_pct'), '.1f'):>7}"
-              f"{fmt(r.get('extra'), 'd'):>6}"
-              f"{fmt(r.get('var_ratio'), '.3f'):>7}{fmt(r.get('sgm_ratio'), '.3f'):>7}"
-              f"{fmt(1e3 * r['sgm'] if 'sgm' in r else None, '.2f'):>7}"
-              f"{fmt(r.get('run_s'), '.0f'):>5}  {judge(r):<10}")  # fmt: skip
+        print(
+            f"{c.label:<16}{fmt(r.get('rc'), 'd'):>3} {str(r.get('verdict')):<12}"
+            f"{fmt(r.get('iono_pct'), '.2f'):>7}{fmt(r.get('total_pct'), '.2f'):>7}"
+            f"{fmt(r.get('n_iono'), 'd'):>7}{fmt(r.get('det_pct'), '.1f'):>7}"
+            f"{fmt(r.get('det_any_pct'), '.1f'):>7}{fmt(r.get('seen_pct'), '.1f'):>7}"
+            f"{fmt(r.get('det_seen_pct'), '.1f'):>10}{fmt(r.get('leak_pct'), '.1f'):>7}"
+            f"{fmt(r.get('extra'), 'd'):>6}"
+            f"{fmt(r.get('var_ratio'), '.3f'):>7}{fmt(r.get('sgm_ratio'), '.3f'):>7}"
+            f"{fmt(1e3 * r['sgm'] if 'sgm' in r else None, '.2f'):>7}"
+            f"{fmt(r.get('run_s'), '.0f'):>5}  {judge(r):<10}"
+        )
     print(
         "iono%: data excluded as ionosphere (guard included) / screening input; total%: "
         "screening.excluded_fraction; n_iono: ionosphere spans; det%: disturbed "
@@ -528,20 +595,26 @@ def print_table(recs: list[dict[str, Any]]) -> None:
 def main(argv: list[str] | None = None) -> int:
     """Run the benchmark; return the exit status (0, also when targets are missed)."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--quick", action="store_true",
-                    help=f"only {', '.join(QUICK)} (and ref)")  # fmt: skip
+    ap.add_argument("--quick", action="store_true", help=f"only {', '.join(QUICK)} (and ref)")
     ap.add_argument(
         "--workdir",
         type=Path,
         default=None,
         help="keep simulations and fits here (default: a temporary folder, removed)",
     )
-    ap.add_argument("--seed", type=int, default=29_000,
-                    help=f"base seed (multipath day i: seed + i; clean and disturbed days: seed "
-                         f"+ {REF_SEED_OFFSET})")  # fmt: skip
-    ap.add_argument("--cases", default="",
-                    help="comma-separated case labels to run (default: all; ref always runs "
-                         "with a disturbed day)")  # fmt: skip
+    ap.add_argument(
+        "--seed",
+        type=int,
+        default=29_000,
+        help=f"base seed (multipath day i: seed + i; clean and disturbed days: seed "
+        f"+ {REF_SEED_OFFSET})",
+    )
+    ap.add_argument(
+        "--cases",
+        default="",
+        help="comma-separated case labels to run (default: all; ref always runs "
+        "with a disturbed day)",
+    )
     args = ap.parse_args(argv)
     cases = build_cases(args.quick)
     if args.cases:
@@ -557,8 +630,11 @@ def main(argv: list[str] | None = None) -> int:
     else:
         work = args.workdir.resolve()
         work.mkdir(parents=True, exist_ok=True)
-    print(f"== screening (issue 29): {len(cases)} days of {HOURS:g} h at {DT_S:g} s, seed "
-          f"{args.seed}, work {work}{' (temporary)' if tmp else ''}", flush=True)  # fmt: skip
+    print(
+        f"== screening (issue 29): {len(cases)} days of {HOURS:g} h at {DT_S:g} s, seed "
+        f"{args.seed}, work {work}{' (temporary)' if tmp else ''}",
+        flush=True,
+    )
     t_all = time.perf_counter()
     recs: list[dict[str, Any]] = []
     ref: dict[str, Any] | None = None
@@ -572,13 +648,20 @@ def main(argv: list[str] | None = None) -> int:
             if "error" in r:
                 msg = f"error: {r['error']}"
             else:
-                msg = (f"exit {r['rc']} {r['verdict']}, iono {r['iono_pct']:.2f} %, total "
-                       f"{r['total_pct']:.2f} %")  # fmt: skip
+                msg = (
+                    f"exit {r['rc']} {r['verdict']}, iono {r['iono_pct']:.2f} %, total "
+                    f"{r['total_pct']:.2f} %"
+                )
                 if c.kind == "dist":
-                    msg += (f", detected {fmt(r['det_pct'], '.1f')} %, varR "
-                            f"{fmt(r['var_ratio'], '.3f')}")  # fmt: skip
-            print(f"{c.label} (seed {seed}): {msg} [sim {fmt(r.get('sim_s'), '.0f')} s, fit "
-                  f"{fmt(r.get('fit_s'), '.0f')} s]", flush=True)  # fmt: skip
+                    msg += (
+                        f", detected {fmt(r['det_pct'], '.1f')} %, varR "
+                        f"{fmt(r['var_ratio'], '.3f')}"
+                    )
+            print(
+                f"{c.label} (seed {seed}): {msg} [sim {fmt(r.get('sim_s'), '.0f')} s, fit "
+                f"{fmt(r.get('fit_s'), '.0f')} s]",
+                flush=True,
+            )
     finally:
         if tmp is not None:
             tmp.cleanup()
@@ -592,10 +675,12 @@ def main(argv: list[str] | None = None) -> int:
         if c.kind == "dist" and "spans" in r:
             sp = ", ".join(f"{s}@{a / 3600:.2f}h" for s, a in r["spans"])
             er = r.get("el_range")
-            print(f"{c.label}: ROTI {c.roti:g} TECU/min, {c.duration_min} min on {sp} (margin "
-                  f"{r['margin_s'] / 60:g} min; elevations "
-                  f"{f'{er[0]:.1f}-{er[1]:.1f} deg' if er else '-'}; "
-                  f"{r.get('n_dist_samples', 0)} samples)")  # fmt: skip
+            print(
+                f"{c.label}: ROTI {c.roti:g} TECU/min, {c.duration_min} min on {sp} (margin "
+                f"{r['margin_s'] / 60:g} min; elevations "
+                f"{f'{er[0]:.1f}-{er[1]:.1f} deg' if er else '-'}; "
+                f"{r.get('n_dist_samples', 0)} samples)"
+            )
             if len(r["spans"]) < c.n_sats:
                 print(f"  only {len(r['spans'])} of {c.n_sats} satellites fit the band")
         if r.get("verdict") not in (None, "bounded"):
@@ -634,27 +719,39 @@ def main(argv: list[str] | None = None) -> int:
 
     print()
     if ref is not None and "error" not in ref:
-        print(f"clean day (ref, 3 mm / 30 s): exit {ref['rc']} {ref['verdict']}, ionosphere "
-              f"{ref['iono_pct']:.2f} % ({ref['n_iono']} spans), total {ref['total_pct']:.2f} %, "
-              f"bound sigma_gm {1e3 * ref['sgm']:.2f} mm, total variance "
-              f"{ref['var']:.3e} m^2")  # fmt: skip
-    print(f"target strong multipath excluded as ionosphere <= {MP_MAX_IONO_PCT:g} % in every "
-          f"case: {_pf(mp_ok, mp)} (max {fmt(mp_max, '.2f')} %, {n_mp_ok}/{len(mp)})")  # fmt: skip
-    print(f"target disturbed satellite-time kept out of the bound >= {DIST_MIN_DETECTED_PCT:g} % "
-          f"in every case: {_pf(dist_ok)} (min {fmt(det_min, '.1f')} %, {n_det_ok}/{len(dist)}); "
-          f"named as ionosphere by the screening: min {fmt(min(named, default=math.nan), '.1f')} "
-          f"%, {sum(v >= DIST_MIN_DETECTED_PCT for v in named)}/{len(named)} >= "
-          f"{DIST_MIN_DETECTED_PCT:g} %")  # fmt: skip
-    print(f"target bound within {BOUND_MAX_CHANGE_PCT:g} % of the clean day's (total variance "
-          f"and sigma_gm): {_pf(bound_ok)} (max change {fmt(chg_max, '.1f')} %, "
-          f"{n_chg_ok}/{len(dist)})")  # fmt: skip
+        print(
+            f"clean day (ref, 3 mm / 30 s): exit {ref['rc']} {ref['verdict']}, ionosphere "
+            f"{ref['iono_pct']:.2f} % ({ref['n_iono']} spans), total {ref['total_pct']:.2f} %, "
+            f"bound sigma_gm {1e3 * ref['sgm']:.2f} mm, total variance "
+            f"{ref['var']:.3e} m^2"
+        )
+    print(
+        f"target strong multipath excluded as ionosphere <= {MP_MAX_IONO_PCT:g} % in every "
+        f"case: {_pf(mp_ok, mp)} (max {fmt(mp_max, '.2f')} %, {n_mp_ok}/{len(mp)})"
+    )
+    print(
+        f"target disturbed satellite-time kept out of the bound >= {DIST_MIN_DETECTED_PCT:g} % "
+        f"in every case: {_pf(dist_ok)} (min {fmt(det_min, '.1f')} %, {n_det_ok}/{len(dist)}); "
+        f"named as ionosphere by the screening: min {fmt(min(named, default=math.nan), '.1f')} "
+        f"%, {sum(v >= DIST_MIN_DETECTED_PCT for v in named)}/{len(named)} >= "
+        f"{DIST_MIN_DETECTED_PCT:g} %"
+    )
+    print(
+        f"target bound within {BOUND_MAX_CHANGE_PCT:g} % of the clean day's (total variance "
+        f"and sigma_gm): {_pf(bound_ok)} (max change {fmt(chg_max, '.1f')} %, "
+        f"{n_chg_ok}/{len(dist)})"
+    )
     leak = _vals(dist, lambda r: r["leak_pct"])
     det_seen = [v for v in _vals(dist, lambda r: r["det_seen_pct"]) if math.isfinite(v)]
-    print(f"diagnostic (not judged): disturbed satellite-time kept by the screening (leak%) max "
-          f"{fmt(max(leak, default=math.nan), '.1f')} %, {sum(v > 0 for v in leak)}/{len(leak)} "
-          f"days leak; det|seen% min {fmt(min(det_seen, default=math.nan), '.1f')} %")  # fmt: skip
-    print(f"errors: {len(errors)}; time: {elapsed:.0f} s; per day median "
-          f"{np.median([r['run_s'] for r in recs]):.1f} s")  # fmt: skip
+    print(
+        f"diagnostic (not judged): disturbed satellite-time kept by the screening (leak%) max "
+        f"{fmt(max(leak, default=math.nan), '.1f')} %, {sum(v > 0 for v in leak)}/{len(leak)} "
+        f"days leak; det|seen% min {fmt(min(det_seen, default=math.nan), '.1f')} %"
+    )
+    print(
+        f"errors: {len(errors)}; time: {elapsed:.0f} s; per day median "
+        f"{np.median([r['run_s'] for r in recs]):.1f} s"
+    )
     print(
         f"RESULT n_cases={len(judged)} mp_max_iono_excluded_pct={fmt(mp_max, '.2f')} "
         f"mp_pass={str(mp_ok).lower()} dist_min_kept_out_pct={fmt(det_min, '.1f')} "

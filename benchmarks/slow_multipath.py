@@ -190,8 +190,9 @@ class Case:
     index: int
 
 
-def build_cases(hours_1s: float, quick: bool,
-                heights_m: tuple[float, ...] = HEIGHTS_M) -> list[Case]:  # fmt: skip
+def build_cases(
+    hours_1s: float, quick: bool, heights_m: tuple[float, ...] = HEIGHTS_M
+) -> list[Case]:
     """Return the cases (the full list, or its ``--quick`` subset).
 
     Parameters
@@ -210,11 +211,13 @@ def build_cases(hours_1s: float, quick: bool,
         for tau in TAUS_S:
             cases.append(Case(f"gm{tau:g}@{dt:g}s", "gm", dt, hours, tau, None, len(cases)))
     for h in heights_m:
-        cases.append(Case(f"ground{h:g}@30s", "ground", 30.0, HOURS_30S, REFL_GM[1], h,
-                          len(cases)))  # fmt: skip
+        cases.append(Case(f"ground{h:g}@30s", "ground", 30.0, HOURS_30S, REFL_GM[1], h, len(cases)))
     if quick:
-        cases = [replace(c, hours=min(c.hours, 2.0)) if c.dt_s < 30 else c
-                 for c in cases if c.label in QUICK]  # fmt: skip
+        cases = [
+            replace(c, hours=min(c.hours, 2.0)) if c.dt_s < 30 else c
+            for c in cases
+            if c.label in QUICK
+        ]
     return cases
 
 
@@ -222,11 +225,15 @@ def build_cases(hours_1s: float, quick: bool,
 def _scenario_toml(case: Case, with_reflector: bool) -> str:
     sg, tau, wn = REFL_GM
     a, b, c = FLAT_MAPPING
-    text = (f'name = "ground"\n\n[multipath]\nsigma_gm_m = {sg!r}\ntau_s = {tau!r}\n'
-            f"sigma_wn_m = {wn!r}\nmapping = [{a!r}, {b!r}, {c!r}]\n")  # fmt: skip
+    text = (
+        f'name = "ground"\n\n[multipath]\nsigma_gm_m = {sg!r}\ntau_s = {tau!r}\n'
+        f"sigma_wn_m = {wn!r}\nmapping = [{a!r}, {b!r}, {c!r}]\n"
+    )
     if with_reflector:
-        text += (f'\n[[multipath.reflections]]\nkind = "ground"\ndistance_m = {case.height_m!r}\n'
-                 f"alpha = {ALPHA!r}\n")  # fmt: skip
+        text += (
+            f'\n[[multipath.reflections]]\nkind = "ground"\ndistance_m = {case.height_m!r}\n'
+            f"alpha = {ALPHA!r}\n"
+        )
     return text
 
 
@@ -240,14 +247,23 @@ def simulate_case(case: Case, seed: int, folder: Path) -> Path:
     RuntimeError
         When the simulator fails.
     """
-    common = ["--single-antenna", "--duration-h", f"{case.hours:g}", "--interval-s",
-              f"{case.dt_s:g}", "--seed", str(seed)]  # fmt: skip
+    common = [
+        "--single-antenna",
+        "--duration-h",
+        f"{case.hours:g}",
+        "--interval-s",
+        f"{case.dt_s:g}",
+        "--seed",
+        str(seed),
+    ]
     folder.mkdir(parents=True, exist_ok=True)
     runs: list[tuple[list[str], Path]] = []
     if case.kind == "gm":
         a, b, c = FLAT_MAPPING
-        spec = (f"sigma_gm_m={SIGMA_GM_M:g},tau_s={case.tau_s:g},sigma_wn_m={SIGMA_WN_M:g},"
-                f"mapping={a:g},{b:g},{c:g}")  # fmt: skip
+        spec = (
+            f"sigma_gm_m={SIGMA_GM_M:g},tau_s={case.tau_s:g},sigma_wn_m={SIGMA_WN_M:g},"
+            f"mapping={a:g},{b:g},{c:g}"
+        )
         runs.append(([*common, "--multipath", spec], folder))
     else:
         for refl, out in ((True, folder), (False, folder.with_name(folder.name + "-noref"))):
@@ -307,8 +323,9 @@ def fit_arcs_config(result: dict[str, Any]) -> tuple[float, float]:
 def frequency_grid(dt_s: float) -> np.ndarray:
     """0 Hz, log-spaced 1e-6 Hz .. Nyquist and linear 0 .. Nyquist frequencies, Hz."""
     nyq = 0.5 / dt_s
-    f = np.concatenate([[0.0], np.geomspace(F_LOG_MIN_HZ, nyq, N_LOG),
-                        np.linspace(0.0, nyq, N_LIN)])  # fmt: skip
+    f = np.concatenate(
+        [[0.0], np.geomspace(F_LOG_MIN_HZ, nyq, N_LOG), np.linspace(0.0, nyq, N_LIN)]
+    )
     return np.unique(np.clip(f, 0.0, nyq))
 
 
@@ -335,14 +352,19 @@ def read_truth_csv(path: Path) -> dict[str, np.ndarray]:
     col = {name: i for i, name in enumerate(header)}
     rows = [r for r in rows if r[col["antenna"]] == "A"]
     out: dict[str, np.ndarray] = {"sat": np.array([r[col["sat"]] for r in rows])}
-    for key, name in (("t", "t_gps_s"), ("el", "elevation_deg"), ("nu1", "nu_1_m"),
-                      ("nu2", "nu_2_m")):  # fmt: skip
+    for key, name in (
+        ("t", "t_gps_s"),
+        ("el", "elevation_deg"),
+        ("nu1", "nu_1_m"),
+        ("nu2", "nu_2_m"),
+    ):
         out[key] = np.array([float(r[col[name]]) for r in rows])
     return out
 
 
-def stretches(t: np.ndarray, sat: np.ndarray, keep: np.ndarray, dt_s: float,
-              min_len_s: float) -> list[np.ndarray]:  # fmt: skip
+def stretches(
+    t: np.ndarray, sat: np.ndarray, keep: np.ndarray, dt_s: float, min_len_s: float
+) -> list[np.ndarray]:
     """Index arrays of continuous stretches (per satellite, no gap, ``keep``) >= ``min_len_s``."""
     out = []
     for s in np.unique(sat):
@@ -367,8 +389,9 @@ def pooled_periodogram(arcs: list[np.ndarray], dt_s: float, f_hz: np.ndarray) ->
     return 2.0 * dt_s * acc / n_tot
 
 
-def reflection_truth(truth_json: Path, result: dict[str, Any], dt_s: float,
-                     f_hz: np.ndarray) -> tuple[np.ndarray, float, dict[str, Any]]:  # fmt: skip
+def reflection_truth(
+    truth_json: Path, result: dict[str, Any], dt_s: float, f_hz: np.ndarray
+) -> tuple[np.ndarray, float, dict[str, Any]]:
     """True PSD of the mapped DF series of a reflection case (see the module docstring).
 
     Returns
@@ -414,9 +437,13 @@ def reflection_truth(truth_json: Path, result: dict[str, Any], dt_s: float,
     psd = pooled_periodogram(arcs, dt_s, f_hz) + mean_inv_m2 * stoch.sampled_psd(f_hz)
     x = np.concatenate(arcs)
     var = float(np.mean(x**2)) + mean_inv_m2 * (stoch.sigma_gm_m**2 + stoch.sigma_wn_m**2)
-    info = {"n_arcs": len(arcs), "hours": x.size * dt_s / 3600.0, "mean_inv_m2": mean_inv_m2,
-            "refl_rms_mm": 1e3 * float(np.sqrt(np.mean(x**2))),
-            "max_twin_diff_m": max(check)}  # fmt: skip
+    info = {
+        "n_arcs": len(arcs),
+        "hours": x.size * dt_s / 3600.0,
+        "mean_inv_m2": mean_inv_m2,
+        "refl_rms_mm": 1e3 * float(np.sqrt(np.mean(x**2))),
+        "max_twin_diff_m": max(check),
+    }
     return psd, var, info
 
 
@@ -485,8 +512,11 @@ def run_case(case: Case, seed: int, work: Path) -> dict[str, Any]:
             raise RuntimeError(f"fit exit {rc}: {msg}")
         result = json.loads(result_path.read_text())
         bnd = result.get("bound", {})
-        rec.update(verdict=result.get("verdict"), reasons=list(result.get("verdict_reasons", [])),
-                   f_lo_hz=(bnd.get("band_hz") or [math.nan])[0])  # fmt: skip
+        rec.update(
+            verdict=result.get("verdict"),
+            reasons=list(result.get("verdict_reasons", [])),
+            f_lo_hz=(bnd.get("band_hz") or [math.nan])[0],
+        )
 
         model = exported_model(result_path)
         gm, wn = model["gauss_markov"], model["white"]
@@ -506,8 +536,10 @@ def run_case(case: Case, seed: int, work: Path) -> dict[str, Any]:
             m_min = float(np.min(fit_mapping_factor(result, np.linspace(mask_deg, 90.0, 801))))
             s_true = truth.sampled_psd(f)
             var_true = truth.sigma_gm_m**2 + truth.sigma_wn_m**2
-            rec["truth"] = (f"GM {1e3 * truth.sigma_gm_m:.1f}mm/{truth.tau_s:g}s + WN "
-                            f"{1e3 * truth.sigma_wn_m:.2f}mm")  # fmt: skip
+            rec["truth"] = (
+                f"GM {1e3 * truth.sigma_gm_m:.1f}mm/{truth.tau_s:g}s + WN "
+                f"{1e3 * truth.sigma_wn_m:.2f}mm"
+            )
             kf_truth: Any = (
                 ErrorProcess.gauss_markov(truth.sigma_gm_m, truth.tau_s, dt)
                 + ErrorProcess.white(truth.sigma_wn_m, dt)
@@ -518,16 +550,23 @@ def run_case(case: Case, seed: int, work: Path) -> dict[str, Any]:
             m_min = 1.0  # the mapping is applied sample by sample to the truth
             s_true, var_true, info = reflection_truth(truth_json, result, dt, f)
             rec["info"] = info
-            rec["truth"] = (f"ground h={case.height_m:g}m alpha={ALPHA:g} "
-                            f"({info['refl_rms_mm']:.2f}mm rms) + GM {1e3 * REFL_GM[0]:g}mm/"
-                            f"{REFL_GM[1]:g}s + WN")  # fmt: skip
+            rec["truth"] = (
+                f"ground h={case.height_m:g}m alpha={ALPHA:g} "
+                f"({info['refl_rms_mm']:.2f}mm rms) + GM {1e3 * REFL_GM[0]:g}mm/"
+                f"{REFL_GM[1]:g}s + WN"
+            )
             kf_truth = SampledPSD(f, s_true, dt, f"estimated PSD of {case.label}")
             n_steps = REFL_STEPS
         ratio = m_min**2 * s_model / s_true
         k = int(np.argmin(ratio))
         var_model = float(trapezoid(s_model, f))
-        rec.update(m_min=m_min, min_ratio=float(ratio[k]), f_at_min_hz=float(f[k]),
-                   ratio0=float(ratio[0]), var_ratio=m_min**2 * var_model / var_true)  # fmt: skip
+        rec.update(
+            m_min=m_min,
+            min_ratio=float(ratio[k]),
+            f_at_min_hz=float(f[k]),
+            ratio0=float(ratio[0]),
+            var_ratio=m_min**2 * var_model / var_true,
+        )
         eig, where, notes = kf_check(model, kf_truth, dt, n_steps)
         rec.update(eig=eig, eig_at=where, kf_notes=notes, n_steps=n_steps)
     except Exception as exc:  # a failing case is a result, not a crash
@@ -549,35 +588,42 @@ def judge(rec: dict[str, Any]) -> str:
 
 def print_table(recs: list[dict[str, Any]]) -> None:
     """One line per case."""
-    print(f"{'case':<15}{'rc':>3} {'verdict':<12}{'sgm_mm':>7}{'tau_s':>8}{'swn_mm':>7}"
-          f"{'f_lo_Hz':>9}{'m_min':>7}{'min_ratio':>10}{'f@min_Hz':>10}{'ratio0':>8}"
-          f"{'eig':>8}{'eig@':>7}{'varR':>7}{'sec':>5}  {'check':<8}")  # fmt: skip
+    print(
+        f"{'case':<15}{'rc':>3} {'verdict':<12}{'sgm_mm':>7}{'tau_s':>8}{'swn_mm':>7}"
+        f"{'f_lo_Hz':>9}{'m_min':>7}{'min_ratio':>10}{'f@min_Hz':>10}{'ratio0':>8}"
+        f"{'eig':>8}{'eig@':>7}{'varR':>7}{'sec':>5}  {'check':<8}"
+    )
     for r in recs:
         c = r["case"]
         if "error" in r and "verdict" not in r:
             print(f"{c.label:<15}{fmt(r.get('rc'), 'd'):>3} error: {r['error']}")
             continue
-        print(f"{c.label:<15}{fmt(r.get('rc'), 'd'):>3} {str(r.get('verdict')):<12}"
-              f"{fmt(r.get('b_sigma_gm_mm'), '.3f'):>7}{fmt(r.get('b_tau_s'), '.1f'):>8}"
-              f"{fmt(r.get('b_sigma_wn_mm'), '.3f'):>7}{fmt(r.get('f_lo_hz'), '.2e'):>9}"
-              f"{fmt(r.get('m_min'), '.4f'):>7}{fmt(r.get('min_ratio'), '.4f'):>10}"
-              f"{fmt(r.get('f_at_min_hz'), '.2e'):>10}{fmt(r.get('ratio0'), '.3f'):>8}"
-              f"{fmt(r.get('eig'), '.3f'):>8}{str(r.get('eig_at', '-')):>7}"
-              f"{fmt(r.get('var_ratio'), '.2f'):>7}{fmt(r.get('run_s'), '.0f'):>5}  "
-              f"{judge(r):<8}")  # fmt: skip
-    print("sgm/tau/swn: exported model (zenith scale); f_lo: lower end of the fit's stated band; "
-          "m_min: smallest fitted m(el) over [mask, 90 deg] (GM cases); min_ratio: min over "
-          "[0, Nyquist] of model/true PSD (ratio0 at 0 Hz); eig: max generalised eigenvalue "
-          "true/filter covariance (eig@: time of the worst step); varR: model/true "
-          "variance; check: pass/FAIL (bounded: min_ratio >= 1 - 1e-6 and eig <= 1 + 1e-6), "
-          "refused (exit 3, reasons named)")  # fmt: skip
+        print(
+            f"{c.label:<15}{fmt(r.get('rc'), 'd'):>3} {str(r.get('verdict')):<12}"
+            f"{fmt(r.get('b_sigma_gm_mm'), '.3f'):>7}{fmt(r.get('b_tau_s'), '.1f'):>8}"
+            f"{fmt(r.get('b_sigma_wn_mm'), '.3f'):>7}{fmt(r.get('f_lo_hz'), '.2e'):>9}"
+            f"{fmt(r.get('m_min'), '.4f'):>7}{fmt(r.get('min_ratio'), '.4f'):>10}"
+            f"{fmt(r.get('f_at_min_hz'), '.2e'):>10}{fmt(r.get('ratio0'), '.3f'):>8}"
+            f"{fmt(r.get('eig'), '.3f'):>8}{str(r.get('eig_at', '-')):>7}"
+            f"{fmt(r.get('var_ratio'), '.2f'):>7}{fmt(r.get('run_s'), '.0f'):>5}  "
+            f"{judge(r):<8}"
+        )
+    print(
+        "sgm/tau/swn: exported model (zenith scale); f_lo: lower end of the fit's stated band; "
+        "m_min: smallest fitted m(el) over [mask, 90 deg] (GM cases); min_ratio: min over "
+        "[0, Nyquist] of model/true PSD (ratio0 at 0 Hz); eig: max generalised eigenvalue "
+        "true/filter covariance (eig@: time of the worst step); varR: model/true "
+        "variance; check: pass/FAIL (bounded: min_ratio >= 1 - 1e-6 and eig <= 1 + 1e-6), "
+        "refused (exit 3, reasons named)"
+    )
 
 
 def main(argv: list[str] | None = None) -> int:
     """Run the benchmark; return the exit status (0, also when targets are missed)."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--quick", action="store_true",
-                    help=f"only {', '.join(QUICK)} (1 s days 2 h at most)")  # fmt: skip
+    ap.add_argument(
+        "--quick", action="store_true", help=f"only {', '.join(QUICK)} (1 s days 2 h at most)"
+    )
     ap.add_argument(
         "--workdir",
         type=Path,
@@ -585,12 +631,15 @@ def main(argv: list[str] | None = None) -> int:
         help="keep simulations and fits here (default: a temporary folder, removed)",
     )
     ap.add_argument("--seed", type=int, default=28_000, help="base seed (case i: seed + i)")
-    ap.add_argument("--hours-1s", type=float, default=4.0,
-                    help="span of the 1 s days, h (default 4)")  # fmt: skip
-    ap.add_argument("--cases", default="",
-                    help="comma-separated case labels to run (default: all)")  # fmt: skip
-    ap.add_argument("--heights", default=",".join(f"{h:g}" for h in HEIGHTS_M),
-                    help="ground reflector heights of the reflection cases, m")  # fmt: skip
+    ap.add_argument(
+        "--hours-1s", type=float, default=4.0, help="span of the 1 s days, h (default 4)"
+    )
+    ap.add_argument("--cases", default="", help="comma-separated case labels to run (default: all)")
+    ap.add_argument(
+        "--heights",
+        default=",".join(f"{h:g}" for h in HEIGHTS_M),
+        help="ground reflector heights of the reflection cases, m",
+    )
     args = ap.parse_args(argv)
     heights = tuple(float(x) for x in args.heights.split(","))
     cases = build_cases(args.hours_1s, args.quick, heights)
@@ -605,20 +654,29 @@ def main(argv: list[str] | None = None) -> int:
     else:
         work = args.workdir.resolve()
         work.mkdir(parents=True, exist_ok=True)
-    print(f"== slow multipath: {len(cases)} cases, seeds {args.seed}+i, work {work}"
-          f"{' (temporary)' if tmp else ''}", flush=True)  # fmt: skip
+    print(
+        f"== slow multipath: {len(cases)} cases, seeds {args.seed}+i, work {work}"
+        f"{' (temporary)' if tmp else ''}",
+        flush=True,
+    )
     t_all = time.perf_counter()
     recs = []
     try:
         for c in cases:
             r = run_case(c, args.seed + c.index, work)
             recs.append(r)
-            msg = (f"error: {r['error']}" if "error" in r else
-                   f"exit {r['rc']} {r['verdict']}, min_ratio {r['min_ratio']:.4f}, "
-                   f"eig {r['eig']:.3f}")  # fmt: skip
-            print(f"{c.label} ({c.hours:g} h at {c.dt_s:g} s, seed {args.seed + c.index}): "
-                  f"{msg} [sim {fmt(r.get('sim_s'), '.0f')} s, fit {fmt(r.get('fit_s'), '.0f')} "
-                  f"s, total {r['run_s']:.0f} s]", flush=True)  # fmt: skip
+            msg = (
+                f"error: {r['error']}"
+                if "error" in r
+                else f"exit {r['rc']} {r['verdict']}, min_ratio {r['min_ratio']:.4f}, "
+                f"eig {r['eig']:.3f}"
+            )
+            print(
+                f"{c.label} ({c.hours:g} h at {c.dt_s:g} s, seed {args.seed + c.index}): "
+                f"{msg} [sim {fmt(r.get('sim_s'), '.0f')} s, fit {fmt(r.get('fit_s'), '.0f')} "
+                f"s, total {r['run_s']:.0f} s]",
+                flush=True,
+            )
     finally:
         if tmp is not None:
             tmp.cleanup()
@@ -635,9 +693,11 @@ def main(argv: list[str] | None = None) -> int:
             print(f"  refused ({r['verdict']}, exit {r['rc']}): " + "; ".join(reasons))
         if "info" in r:
             i = r["info"]
-            print(f"  truth PSD from {i['n_arcs']} stretches ({i['hours']:.1f} h), mean "
-                  f"1/m(el)^2 {i['mean_inv_m2']:.4f}, twin difference vs reflection formula "
-                  f"{1e6 * i['max_twin_diff_m']:.1f} um")  # fmt: skip
+            print(
+                f"  truth PSD from {i['n_arcs']} stretches ({i['hours']:.1f} h), mean "
+                f"1/m(el)^2 {i['mean_inv_m2']:.4f}, twin difference vs reflection formula "
+                f"{1e6 * i['max_twin_diff_m']:.1f} um"
+            )
         for note in r.get("kf_notes", []):
             print(f"  filter note: {note}")
         if "error" in r:
@@ -655,14 +715,18 @@ def main(argv: list[str] | None = None) -> int:
     named = all(r.get("reasons") for r in refused)
     all_ok = covered and eig_ok and fast_ok and named and not errors
     print()
-    print(f"targets: bounded cases covered on [0, Nyquist]: {covered} "
-          f"({sum(r['min_ratio'] >= 1.0 - RTOL_COVER for r in bounded)}/{len(bounded)}); "
-          f"bounded cases eig <= 1: {eig_ok}; GM tau <= 120 s all bounded (exit 0): {fast_ok} "
-          f"({sum(r.get('rc') == 0 for r in fast)}/{len(fast)}); every refusal names its "
-          f"reasons: {named} ({len(refused)} refused); errors: {len(errors)}")  # fmt: skip
-    print(f"time: {elapsed:.0f} s; per case median "
-          f"{np.median([r['run_s'] for r in recs]):.0f} s, max "
-          f"{max(r['run_s'] for r in recs):.0f} s")  # fmt: skip
+    print(
+        f"targets: bounded cases covered on [0, Nyquist]: {covered} "
+        f"({sum(r['min_ratio'] >= 1.0 - RTOL_COVER for r in bounded)}/{len(bounded)}); "
+        f"bounded cases eig <= 1: {eig_ok}; GM tau <= 120 s all bounded (exit 0): {fast_ok} "
+        f"({sum(r.get('rc') == 0 for r in fast)}/{len(fast)}); every refusal names its "
+        f"reasons: {named} ({len(refused)} refused); errors: {len(errors)}"
+    )
+    print(
+        f"time: {elapsed:.0f} s; per case median "
+        f"{np.median([r['run_s'] for r in recs]):.0f} s, max "
+        f"{max(r['run_s'] for r in recs):.0f} s"
+    )
     print(
         f"RESULT n_cases={len(recs)} bounded={len(bounded)} not_bounded={len(refused)} "
         f"errors={len(errors)} covered_all_bounded={str(covered).lower()} "

@@ -76,8 +76,10 @@ def tau_change(rng: np.random.Generator) -> np.ndarray:
 def tau_restart(rng: np.random.Generator) -> np.ndarray:
     """Return GM(30 s) then an independent GM(300 s), same variance, + white noise."""
     half = N // 2
-    gm = np.r_[gauss_markov(half, SIGMA_GM_M, TAU_S, DT_S, rng)[:, 0],
-               gauss_markov(N - half, SIGMA_GM_M, TAU_CHANGED_S, DT_S, rng)[:, 0]]  # fmt: skip
+    gm = np.r_[
+        gauss_markov(half, SIGMA_GM_M, TAU_S, DT_S, rng)[:, 0],
+        gauss_markov(N - half, SIGMA_GM_M, TAU_CHANGED_S, DT_S, rng)[:, 0],
+    ]
     return gm + rng.normal(0.0, SIGMA_WN_M, N)
 
 

@@ -40,8 +40,14 @@ import tempfile
 import time
 from pathlib import Path
 
-DATA = Path(os.environ.get("PSDBOUND_SHARED_DATA", Path(__file__).resolve().parents[2]
-                           / "shared" / "data")) / "rinex"  # fmt: skip
+DATA = (
+    Path(
+        os.environ.get(
+            "PSDBOUND_SHARED_DATA", Path(__file__).resolve().parents[2] / "shared" / "data"
+        )
+    )
+    / "rinex"
+)
 OBS = "ESBC00DNK_R_20201770000_01D_30S_MO.crx.gz"
 NAV = "ESBC00DNK_R_20201770000_01D_MN.rnx.gz"
 OUT = Path(__file__).resolve().parent / "out" / "whole_job"
@@ -80,16 +86,34 @@ def timed(cmd: list[str], cwd: str) -> tuple[float, int, str]:
 def ours(obs: Path, nav: Path, *, pdf: bool) -> tuple[float, int, str]:
     """One whole ``psdbound fit`` in a fresh process."""
     with tempfile.TemporaryDirectory() as work:
-        cmd = [sys.executable, "-m", "psdbound", "fit", str(obs), "--nav", str(nav),
-               "--out", str(Path(work) / "fit"), "--quiet"] + ([] if pdf else ["--no-pdf"])
+        cmd = [
+            sys.executable,
+            "-m",
+            "psdbound",
+            "fit",
+            str(obs),
+            "--nav",
+            str(nav),
+            "--out",
+            str(Path(work) / "fit"),
+            "--quiet",
+        ] + ([] if pdf else ["--no-pdf"])
         return timed(cmd, work)
 
 
 def theirs(obs: Path, nav: Path, systems: str, *, figures: bool = True) -> tuple[float, int, str]:
     """One whole gnssmultipath analysis in a fresh process (``systems``: ``G`` or ``all``)."""
     with tempfile.TemporaryDirectory() as work:
-        cmd = [sys.executable, "-c", THEIRS, str(obs), str(nav), work, systems,
-               "figures" if figures else "none"]
+        cmd = [
+            sys.executable,
+            "-c",
+            THEIRS,
+            str(obs),
+            str(nav),
+            work,
+            systems,
+            "figures" if figures else "none",
+        ]
         return timed(cmd, work)
 
 
@@ -122,15 +146,21 @@ def main() -> int:
     print(f"ESBC 2020-177, 30 s, plain RINEX in {OUT}; median of {args.repeat}")
     r = {
         "ours_gps_s": median_of(lambda: ours(obs, nav, pdf=True), args.repeat, "psdbound fit"),
-        "ours_gps_nopdf_s": median_of(lambda: ours(obs, nav, pdf=False), args.repeat,
-                                      "psdbound fit --no-pdf"),
-        "theirs_gps_s": median_of(lambda: theirs(obs, nav, "G"), args.repeat,
-                                  "gnssmultipath (GPS)"),
-        "theirs_gps_nofig_s": median_of(lambda: theirs(obs, nav, "G", figures=False),
-                                        args.repeat, "gnssmultipath (GPS, no figures)"),
-        "theirs_all_s": median_of(lambda: theirs(obs, nav, "all"), args.repeat,
-                                  "gnssmultipath (all systems)"),
-    }  # fmt: skip
+        "ours_gps_nopdf_s": median_of(
+            lambda: ours(obs, nav, pdf=False), args.repeat, "psdbound fit --no-pdf"
+        ),
+        "theirs_gps_s": median_of(
+            lambda: theirs(obs, nav, "G"), args.repeat, "gnssmultipath (GPS)"
+        ),
+        "theirs_gps_nofig_s": median_of(
+            lambda: theirs(obs, nav, "G", figures=False),
+            args.repeat,
+            "gnssmultipath (GPS, no figures)",
+        ),
+        "theirs_all_s": median_of(
+            lambda: theirs(obs, nav, "all"), args.repeat, "gnssmultipath (all systems)"
+        ),
+    }
     r["gps_ratio"] = r["ours_gps_s"] / r["theirs_gps_s"]
     r["gps_nopdf_ratio"] = r["ours_gps_nopdf_s"] / r["theirs_gps_s"]
     r["gps_nopdf_vs_nofig_ratio"] = r["ours_gps_nopdf_s"] / r["theirs_gps_nofig_s"]

@@ -26,8 +26,16 @@ from typing import Any
 from psdbound.errors import InputError, NoDataError
 from psdbound.version import __version__
 
-__all__ = ["FitConfig", "FitResults", "InputError", "NoDataError", "__version__", "bound_series",
-           "fit", "load"]
+__all__ = [
+    "FitConfig",
+    "FitResults",
+    "InputError",
+    "NoDataError",
+    "__version__",
+    "bound_series",
+    "fit",
+    "load",
+]
 
 _LAZY = {"fit", "load", "FitResults", "FitConfig"}
 

@@ -38,3 +38,16 @@ GRAS_OBS = "GRAS00FRA_R_20223151700_15M_01S_MO.crx.gz"
 UPC1_OBS = "UPC10770.10o.gz"
 UPC2_OBS = "UPC20770.10o.gz"
 UPC_NAV = "brdc0770.10n.gz"
+
+
+def pytest_terminal_summary(terminalreporter, exitstatus, config):
+    """Say in one visible line when tests on the shared real data were skipped."""
+    skipped = terminalreporter.stats.get("skipped", [])
+    real = [r for r in skipped if "real data not available" in str(r.longrepr)]
+    if real:
+        terminalreporter.write_line(
+            f"REAL DATA NOT TESTED: {len(real)} test(s) skipped because {SHARED_RINEX} is absent "
+            "(the regression pins on the shared station files did not run)",
+            yellow=True,
+            bold=True,
+        )

@@ -28,6 +28,7 @@ def _header(marker: str, interval_s: float, codes) -> ObsHeader:
         obs_types={"G": codes},
     )
 
+
 def small_observations(n_epoch: int = 40, interval_s: float = 30.0, seed: int = 1) -> Observations:
     """Two GPS satellites, L1C/L2W/C1C/S1C, 30 s, with a loss-of-lock flag and a gap."""
     rng = np.random.default_rng(seed)

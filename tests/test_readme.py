@@ -42,7 +42,7 @@ def test_readme_starts_with_the_two_commands_and_stays_inside_the_repository():
     text = README.read_text()
     first = re.search(r"```bash\n(.*?)```", text, flags=re.S).group(1).strip().splitlines()
     assert first == [
-        'python3.11 -m pip install -e . && python3.11 -m psdbound fit',
+        "python3.11 -m pip install -e . && python3.11 -m psdbound fit",
         'python3.11 -m pip install -e ".[test]" && python3.11 -m pytest -q',
     ]
     assert "../shared" not in text and "method.md" not in text
@@ -65,7 +65,7 @@ def _shell_blocks() -> list[list[tuple[str, int]]]:
                 continue
             cmd, code = m.group(0), 0
             if e := _EXIT.search(cmd):
-                cmd, code = cmd[:e.start()], int(e.group(1))
+                cmd, code = cmd[: e.start()], int(e.group(1))
             cmds.append((cmd.strip(), code))
         if cmds:
             out.append(cmds)
@@ -91,18 +91,30 @@ def test_readme_shell_examples_are_found():
 
 @pytest.mark.parametrize("commands", list(_params()))
 def test_readme_shell_examples_run(commands, tmp_path):
-    env = {**os.environ, "RINEX": str(SHARED_RINEX), "MPLBACKEND": "Agg",
-           "PYTHONPATH": os.pathsep.join([str(REPO), os.environ.get("PYTHONPATH", "")])}
+    env = {
+        **os.environ,
+        "RINEX": str(SHARED_RINEX),
+        "MPLBACKEND": "Agg",
+        "PYTHONPATH": os.pathsep.join([str(REPO), os.environ.get("PYTHONPATH", "")]),
+    }
     missing = []
     for cmd, code in commands:
-        absent = [n for n in re.findall(r'"\$RINEX"/(\S+)', cmd)
-                  if not (SHARED_RINEX / n).is_file()]  # fmt: skip
+        absent = [
+            n for n in re.findall(r'"\$RINEX"/(\S+)', cmd) if not (SHARED_RINEX / n).is_file()
+        ]
         if absent:  # a command on station files runs only where they are
             missing.append(str(SHARED_RINEX / absent[0]))
             continue
         line = cmd.replace("python3.11", f'"{sys.executable}"', 1)
-        r = subprocess.run(["bash", "-c", line], cwd=tmp_path, env=env, capture_output=True,
-                           text=True, timeout=900, stdin=subprocess.DEVNULL)  # fmt: skip
+        r = subprocess.run(
+            ["bash", "-c", line],
+            cwd=tmp_path,
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=900,
+            stdin=subprocess.DEVNULL,
+        )
         assert r.returncode == code, f"{cmd}: exit {r.returncode}, README says {code}\n{r.stderr}"
     if missing:
         pytest.skip(f"real data not available: {', '.join(missing)}")

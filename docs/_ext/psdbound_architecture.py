@@ -95,22 +95,30 @@ def _positions(layer: dict[str, int]) -> tuple[dict[str, tuple[float, float]], f
 def svg(graph: dict[str, set[str]]) -> str:
     """Return the diagram as an SVG document (layers bottom-up, arrows down to imports)."""
     pos, width, height = _positions(layers(graph))
-    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0f}" '
-             f'height="{height:.0f}" font-family="sans-serif" font-size="12">',
-             '<defs><marker id="a" markerWidth="8" markerHeight="6" refX="8" refY="3" '
-             'orient="auto"><path d="M0,0 L8,3 L0,6 z" fill="#888"/></marker></defs>']
+    parts = [
+        f'<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0f}" '
+        f'height="{height:.0f}" font-family="sans-serif" font-size="12">',
+        '<defs><marker id="a" markerWidth="8" markerHeight="6" refX="8" refY="3" '
+        'orient="auto"><path d="M0,0 L8,3 L0,6 z" fill="#888"/></marker></defs>',
+    ]
     for p, deps in sorted(graph.items()):
         x, y = pos[p]
         for d in sorted(deps - FOUNDATION):
             u, v = pos[d]
-            parts.append(f'<line x1="{x + BOX_W / 2:.0f}" y1="{y + BOX_H:.0f}" '
-                         f'x2="{u + BOX_W / 2:.0f}" y2="{v:.0f}" stroke="#bbb" '
-                         'marker-end="url(#a)"/>')
+            parts.append(
+                f'<line x1="{x + BOX_W / 2:.0f}" y1="{y + BOX_H:.0f}" '
+                f'x2="{u + BOX_W / 2:.0f}" y2="{v:.0f}" stroke="#bbb" '
+                'marker-end="url(#a)"/>'
+            )
     for p, (x, y) in sorted(pos.items()):
-        parts.append(f'<rect x="{x:.0f}" y="{y:.0f}" width="{BOX_W}" height="{BOX_H}" rx="4" '
-                     'fill="#eef3fb" stroke="#4a6fa5"/>')
-        parts.append(f'<text x="{x + BOX_W / 2:.0f}" y="{y + BOX_H / 2 + 4:.0f}" '
-                     f'text-anchor="middle">{p}</text>')
+        parts.append(
+            f'<rect x="{x:.0f}" y="{y:.0f}" width="{BOX_W}" height="{BOX_H}" rx="4" '
+            'fill="#eef3fb" stroke="#4a6fa5"/>'
+        )
+        parts.append(
+            f'<text x="{x + BOX_W / 2:.0f}" y="{y + BOX_H / 2 + 4:.0f}" '
+            f'text-anchor="middle">{p}</text>'
+        )
     parts.append("</svg>")
     return "\n".join(parts)
 
@@ -131,12 +139,24 @@ class ArchitectureDirective(SphinxDirective):
         graph = package_graph()
         layer = layers(graph)
         out: list[nodes.Node] = [nodes.raw("", svg(graph), format="html")]
-        lines = [".. list-table::", "   :header-rows: 1", "   :widths: 14 6 50 30", "",
-                 "   * - package", "     - layer", "     - what it holds", "     - imports"]
+        lines = [
+            ".. list-table::",
+            "   :header-rows: 1",
+            "   :widths: 14 6 50 30",
+            "",
+            "   * - package",
+            "     - layer",
+            "     - what it holds",
+            "     - imports",
+        ]
         for p in sorted(graph, key=lambda k: (-layer[k], k)):
             deps = ", ".join(f"``{d}``" for d in sorted(graph[p])) or "nothing"
-            lines += [f"   * - ``{p}``", f"     - {layer[p]}",
-                      f"     - {_summary(p).replace('*', '')}", f"     - {deps}"]
+            lines += [
+                f"   * - ``{p}``",
+                f"     - {layer[p]}",
+                f"     - {_summary(p).replace('*', '')}",
+                f"     - {deps}",
+            ]
         node = nodes.section()
         nested_parse_with_titles(self.state, StringList(lines, source="psdbound"), node)
         return out + list(node.children)

@@ -82,7 +82,7 @@ def _option_lines(parser: argparse.ArgumentParser, program: str) -> list[str]:
 
 def _usage_lines(parser: argparse.ArgumentParser) -> list[str]:
     usage = parser.format_usage().strip()
-    usage = usage[len("usage: "):] if usage.startswith("usage: ") else usage
+    usage = usage[len("usage: ") :] if usage.startswith("usage: ") else usage
     return [".. code-block:: text", ""] + ["   " + ln for ln in usage.splitlines()] + [""]
 
 
@@ -169,8 +169,12 @@ class SchemaDirective(SphinxDirective):
             lines += [".. list-table::", "   :header-rows: 1", "   :widths: 30 15 8 47", ""]
             lines += ["   * - field", "     - type", "     - required", "     - description"]
             for path, typ, is_req, desc in _rows(key, spec, key in req):
-                lines += [f"   * - ``{path}``", f"     - {typ}", f"     - {is_req}",
-                          f"     - {_escape(desc)}"]
+                lines += [
+                    f"   * - ``{path}``",
+                    f"     - {typ}",
+                    f"     - {is_req}",
+                    f"     - {_escape(desc)}",
+                ]
             lines += [""]
         node = nodes.section()
         node.document = self.state.document

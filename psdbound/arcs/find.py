@@ -222,8 +222,11 @@ class ArcSet:
             if a.sat != sat or a.azimuth_deg is None:
                 continue
             j = np.clip(np.searchsorted(a.t_gps_s, t), 0, a.t_gps_s.size - 1)
-            j = np.where(np.abs(a.t_gps_s[np.maximum(j - 1, 0)] - t) < np.abs(a.t_gps_s[j] - t),
-                         np.maximum(j - 1, 0), j)  # fmt: skip
+            j = np.where(
+                np.abs(a.t_gps_s[np.maximum(j - 1, 0)] - t) < np.abs(a.t_gps_s[j] - t),
+                np.maximum(j - 1, 0),
+                j,
+            )
             hit = np.abs(a.t_gps_s[j] - t) < 0.5 * self.interval_s
             az[hit] = a.azimuth_deg[j[hit]]
         return az

@@ -36,8 +36,21 @@ __all__ = ["THIRD_SIGNALS", "add_third_carrier", "choose_third_signal", "third_c
 #: skipped, so a pair such as GPS L1C-L5Q takes L2 as its third carrier.
 THIRD_SIGNALS: dict[str, tuple[str, ...]] = {
     "G": ("L5Q", "L5X", "L5I", "L2W", "L2L", "L2X", "L2S", "L2C", "L1C", "L1W", "L1X"),
-    "E": ("L7Q", "L7X", "L7I", "L6C", "L6X", "L6B", "L8Q", "L8X", "L5Q", "L5X", "L5I", "L1C",
-          "L1X"),
+    "E": (
+        "L7Q",
+        "L7X",
+        "L7I",
+        "L6C",
+        "L6X",
+        "L6B",
+        "L8Q",
+        "L8X",
+        "L5Q",
+        "L5X",
+        "L5I",
+        "L1C",
+        "L1X",
+    ),
     "J": ("L5Q", "L5X", "L5I", "L2L", "L2X", "L2S", "L1C", "L1X"),
     "C": ("L6I", "L6X", "L5P", "L5X", "L1P", "L1X", "L7I", "L2I"),
     "R": ("L3Q", "L3X", "L3I"),
@@ -100,8 +113,9 @@ def _stored(codes: tuple[str, ...], code: str) -> str | None:
     return next((v2 for v2, v3 in RINEX2_TO_RINEX3.items() if v3 == code and v2 in codes), None)
 
 
-def _third_phase(arc: Arc, l3: NDArray[np.float64], lost: NDArray[np.bool_],
-                 slip_threshold_m: float) -> NDArray[np.float64]:  # fmt: skip
+def _third_phase(
+    arc: Arc, l3: NDArray[np.float64], lost: NDArray[np.bool_], slip_threshold_m: float
+) -> NDArray[np.float64]:
     """Return the third phase of one arc, NaN where missing and after each of its breaks.
 
     A break is a loss of lock at the epoch, or a slip of ``L_a - L_c`` within
@@ -117,8 +131,9 @@ def _third_phase(arc: Arc, l3: NDArray[np.float64], lost: NDArray[np.bool_],
     return out
 
 
-def add_third_carrier(arcs: ArcSet, obs: Observations, signal: str | None = None, *,
-                      slip_threshold_m: float = 0.04) -> ArcSet:  # fmt: skip
+def add_third_carrier(
+    arcs: ArcSet, obs: Observations, signal: str | None = None, *, slip_threshold_m: float = 0.04
+) -> ArcSet:
     """Return the arcs with the phase of a third signal (``Arc.third_m``), where there is one.
 
     Parameters
@@ -141,8 +156,11 @@ def add_third_carrier(arcs: ArcSet, obs: Observations, signal: str | None = None
         ``third_m`` (all NaN where the satellite has no third phase) and
         ``third_signal`` set.
     """
-    code = choose_third_signal(obs, arcs.system, arcs.signals) if signal is None else (
-        obs.resolve_code(arcs.system, signal))  # fmt: skip
+    code = (
+        choose_third_signal(obs, arcs.system, arcs.signals)
+        if signal is None
+        else (obs.resolve_code(arcs.system, signal))
+    )
     if code is None or not arcs.arcs:
         return arcs
     block = obs.blocks[arcs.system]

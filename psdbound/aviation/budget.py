@@ -396,8 +396,10 @@ def multipliers(
         raise InputError(f"k_md_e must be a number > 0, got {k_md_e}")
     if k_ffmd is None:
         if n_receivers not in K_FFMD:
-            raise InputError(f"no tabulated K_ffmd for M = {n_receivers} reference receivers "
-                             f"(table: M = {sorted(K_FFMD)}); pass k_ffmd")  # fmt: skip
+            raise InputError(
+                f"no tabulated K_ffmd for M = {n_receivers} reference receivers "
+                f"(table: M = {sorted(K_FFMD)}); pass k_ffmd"
+            )
         kf: dict[str, Any] = {
             "value": K_FFMD[n_receivers],
             "source": f"table for M = {n_receivers}: {K_TABLE_SOURCE}",
@@ -407,8 +409,14 @@ def multipliers(
     else:
         kf = {"value": float(k_ffmd), "source": "user-supplied"}
     p_md = float(2.0 * norm.sf(k_md_e))
-    return {"k_ffmd": kf, "k_md_e": {"value": float(k_md_e), "source": K_MD_E_SOURCE,
-                                     "p_md_e_two_sided_gaussian": p_md}}  # fmt: skip
+    return {
+        "k_ffmd": kf,
+        "k_md_e": {
+            "value": float(k_md_e),
+            "source": K_MD_E_SOURCE,
+            "p_md_e_two_sided_gaussian": p_md,
+        },
+    }
 
 
 def vpl(
@@ -500,8 +508,9 @@ def budget_report(
     -------
     str
     """
-    doc = budget_document(azimuth_deg, elevation_deg, k_md_e=k_md_e, n_receivers=n_receivers,
-                          k_ffmd=k_ffmd, **options)  # fmt: skip
+    doc = budget_document(
+        azimuth_deg, elevation_deg, k_md_e=k_md_e, n_receivers=n_receivers, k_ffmd=k_ffmd, **options
+    )
     rows = [f"{'el deg':>7} {'gnd m':>8} {'air m':>8} {'iono m':>8} {'trop m':>8} {'total m':>8}"]
     terms = ("ground_m", "air_m", "iono_m", "trop_m", "total_m")
     for sat in doc["satellites"]:  # type: ignore[attr-defined]
@@ -511,8 +520,10 @@ def budget_report(
     k = doc["multipliers"]
     rows.append(f"K_ffmd = {k['k_ffmd']['value']:.3f} ({k['k_ffmd']['source']})")
     ke = k["k_md_e"]
-    rows.append(f"K_md_e = {ke['value']:.3f} (two-sided Gaussian P_md "
-                f"{ke['p_md_e_two_sided_gaussian']:.2g}; {ke['source']})")  # fmt: skip
+    rows.append(
+        f"K_md_e = {ke['value']:.3f} (two-sided Gaussian P_md "
+        f"{ke['p_md_e_two_sided_gaussian']:.2g}; {ke['source']})"
+    )
     rows.append(f"xi formula: {doc['options']['xi_formula']}")
     return "\n".join(rows)
 
@@ -550,17 +561,37 @@ def budget_document(
     """
     t = error_budget(elevation_deg, n_receivers=n_receivers, **options)  # type: ignore[arg-type]
     x_air = float(options.get("x_air_m", 5000.0))  # type: ignore[arg-type]
-    h0, eph = vpl(los_from_az_el(azimuth_deg, elevation_deg), t.total, k_md_e=k_md_e,
-                  n_receivers=n_receivers, k_ffmd=k_ffmd, x_air_m=x_air)  # fmt: skip
+    h0, eph = vpl(
+        los_from_az_el(azimuth_deg, elevation_deg),
+        t.total,
+        k_md_e=k_md_e,
+        n_receivers=n_receivers,
+        k_ffmd=k_ffmd,
+        x_air_m=x_air,
+    )
     az = np.asarray(azimuth_deg, dtype=float).reshape(-1)
-    sats = [{"azimuth_deg": float(az[i]), "elevation_deg": float(t.elevation_deg[i]),
-             "ground_m": float(t.ground[i]), "air_m": float(t.air[i]), "iono_m": float(t.iono[i]),
-             "trop_m": float(t.trop[i]), "total_m": float(t.total[i])}
-            for i in range(t.elevation_deg.size)]  # fmt: skip
+    sats = [
+        {
+            "azimuth_deg": float(az[i]),
+            "elevation_deg": float(t.elevation_deg[i]),
+            "ground_m": float(t.ground[i]),
+            "air_m": float(t.air[i]),
+            "iono_m": float(t.iono[i]),
+            "trop_m": float(t.trop[i]),
+            "total_m": float(t.total[i]),
+        }
+        for i in range(t.elevation_deg.size)
+    ]
     used = {**_DEFAULTS, **options, "n_receivers": n_receivers}
-    return {"satellites": sats, "vpl_h0_m": h0, "vpl_eph_m": eph, "vpl_m": max(h0, eph),
-            "multipliers": multipliers(n_receivers=n_receivers, k_ffmd=k_ffmd, k_md_e=k_md_e),
-            "options": used, "sources": sources()}  # fmt: skip
+    return {
+        "satellites": sats,
+        "vpl_h0_m": h0,
+        "vpl_eph_m": eph,
+        "vpl_m": max(h0, eph),
+        "multipliers": multipliers(n_receivers=n_receivers, k_ffmd=k_ffmd, k_md_e=k_md_e),
+        "options": used,
+        "sources": sources(),
+    }
 
 
 #: Keyword options of :func:`error_budget` and their defaults (reported with every budget).

@@ -76,9 +76,13 @@ def code_multipath_from_files(
         raise InputError(f"the shortest levelling arc must be > 0 s, got {min_length_s}")
     obs = read_obs(obs_path, systems=system)
     return isolate_code_multipath(
-        obs, tuple(items), orbit=read_orbit(nav_path),
-        system=system, elevation_mask_deg=elevation_mask_deg, min_length_s=min_length_s,
-    )  # fmt: skip
+        obs,
+        tuple(items),
+        orbit=read_orbit(nav_path),
+        system=system,
+        elevation_mask_deg=elevation_mask_deg,
+        min_length_s=min_length_s,
+    )
 
 
 def describe_code_series(series: MultipathSeries, *, min_length_s: float) -> dict[str, Any]:
@@ -158,8 +162,14 @@ def overbound_code_series(
             + ("; ".join(notes) or f"no sample inside the edges {list(edges_deg)}")
         )
     result = overbound_by_elevation(
-        series.value_m[keep], series.elevation_deg[keep], edges_deg=edges_deg, method=method,
-        bias=bias, min_abs_z=min_abs_z, min_samples=min_samples, confidence=confidence,
+        series.value_m[keep],
+        series.elevation_deg[keep],
+        edges_deg=edges_deg,
+        method=method,
+        bias=bias,
+        min_abs_z=min_abs_z,
+        min_samples=min_samples,
+        confidence=confidence,
         segment_id=series.arc_id[keep],
-    )  # fmt: skip
+    )
     return result, notes

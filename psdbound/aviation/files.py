@@ -69,13 +69,15 @@ def read_samples(path: str | Path) -> tuple[NDArray[np.float64], NDArray[np.floa
             f"cannot read samples ({' '.join(str(exc).split())[:160]}); expected a header line "
             f"naming an error column ({', '.join(_ERROR_NAMES)}) and optionally an elevation "
             f"column ({', '.join(_EL_NAMES)}), then one row of numbers per sample, comma- or "
-            "whitespace-separated, or a .npy array", path=p,
-        ) from None  # fmt: skip
+            "whitespace-separated, or a .npy array",
+            path=p,
+        ) from None
     names = [n.lower() for n in (data.dtype.names or ())]
     err = next((n for n in names if n in _ERROR_NAMES), None)
     if err is None:
-        raise InputError(f"no error column: header has {names}, expected one of {_ERROR_NAMES}",
-                         path=p)  # fmt: skip
+        raise InputError(
+            f"no error column: header has {names}, expected one of {_ERROR_NAMES}", path=p
+        )
     el = next((n for n in names if n in _EL_NAMES), None)
     cols = data.dtype.names or ()
     e = np.atleast_1d(data[cols[names.index(err)]]).astype(float)
@@ -97,8 +99,13 @@ def _qq_png(result: OverboundResult) -> bytes:
         z = norm.ppf((np.arange(1, x.size + 1) - 0.5) / x.size)
         label = f"{b.label}: x{b.inflation:.2f}, n {b.n}, n_eff {b.n_eff:.0f}"
         line = ax.plot(z, x, ".", ms=2, label=label)[0]
-        ax.plot(z, overbound_line(z, b.bias, b.sigma, result.method), "-", lw=0.8,
-                color=line.get_color())  # fmt: skip
+        ax.plot(
+            z,
+            overbound_line(z, b.bias, b.sigma, result.method),
+            "-",
+            lw=0.8,
+            color=line.get_color(),
+        )
     ax.set_xlabel("standard-normal quantile")
     ax.set_ylabel(f"sample quantile ({result.unit})")
     ax.set_title(f"Q-Q plot and Gaussian overbounds ({result.method})")
@@ -110,8 +117,9 @@ def _qq_png(result: OverboundResult) -> bytes:
     return buf.getvalue()
 
 
-def write_overbound(result: OverboundResult, out: str | Path, *,
-                    extra: dict[str, Any] | None = None) -> list[Path]:  # fmt: skip
+def write_overbound(
+    result: OverboundResult, out: str | Path, *, extra: dict[str, Any] | None = None
+) -> list[Path]:
     """Write ``result.json`` and ``overbound_qq.png`` into ``out`` (atomically).
 
     Parameters

@@ -30,8 +30,15 @@ from psdbound.io.nominal import nominal_elements, nominal_navigation
 from psdbound.io.timescales import calendar_to_gps_s, gps_s_to_datetime64
 from psdbound.results import write_json
 
-__all__ = ["SEED004_START_GPS_S", "Sky", "VplSeries", "nominal_orbit", "sky_over",
-           "vpl_series", "write_vpl_series"]  # fmt: skip
+__all__ = [
+    "SEED004_START_GPS_S",
+    "Sky",
+    "VplSeries",
+    "nominal_orbit",
+    "sky_over",
+    "vpl_series",
+    "write_vpl_series",
+]
 
 #: 2009-01-01 00:00:00 (GPS time label), the first epoch of seed 004's simulations, GPS seconds.
 SEED004_START_GPS_S = float(calendar_to_gps_s(2009, 1, 1, 0, 0, 0.0))
@@ -107,8 +114,14 @@ class Sky:
         return np.isfinite(self.elevation_deg).sum(axis=1)
 
 
-def sky_over(orbit: OrbitSource, receiver_xyz_m: ArrayLike, t_gps_s: ArrayLike, *,
-             systems: str = "GE", elevation_mask_deg: float = 5.0) -> Sky:  # fmt: skip
+def sky_over(
+    orbit: OrbitSource,
+    receiver_xyz_m: ArrayLike,
+    t_gps_s: ArrayLike,
+    *,
+    systems: str = "GE",
+    elevation_mask_deg: float = 5.0,
+) -> Sky:
     """Satellites of ``systems`` above the mask at each epoch.
 
     Parameters
@@ -260,9 +273,16 @@ class VplSeries:
         return out
 
 
-def vpl_series(sky: Sky, *, k_md_e: float | None, n_receivers: int = 3, x_air_m: float = 5000.0,
-               p_eph: float = P_EPH.value, k_ffmd: float | None = None,
-               **budget_options: Any) -> VplSeries:  # fmt: skip
+def vpl_series(
+    sky: Sky,
+    *,
+    k_md_e: float | None,
+    n_receivers: int = 3,
+    x_air_m: float = 5000.0,
+    p_eph: float = P_EPH.value,
+    k_ffmd: float | None = None,
+    **budget_options: Any,
+) -> VplSeries:
     """VPL_H0, VPL_eph and VPL at every epoch of a :class:`Sky` (the budget of its satellites).
 
     Parameters
@@ -307,8 +327,9 @@ def vpl_series(sky: Sky, *, k_md_e: float | None, n_receivers: int = 3, x_air_m:
     return VplSeries(t, n, h0, eph, np.maximum(h0, eph), mask, sky.source, rx, used)
 
 
-def write_vpl_series(series: VplSeries, out: str | Path, *,
-                     val_m: float | None = None) -> list[Path]:  # fmt: skip
+def write_vpl_series(
+    series: VplSeries, out: str | Path, *, val_m: float | None = None
+) -> list[Path]:
     """Write ``vpl.json`` and ``vpl.png`` into the folder ``out`` (created), each atomically.
 
     The figure: VPL_H0, VPL_eph and VPL (m) against time (h) with ``val_m``,
@@ -324,8 +345,9 @@ def write_vpl_series(series: VplSeries, out: str | Path, *,
     import matplotlib.pyplot as plt
 
     h, o = (series.t_gps_s - series.t_gps_s[0]) / 3600.0, series.options
-    fig, (ax, ax2) = plt.subplots(2, 1, figsize=(8.0, 5.2), sharex=True,
-                                  gridspec_kw={"height_ratios": [3, 1]})  # fmt: skip
+    fig, (ax, ax2) = plt.subplots(
+        2, 1, figsize=(8.0, 5.2), sharex=True, gridspec_kw={"height_ratios": [3, 1]}
+    )
     ax.plot(h, series.vpl_m, "-", lw=3.0, color="0.75", label="VPL = max")
     ax.plot(h, series.vpl_h0_m, "-", lw=0.9, label="VPL_H0")
     ax.plot(h, series.vpl_eph_m, "--", lw=0.9, label="VPL_eph")
@@ -333,14 +355,19 @@ def write_vpl_series(series: VplSeries, out: str | Path, *,
         ax.axhline(val_m, color="r", ls=":", label=f"VAL {val_m:g} m")
     top = 1.35 * max(np.nanmax(series.vpl_m, initial=1.0), val_m or 0.0)
     ax.set(ylim=(0, top), ylabel="vertical protection level (m)")
-    ax.set_title(f"{o['process']} {o['base_frequency']}, tau {o['tau_gnd_s']:g}/"
-                 f"{o['tau_air_s']:g} s, x_air {o['x_air_m'] / 1000:g} km", fontsize=9)  # fmt: skip
+    ax.set_title(
+        f"{o['process']} {o['base_frequency']}, tau {o['tau_gnd_s']:g}/"
+        f"{o['tau_air_s']:g} s, x_air {o['x_air_m'] / 1000:g} km",
+        fontsize=9,
+    )
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7, loc="upper center", ncols=4)
     ax2.step(h, series.n_sats, where="post", color="0.35", lw=0.9)
-    ax2.set(ylabel=f"satellites > {series.elevation_mask_deg:g} deg (count)",
-            ylim=(0, 1.15 * max(int(series.n_sats.max()), 4)),
-            xlabel=f"time since {_label(series.t_gps_s[0])} GPS (h)")  # fmt: skip
+    ax2.set(
+        ylabel=f"satellites > {series.elevation_mask_deg:g} deg (count)",
+        ylim=(0, 1.15 * max(int(series.n_sats.max()), 4)),
+        xlabel=f"time since {_label(series.t_gps_s[0])} GPS (h)",
+    )
     ax2.grid(alpha=0.3)
     fig.tight_layout()
     buf = io.BytesIO()

@@ -57,15 +57,24 @@ class CodeMultipathOptions:
 
     codes: tuple[str, ...] = option(
         (),
-        Tuple(Text(r"[CP][1-9][A-Z]?", what="a pseudorange code such as 'C1C' (RINEX 2: P2)"),
-              max_len=2, split=",", distinct=True,
-              what="up to two pseudorange codes such as 'C1C,C5Q'"),
-    )  # fmt: skip
+        Tuple(
+            Text(r"[CP][1-9][A-Z]?", what="a pseudorange code such as 'C1C' (RINEX 2: P2)"),
+            max_len=2,
+            split=",",
+            distinct=True,
+            what="up to two pseudorange codes such as 'C1C,C5Q'",
+        ),
+    )
     edges_deg: tuple[float, ...] = option(
         DEFAULT_EDGES_DEG,
-        Tuple(Number(lo=0.0, hi=90.0, unit="deg"), min_len=2, max_len=30, split=",",
-              what="increasing elevation edges in degrees such as '5,15,30,60,90'"),
-    )  # fmt: skip
+        Tuple(
+            Number(lo=0.0, hi=90.0, unit="deg"),
+            min_len=2,
+            max_len=30,
+            split=",",
+            what="increasing elevation edges in degrees such as '5,15,30,60,90'",
+        ),
+    )
     method: str = option("paired", Choice(METHODS, noun="overbound method"))
     min_length_s: float = option(600.0, Number(lo=0.0, hi=86400.0, lo_open=True, unit="s"))
     min_samples: int = option(100, Number(lo=10, hi=1e9, integer=True))
@@ -74,8 +83,12 @@ class CodeMultipathOptions:
         check_fields(self)
         e = self.edges_deg
         if any(b <= a for a, b in zip(e, e[1:], strict=False)):
-            raise OptionError("edges_deg", e, "increasing elevation edges in degrees",
-                              detail="each edge must exceed the one before")  # fmt: skip
+            raise OptionError(
+                "edges_deg",
+                e,
+                "increasing elevation edges in degrees",
+                detail="each edge must exceed the one before",
+            )
 
     @property
     def enabled(self) -> bool:

@@ -88,16 +88,21 @@ def _check_elevations(el: NDArray[np.float64]) -> None:
         raise InputError(f"{int(np.isnan(el).sum())} elevation(s) are NaN")
     bad = ~((el >= -90.0) & (el <= 90.0))
     if bad.any():
-        raise InputError(f"{int(bad.sum())} elevation(s) outside [-90, 90] deg (e.g. "
-                         f"{float(el[bad][0]):g}): not an elevation in degrees")  # fmt: skip
+        raise InputError(
+            f"{int(bad.sum())} elevation(s) outside [-90, 90] deg (e.g. "
+            f"{float(el[bad][0]):g}): not an elevation in degrees"
+        )
 
 
 def _note_outside(el: NDArray[np.float64], edges: NDArray[np.float64], binned: bool) -> None:
     """Say how many samples lie outside the elevation bins (they are left out)."""
     out = ~((el >= edges[0]) & (el <= edges[-1]))
     if binned and out.any():
-        warn(f"{int(out.sum())} of {el.size} sample(s) lie outside the elevation bins "
-             f"[{edges[0]:g}, {edges[-1]:g}] deg and are left out", stacklevel=3)  # fmt: skip
+        warn(
+            f"{int(out.sum())} of {el.size} sample(s) lie outside the elevation bins "
+            f"[{edges[0]:g}, {edges[-1]:g}] deg and are left out",
+            stacklevel=3,
+        )
 
 
 def _clean(samples: ArrayLike, where: str, min_samples: int) -> NDArray[np.float64]:
@@ -106,8 +111,10 @@ def _clean(samples: ArrayLike, where: str, min_samples: int) -> NDArray[np.float
         bad = int(np.count_nonzero(~np.isfinite(x)))
         raise InputError(f"{where}: {bad} sample(s) are NaN or infinite; remove them first")
     if np.abs(x).max(initial=0.0) > MAX_ABS_SAMPLE:
-        raise InputError(f"{where}: sample(s) up to {np.abs(x).max():.3g} in magnitude, beyond "
-                         f"{MAX_ABS_SAMPLE:g}: not error samples")  # fmt: skip
+        raise InputError(
+            f"{where}: sample(s) up to {np.abs(x).max():.3g} in magnitude, beyond "
+            f"{MAX_ABS_SAMPLE:g}: not error samples"
+        )
     if x.size < min_samples:
         raise InputError(
             f"{where}: {x.size} sample(s), need at least {min_samples} "
@@ -116,8 +123,12 @@ def _clean(samples: ArrayLike, where: str, min_samples: int) -> NDArray[np.float
     return np.sort(x)
 
 
-def _tail_sigma(d: NDArray[np.float64], tail: NDArray[np.float64], min_abs_z: float,
-                tail_map: TailMap | None = None) -> float:  # fmt: skip
+def _tail_sigma(
+    d: NDArray[np.float64],
+    tail: NDArray[np.float64],
+    min_abs_z: float,
+    tail_map: TailMap | None = None,
+) -> float:
     """Smallest ``s`` with ``Q(d / s) >= tail`` at every constraining point (``d > 0``)."""
     if tail_map is not None:
         tail = tail_map(tail)
@@ -368,8 +379,9 @@ class OverboundResult:
 
     def summary(self) -> str:
         """Return a fixed-width table: bin, n, n_eff, std, bias, sigma, inflation and its bound."""
-        core = ("no core exempted" if self.min_abs_z == 0
-                else f"core |z| < {self.min_abs_z:g} ignored")  # fmt: skip
+        core = (
+            "no core exempted" if self.min_abs_z == 0 else f"core |z| < {self.min_abs_z:g} ignored"
+        )
         conf = next((b.confidence for b in self.bins), math.nan)
         rows = [
             f"Gaussian overbound ({self.method}, {core}), unit {self.unit}; 'upper': every "
@@ -386,8 +398,9 @@ class OverboundResult:
         return "\n".join(rows)
 
 
-def _bins(el: NDArray[np.float64], edges: Sequence[float]
-          ) -> Iterator[tuple[float, float, NDArray[np.bool_]]]:  # fmt: skip
+def _bins(
+    el: NDArray[np.float64], edges: Sequence[float]
+) -> Iterator[tuple[float, float, NDArray[np.bool_]]]:
     """``(low, high, mask)`` of each bin: ``low <= el < high``, the last bin closed."""
     last = len(edges) - 2
     for k in range(len(edges) - 1):
@@ -430,13 +443,20 @@ def samples_in_full_bins(
         if n >= min_samples:
             keep |= sel
         elif n:
-            notes.append(f"elevation bin [{lo:g}, {hi:g}) deg holds {n} samples, fewer than "
-                         f"{min_samples}: not overbounded")  # fmt: skip
+            notes.append(
+                f"elevation bin [{lo:g}, {hi:g}) deg holds {n} samples, fewer than "
+                f"{min_samples}: not overbounded"
+            )
     return keep, notes
 
 
-def _one_bin(xs: NDArray[np.float64], raw: NDArray[np.float64], seg: NDArray[Any] | None,
-             method: str, opts: dict[str, Any]) -> dict[str, float]:  # fmt: skip
+def _one_bin(
+    xs: NDArray[np.float64],
+    raw: NDArray[np.float64],
+    seg: NDArray[Any] | None,
+    method: str,
+    opts: dict[str, Any],
+) -> dict[str, float]:
     """Bias, sigma and their confidence bounds of one bin (``xs`` sorted, ``raw`` in time order)."""
     n_eff, tau = effective_sample_size(raw, segment_id=seg)
     conf = float(opts["confidence"])
@@ -454,12 +474,20 @@ def _one_bin(xs: NDArray[np.float64], raw: NDArray[np.float64], seg: NDArray[Any
 
     b, s = fit(None)
     b_up, s_up = fit(upper)
-    return {"bias": b, "sigma": s, "bias_upper": b_up, "sigma_upper": s_up, "n_eff": n_eff,
-            "tau_int": tau, "confidence": conf}  # fmt: skip
+    return {
+        "bias": b,
+        "sigma": s,
+        "bias_upper": b_up,
+        "sigma_upper": s_up,
+        "n_eff": n_eff,
+        "tau_int": tau,
+        "confidence": conf,
+    }
 
 
-def _grid(x: NDArray[np.float64], elevation_deg: ArrayLike | None, edges_deg: Sequence[float]
-          ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:  # fmt: skip
+def _grid(
+    x: NDArray[np.float64], elevation_deg: ArrayLike | None, edges_deg: Sequence[float]
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Elevations and edges (one open bin without elevations), checked."""
     if elevation_deg is None:
         return np.full(x.size, 0.0), np.array([-math.inf, math.inf])
@@ -551,10 +579,15 @@ def overbound_by_elevation(
         fit = _one_bin(xs, x[sel], None if seg is None else seg[sel], method, opts)
         std = float(np.std(xs, ddof=1))
         ob = BinOverbound(
-            low_deg=lo, high_deg=hi, n=int(xs.size), mean=float(xs.mean()), std=std,
+            low_deg=lo,
+            high_deg=hi,
+            n=int(xs.size),
+            mean=float(xs.mean()),
+            std=std,
             inflation=float(fit["sigma"] / std) if std > 0 else math.inf,
-            inflation_upper=float(fit["sigma_upper"] / std) if std > 0 else math.inf, **fit,
-        )  # fmt: skip
+            inflation_upper=float(fit["sigma_upper"] / std) if std > 0 else math.inf,
+            **fit,
+        )
         out.append(ob)
         kept[ob.label] = xs
     if not out:

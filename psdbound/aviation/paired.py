@@ -52,8 +52,9 @@ DEFAULT_CORE_FRACTION = 0.2
 TailMap = Callable[[NDArray[np.float64]], NDArray[np.float64]]
 
 
-def _side(d: NDArray[np.float64], tail: NDArray[np.float64], c: NDArray[np.float64]
-          ) -> NDArray[np.float64]:  # fmt: skip
+def _side(
+    d: NDArray[np.float64], tail: NDArray[np.float64], c: NDArray[np.float64]
+) -> NDArray[np.float64]:
     """``s(c)`` of one side: ``max (d - c) / Phi^-1(1 - t)`` over ``d > c`` (inf: a tail >= 1/2)."""
     with np.errstate(divide="ignore"):
         z = norm.isf(tail)

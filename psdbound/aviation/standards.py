@@ -101,11 +101,15 @@ AAD_A_NOISE = Sourced(
     "the standard",
 )
 L5_TO_L1_SIGMA = Sourced(
-    0.7, "L5 / L1 code error sigma ratio: seed 004 Table 2 (the seed's own, more "
-    "conservative than its reference Circiu et al. 2015)")  # fmt: skip
+    0.7,
+    "L5 / L1 code error sigma ratio: seed 004 Table 2 (the seed's own, more "
+    "conservative than its reference Circiu et al. 2015)",
+)
 P_EPH = Sourced(
-    0.00018, "ephemeris decorrelation parameter P_k, m/m: seed 004 sec. 3.2 (its ref. [4], "
-    "Park, Pullen & Enge 2010); broadcast per satellite by a real ground station")  # fmt: skip
+    0.00018,
+    "ephemeris decorrelation parameter P_k, m/m: seed 004 sec. 3.2 (its ref. [4], "
+    "Park, Pullen & Enge 2010); broadcast per satellite by a real ground station",
+)
 
 
 def sources() -> dict[str, str]:

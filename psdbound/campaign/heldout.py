@@ -60,8 +60,18 @@ def _kf_eig(design: Any, truth: tuple[float, float, float], dt: float) -> float:
         proc = proc + ErrorProcess.white(truth[2], dt)
     h, p0 = _geometry()
     r_other = np.eye(6) * _R_OTHER_M**2  # receiver phase noise besides the multipath
-    res = analyze_covariance(np.eye(4), np.diag([1e-6, 1e-6, 1e-6, 1e-2]), h, r_other, bound, proc,
-                             dt_s=dt, n_steps=_N_STEPS, p0_base=p0, steady_state=False)  # fmt: skip
+    res = analyze_covariance(
+        np.eye(4),
+        np.diag([1e-6, 1e-6, 1e-6, 1e-2]),
+        h,
+        r_other,
+        bound,
+        proc,
+        dt_s=dt,
+        n_steps=_N_STEPS,
+        p0_base=p0,
+        steady_state=False,
+    )
     return float(res.max_eig_ratio)
 
 
@@ -86,8 +96,12 @@ def window_model(bands: Any, row: int, dt_s: float) -> tuple[float, float, float
     pts = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, 16)
     best, out = np.inf, (0.0, dt_s, 0.0)
     for tau in np.geomspace(dt_s / 2.0, 1.0 / (2.0 * np.pi * float(lo[0])), _N_TAU_FIT):
-        a = np.column_stack([gm_psd_sampled(pts, 1.0, tau, dt_s).mean(axis=1),
-                             np.full(s.size, 2.0 * dt_s)]) / s[:, None]  # fmt: skip
+        a = (
+            np.column_stack(
+                [gm_psd_sampled(pts, 1.0, tau, dt_s).mean(axis=1), np.full(s.size, 2.0 * dt_s)]
+            )
+            / s[:, None]
+        )
         x, _ = optimize.nnls(a * np.sqrt(nu)[:, None], np.sqrt(nu))
         misfit = float(np.sum((a @ x - 1.0) ** 2 * nu))
         if misfit < best:
@@ -145,19 +159,28 @@ def held_out(results: Sequence[dict[str, Any]], *, options: Any = None) -> list[
             ok = np.isfinite(own.psd_m2_hz)
             has = ok.any(axis=1)
             covered = _covered(own, bound)[has]
-            eigs = np.array([_kf_eig(bound, window_model(own, i, dt), dt)
-                             for i in np.flatnonzero(has)])  # fmt: skip
+            eigs = np.array(
+                [_kf_eig(bound, window_model(own, i, dt), dt) for i in np.flatnonzero(has)]
+            )
             with np.errstate(divide="ignore", invalid="ignore"):
                 excess = 10.0 * np.log10(own.psd_m2_hz / bound.psd(own.centres_hz)[None, :])
-            rows.append({
-                "station": station, "day": d["day"], "n_other_days": len(others),
-                "bound": {"sigma_gm_m": bound.sigma_gm_m, "tau_s": bound.tau_s,
-                          "sigma_wn_m": bound.sigma_wn_m},
-                "band_hz": [bound.f_min_hz, bound.f_max_hz],
-                "windows_covered_fraction": float(np.mean(covered)) if has.any() else np.nan,
-                "worst_excess_db": float(np.nanmax(excess[ok])) if ok.any() else None,
-                "kf_max_generalized_eigenvalue": float(eigs.max()) if eigs.size else np.nan,
-                "kf_windows_bounded_fraction": float(np.mean(eigs <= 1.0 + 1e-9))
-                if eigs.size else np.nan,
-            })  # fmt: skip
+            rows.append(
+                {
+                    "station": station,
+                    "day": d["day"],
+                    "n_other_days": len(others),
+                    "bound": {
+                        "sigma_gm_m": bound.sigma_gm_m,
+                        "tau_s": bound.tau_s,
+                        "sigma_wn_m": bound.sigma_wn_m,
+                    },
+                    "band_hz": [bound.f_min_hz, bound.f_max_hz],
+                    "windows_covered_fraction": float(np.mean(covered)) if has.any() else np.nan,
+                    "worst_excess_db": float(np.nanmax(excess[ok])) if ok.any() else None,
+                    "kf_max_generalized_eigenvalue": float(eigs.max()) if eigs.size else np.nan,
+                    "kf_windows_bounded_fraction": float(np.mean(eigs <= 1.0 + 1e-9))
+                    if eigs.size
+                    else np.nan,
+                }
+            )
     return rows

@@ -154,8 +154,9 @@ def _describe(span: OrbitSpan, system: str, fraction: float) -> str:
     return f"{name} ({100 * fraction:.0f} %: {_when(ext[0])} to {_when(ext[1])})"
 
 
-def match_nav(obs: Sequence[str], span_s: tuple[float, float], system: str,
-              candidates: Sequence[OrbitSpan]) -> str:  # fmt: skip
+def match_nav(
+    obs: Sequence[str], span_s: tuple[float, float], system: str, candidates: Sequence[OrbitSpan]
+) -> str:
     """Return the one orbit file that covers an observation day.
 
     Parameters
@@ -185,10 +186,12 @@ def match_nav(obs: Sequence[str], span_s: tuple[float, float], system: str,
     if len(hits) == 1:
         return hits[0].path
     listed = "; ".join(_describe(c, system, f) for c, f in zip(candidates, shares, strict=True))
-    what = (f"{len(hits)} navigation files cover" if hits
-            else "no navigation file covers")  # fmt: skip
-    fix = ("give one navigation file per observation day" if hits
-           else "give the navigation (or SP3) file of that day")  # fmt: skip
+    what = f"{len(hits)} navigation files cover" if hits else "no navigation file covers"
+    fix = (
+        "give one navigation file per observation day"
+        if hits
+        else "give the navigation (or SP3) file of that day"
+    )
     raise InputError(
         f"{what} {100 * MIN_COVERED:.0f} % of its span {_when(span_s[0])} to {_when(span_s[1])} "
         f"GPS time for system {system}; candidates: {listed}; {fix}",

@@ -97,8 +97,11 @@ def _time_figure(doc: dict[str, Any]) -> Any:
     import matplotlib.dates as mdates
     import matplotlib.pyplot as plt
 
-    panels = (("sigma_gm_m", 1e3, "sigma_GM [mm]"), ("tau_s", 1.0, "tau [s]"),
-              ("sigma_wn_m", 1e3, "sigma_WN [mm]"))  # fmt: skip
+    panels = (
+        ("sigma_gm_m", 1e3, "sigma_GM [mm]"),
+        ("tau_s", 1.0, "tau [s]"),
+        ("sigma_wn_m", 1e3, "sigma_WN [mm]"),
+    )
     fig, axes = plt.subplots(1, 3, figsize=(11, 3.6))
     pooled = {s["station"]: s for s in doc["stations"]}
     for k, station in enumerate(dict.fromkeys(d["station"] for d in doc["days"])):
@@ -128,34 +131,54 @@ def _cell(text: str, sort: str | float | None = None) -> str:
 
 
 def _link(href: str, text: str) -> str:
-    return (f"<a style='white-space:nowrap' href='{html.escape(href, quote=True)}'>"
-            f"{html.escape(text)}</a>")  # fmt: skip
+    return (
+        f"<a style='white-space:nowrap' href='{html.escape(href, quote=True)}'>"
+        f"{html.escape(text)}</a>"
+    )
 
 
-def _row(st: dict[str, Any], doc: dict[str, Any], pos: tuple[float, float] | None,
-         reports: dict[tuple[str, str], str]) -> str:  # fmt: skip
+def _row(
+    st: dict[str, Any],
+    doc: dict[str, Any],
+    pos: tuple[float, float] | None,
+    reports: dict[tuple[str, str], str],
+) -> str:
     """One station's table row: position, verdict, pooled bound, held-out coverage, days."""
     name = st["station"]
     held = [r["windows_covered_fraction"] for r in doc["held_out"] if r["station"] == name]
     days = [d for d in doc["days"] if d["station"] == name]
-    links = " ".join(_link(reports[(name, d["day"])], d["day"]) if (name, d["day"]) in reports
-                     else f"{d['day']} (no report)" for d in days)  # fmt: skip
+    links = " ".join(
+        _link(reports[(name, d["day"])], d["day"])
+        if (name, d["day"]) in reports
+        else f"{d['day']} (no report)"
+        for d in days
+    )
     bound = st.get("n_pooled") and st.get("sigma_gm_m") is not None
 
     def num(key: str, scale: float, fmt: str) -> str:
         return _cell(format(scale * st[key], fmt), scale * st[key]) if bound else _cell("-", -1)
 
-    return "<tr>" + "".join([
-        _cell(html.escape(name), name),
-        _cell("-" if pos is None else f"{pos[0]:.4f}", "" if pos is None else pos[0]),
-        _cell("-" if pos is None else f"{pos[1]:.4f}", "" if pos is None else pos[1]),
-        _cell(html.escape(st["verdict"]), st["verdict"]),
-        num("sigma_gm_m", 1e3, ".2f"), num("tau_s", 1.0, ".1f"), num("sigma_wn_m", 1e3, ".2f"),
-        _cell(f"{100 * min(held):.0f} % (worst of {len(held)})" if held else "-",
-              min(held) if held else -1),
-        _cell(f"{st['n_pooled']} of {st['n_days']}", st["n_days"]),
-        _cell(links),
-    ]) + "</tr>"  # fmt: skip
+    return (
+        "<tr>"
+        + "".join(
+            [
+                _cell(html.escape(name), name),
+                _cell("-" if pos is None else f"{pos[0]:.4f}", "" if pos is None else pos[0]),
+                _cell("-" if pos is None else f"{pos[1]:.4f}", "" if pos is None else pos[1]),
+                _cell(html.escape(st["verdict"]), st["verdict"]),
+                num("sigma_gm_m", 1e3, ".2f"),
+                num("tau_s", 1.0, ".1f"),
+                num("sigma_wn_m", 1e3, ".2f"),
+                _cell(
+                    f"{100 * min(held):.0f} % (worst of {len(held)})" if held else "-",
+                    min(held) if held else -1,
+                ),
+                _cell(f"{st['n_pooled']} of {st['n_days']}", st["n_days"]),
+                _cell(links),
+            ]
+        )
+        + "</tr>"
+    )
 
 
 #: Clicking a heading sorts the table by it (numbers by their value), again: reversed.
@@ -185,8 +208,18 @@ document.querySelectorAll('table.sortable th').forEach(function (th, col) {
 });
 """
 
-_HEAD = ("station", "latitude [deg]", "longitude [deg]", "verdict", "sigma_GM [mm]", "tau [s]",
-         "sigma_WN [mm]", "held-out windows covered", "days pooled", "station-day reports")
+_HEAD = (
+    "station",
+    "latitude [deg]",
+    "longitude [deg]",
+    "verdict",
+    "sigma_GM [mm]",
+    "tau [s]",
+    "sigma_WN [mm]",
+    "held-out windows covered",
+    "days pooled",
+    "station-day reports",
+)
 
 
 def network_page(doc: dict[str, Any], reports: dict[tuple[str, str], str]) -> str:
@@ -208,12 +241,18 @@ def network_page(doc: dict[str, Any], reports: dict[tuple[str, str], str]) -> st
     positions = station_positions(doc)
     rows = "".join(_row(st, doc, positions.get(st["station"]), reports) for st in doc["stations"])
     head = "".join(f"<th title='click to sort'>{h}</th>" for h in _HEAD)
-    map_img = (f"<img id='station-map' alt='station map' src='data:image/png;base64,"
-               f"{_png(_map_figure(positions))}'>" if positions
-               else "<p>No station header gives a position (APPROX POSITION XYZ).</p>")
-    time_img = ("<img id='bound-over-time' alt='bound over time' src='data:image/png;base64,"
-                f"{_png(_time_figure(doc))}'>" if any(d.get("fitted") for d in doc["days"])
-                else "<p>No day was fitted.</p>")  # fmt: skip
+    map_img = (
+        f"<img id='station-map' alt='station map' src='data:image/png;base64,"
+        f"{_png(_map_figure(positions))}'>"
+        if positions
+        else "<p>No station header gives a position (APPROX POSITION XYZ).</p>"
+    )
+    time_img = (
+        "<img id='bound-over-time' alt='bound over time' src='data:image/png;base64,"
+        f"{_png(_time_figure(doc))}'>"
+        if any(d.get("fitted") for d in doc["days"])
+        else "<p>No day was fitted.</p>"
+    )
     return (
         "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>psdbound network"
         "</title><style>body{font-family:sans-serif;max-width:1100px;margin:2em auto}"

@@ -42,14 +42,19 @@ def _excluded(day: dict[str, Any], dt_s: float | None) -> dict[str, Any]:
 
 def _bound_row(days: list[dict[str, Any]], options: Any) -> dict[str, Any]:
     """Return the pooled bound of days of one station and one interval (plain numbers)."""
-    sb = pooled_days_bound(days, f_min_hz=max(float(r["f_min_hz"]) for r in days),
-                           options=options)  # fmt: skip
+    sb = pooled_days_bound(days, f_min_hz=max(float(r["f_min_hz"]) for r in days), options=options)
     b = sb.fit
-    return {"sigma_gm_m": b.sigma_gm_m, "tau_s": b.tau_s, "sigma_wn_m": b.sigma_wn_m,
-            "dt_s": float(days[0]["dt_s"]), "band_hz": [b.f_min_hz, b.f_max_hz],
-            "confidence_level": b.level, "n_groups": sb.limits.n_groups,
-            "tau_grid_s": list(b.tau_grid_s),
-            "low_frequency": sb.low_frequency.as_dict()}  # fmt: skip
+    return {
+        "sigma_gm_m": b.sigma_gm_m,
+        "tau_s": b.tau_s,
+        "sigma_wn_m": b.sigma_wn_m,
+        "dt_s": float(days[0]["dt_s"]),
+        "band_hz": [b.f_min_hz, b.f_max_hz],
+        "confidence_level": b.level,
+        "n_groups": sb.limits.n_groups,
+        "tau_grid_s": list(b.tau_grid_s),
+        "low_frequency": sb.low_frequency.as_dict(),
+    }
 
 
 def _comparison_note(n_pooled: int) -> str | None:
@@ -57,16 +62,19 @@ def _comparison_note(n_pooled: int) -> str | None:
     if n_pooled == 0:
         return "no bounded day: no pooled bound and no day-to-day comparison"
     if n_pooled == 1:
-        return ("one day: no day-to-day comparison (the held-out test needs two bounded days "
-                "at one sampling interval)")  # fmt: skip
+        return (
+            "one day: no day-to-day comparison (the held-out test needs two bounded days "
+            "at one sampling interval)"
+        )
     return None
 
 
 _Rows = list[dict[str, Any]]
 
 
-def pool_station(days: Sequence[dict[str, Any]], *, bound_options: Any = None,
-                 verdict_options: Any = None) -> tuple[dict[str, Any], _Rows]:  # fmt: skip
+def pool_station(
+    days: Sequence[dict[str, Any]], *, bound_options: Any = None, verdict_options: Any = None
+) -> tuple[dict[str, Any], _Rows]:
     """Pool one station's bounded days and judge the pooled bound.
 
     Parameters
@@ -99,24 +107,40 @@ def pool_station(days: Sequence[dict[str, Any]], *, bound_options: Any = None,
     pooled = [d for d in days if d["verdict"] == "bounded" and np.isclose(d["dt_s"], dt)]
     bound = _bound_row(pooled, bound_options) if pooled else None
     covered = float(sum(d.get("covered_s", 0.0) for d in pooled))
-    checks = pooled_checks(bound, covered_s=covered, n_days=len(pooled),
-                           options=verdict_options)  # fmt: skip
+    checks = pooled_checks(bound, covered_s=covered, n_days=len(pooled), options=verdict_options)
     verdict, reasons = verdict_of(checks)
-    empty = dict.fromkeys(("sigma_gm_m", "tau_s", "sigma_wn_m", "dt_s", "band_hz",
-                           "confidence_level", "n_groups", "low_frequency"))  # fmt: skip
-    row = {"station": days[0]["station"], "verdict": verdict, "verdict_reasons": reasons,
-           "verdict_checks": [c.as_dict() for c in checks], "n_days": len(days),
-           "n_pooled": len(pooled),
-           "pooled_days": [d["day"] for d in pooled],
-           "excluded_days": [_excluded(d, dt) for d in days if all(d is not p for p in pooled)],
-           "covered_s": covered, "comparison_note": _comparison_note(len(pooled)),
-           **(bound or empty)}  # fmt: skip
+    empty = dict.fromkeys(
+        (
+            "sigma_gm_m",
+            "tau_s",
+            "sigma_wn_m",
+            "dt_s",
+            "band_hz",
+            "confidence_level",
+            "n_groups",
+            "low_frequency",
+        )
+    )
+    row = {
+        "station": days[0]["station"],
+        "verdict": verdict,
+        "verdict_reasons": reasons,
+        "verdict_checks": [c.as_dict() for c in checks],
+        "n_days": len(days),
+        "n_pooled": len(pooled),
+        "pooled_days": [d["day"] for d in pooled],
+        "excluded_days": [_excluded(d, dt) for d in days if all(d is not p for p in pooled)],
+        "covered_s": covered,
+        "comparison_note": _comparison_note(len(pooled)),
+        **(bound or empty),
+    }
     row.pop("tau_grid_s", None)
     return row, pooled
 
 
-def pool_stations(results: Sequence[dict[str, Any]], *, bound_options: Any = None,
-                  verdict_options: Any = None) -> tuple[_Rows, _Rows]:  # fmt: skip
+def pool_stations(
+    results: Sequence[dict[str, Any]], *, bound_options: Any = None, verdict_options: Any = None
+) -> tuple[_Rows, _Rows]:
     """Pool every station (see :func:`pool_station`).
 
     Parameters
@@ -135,9 +159,11 @@ def pool_stations(results: Sequence[dict[str, Any]], *, bound_options: Any = Non
     """
     rows, pooled = [], []
     for st in sorted({r["station"] for r in results}):
-        row, used = pool_station([r for r in results if r["station"] == st],
-                                 bound_options=bound_options,
-                                 verdict_options=verdict_options)  # fmt: skip
+        row, used = pool_station(
+            [r for r in results if r["station"] == st],
+            bound_options=bound_options,
+            verdict_options=verdict_options,
+        )
         rows.append(row)
         pooled += used
     return rows, pooled

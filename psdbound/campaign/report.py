@@ -57,8 +57,10 @@ def _figure(doc: dict[str, Any]) -> Any:
 
 def _mm(row: dict[str, Any]) -> str:
     """``sigma_GM / tau / sigma_WN`` of a bound row in mm and s."""
-    return (f"{1e3 * row['sigma_gm_m']:.2f} mm / {row['tau_s']:.1f} s / "
-            f"{1e3 * row['sigma_wn_m']:.2f} mm")  # fmt: skip
+    return (
+        f"{1e3 * row['sigma_gm_m']:.2f} mm / {row['tau_s']:.1f} s / "
+        f"{1e3 * row['sigma_wn_m']:.2f} mm"
+    )
 
 
 def station_lines(st: dict[str, Any]) -> list[str]:
@@ -76,9 +78,11 @@ def station_lines(st: dict[str, Any]) -> list[str]:
     """
     lines = [f"{st['station']}: {st['verdict']}"]
     if st["n_pooled"]:
-        lines.append(f"pooled bound over {st['n_pooled']} of {st['n_days']} day(s) "
-                     f"({', '.join(st['pooled_days'])}): sigma_GM / tau / sigma_WN "
-                     f"{_mm(st)}")  # fmt: skip
+        lines.append(
+            f"pooled bound over {st['n_pooled']} of {st['n_days']} day(s) "
+            f"({', '.join(st['pooled_days'])}): sigma_GM / tau / sigma_WN "
+            f"{_mm(st)}"
+        )
     lines += [f"reason: {r}" for r in st["verdict_reasons"]]
     for d in st["excluded_days"]:
         lines.append(f"not pooled: {d['day']} ({d['verdict']}): " + "; ".join(d["reasons"]))
@@ -93,8 +97,11 @@ def _station_html(doc: dict[str, Any]) -> str:
     items = []
     for st in doc["stations"]:
         head, *rest = station_lines(st)
-        items.append(f"<li><b>{html.escape(head)}</b><ul>"
-                     + "".join(f"<li>{html.escape(x)}</li>" for x in rest) + "</ul></li>")
+        items.append(
+            f"<li><b>{html.escape(head)}</b><ul>"
+            + "".join(f"<li>{html.escape(x)}</li>" for x in rest)
+            + "</ul></li>"
+        )
     return f"<h2>Stations: pooled bounds and verdicts</h2><ul>{''.join(items)}</ul>"
 
 
@@ -111,21 +118,28 @@ def _days_html(doc: dict[str, Any]) -> str:
         f"<td>{'<br>'.join(html.escape(r) for r in d['verdict_reasons'])}</td></tr>"
         for d in doc["days"]
     )
-    return ("<h2>Station-days: the verdict of <code>psdbound fit</code> for each day</h2>"
-            "<table><tr><th>station</th><th>day</th><th>verdict</th><th>in pool</th>"
-            "<th>own bound sigma_GM / tau / sigma_WN</th><th>navigation file</th>"
-            f"<th>reasons</th></tr>{rows}</table>")  # fmt: skip
+    return (
+        "<h2>Station-days: the verdict of <code>psdbound fit</code> for each day</h2>"
+        "<table><tr><th>station</th><th>day</th><th>verdict</th><th>in pool</th>"
+        "<th>own bound sigma_GM / tau / sigma_WN</th><th>navigation file</th>"
+        f"<th>reasons</th></tr>{rows}</table>"
+    )
 
 
 def _held_out_html(doc: dict[str, Any], img: str | None) -> str:
-    notes = "".join(f"<li>{html.escape(st['station'])}: {html.escape(st['comparison_note'])}</li>"
-                    for st in doc["stations"] if st.get("comparison_note"))  # fmt: skip
+    notes = "".join(
+        f"<li>{html.escape(st['station'])}: {html.escape(st['comparison_note'])}</li>"
+        for st in doc["stations"]
+        if st.get("comparison_note")
+    )
     out = "<h2>Held-out days</h2>" + (f"<ul>{notes}</ul>" if notes else "")
     if not doc["held_out"]:
         return out
-    head = ("<tr><th>station</th><th>day</th><th>other days</th><th>held-out bound "
-            "sigma_GM / tau / sigma_WN</th><th>windows covered</th><th>worst excess</th>"
-            "<th>KF max gen. eigenvalue (windows bounded)</th></tr>")  # fmt: skip
+    head = (
+        "<tr><th>station</th><th>day</th><th>other days</th><th>held-out bound "
+        "sigma_GM / tau / sigma_WN</th><th>windows covered</th><th>worst excess</th>"
+        "<th>KF max gen. eigenvalue (windows bounded)</th></tr>"
+    )
     body = "".join(
         f"<tr><td>{html.escape(r['station'])}</td><td>{r['day']}</td><td>{r['n_other_days']}</td>"
         f"<td>{_mm(r['bound'])}</td><td>{100 * r['windows_covered_fraction']:.0f} %</td>"
@@ -133,12 +147,14 @@ def _held_out_html(doc: dict[str, Any], img: str | None) -> str:
         f"({100 * r.get('kf_windows_bounded_fraction', float('nan')):.0f} %)</td></tr>"
         for r in doc["held_out"]
     )
-    return (out + f"<img alt='held-out coverage and KF eigenvalues' "
-            f"src='data:image/png;base64,{img}'><table>{head}{body}</table>"
-            "<p>Held out: each pooled station-day's windows tested against the pooled bound of "
-            "the station's other pooled days (covered: not significantly above it, one-sided "
-            "5 %); KF: a 6-satellite static filter designed with that bound against each of the "
-            "day's windows as the truth.</p>")  # fmt: skip
+    return (
+        out + f"<img alt='held-out coverage and KF eigenvalues' "
+        f"src='data:image/png;base64,{img}'><table>{head}{body}</table>"
+        "<p>Held out: each pooled station-day's windows tested against the pooled bound of "
+        "the station's other pooled days (covered: not significantly above it, one-sided "
+        "5 %); KF: a 6-satellite static filter designed with that bound against each of the "
+        "day's windows as the truth.</p>"
+    )
 
 
 def _page(doc: dict[str, Any], summary: str, img: str | None) -> str:
@@ -168,16 +184,25 @@ def _text_pages(doc: dict[str, Any]) -> list[Any]:
         lines += [*station_lines(st), ""]
     lines.append("station-days (verdict of psdbound fit for each day):")
     for d in doc["days"]:
-        lines.append(f"{d['station']} {d['day']}: {d['verdict']}"
-                     f"{'' if d['in_pool'] else ' (not pooled)'}; navigation {d['nav']}")
+        lines.append(
+            f"{d['station']} {d['day']}: {d['verdict']}"
+            f"{'' if d['in_pool'] else ' (not pooled)'}; navigation {d['nav']}"
+        )
         lines += [f"  reason: {r}" for r in d["verdict_reasons"]]
-    wrapped = [w for line in lines for w in (textwrap.wrap(line, 110, subsequent_indent="    ")
-                                             or [""])]  # fmt: skip
+    wrapped = [
+        w for line in lines for w in (textwrap.wrap(line, 110, subsequent_indent="    ") or [""])
+    ]
     pages = []
     for start in range(0, len(wrapped), _LINES_PER_PAGE):
         fig = plt.figure(figsize=(8.27, 11.69))
-        fig.text(0.05, 0.97, "\n".join(wrapped[start:start + _LINES_PER_PAGE]), va="top",
-                 family="monospace", fontsize=7)  # fmt: skip
+        fig.text(
+            0.05,
+            0.97,
+            "\n".join(wrapped[start : start + _LINES_PER_PAGE]),
+            va="top",
+            family="monospace",
+            fontsize=7,
+        )
         pages.append(fig)
     return pages
 
@@ -218,8 +243,7 @@ def write_campaign(
         ours = {*CAMPAIGN_FILES, DAYS_FOLDER}
         if entries and not (entries <= ours and "campaign.json" in entries):
             raise InputError(
-                "output folder holds files that are not a campaign's; choose a new or empty "
-                "folder",
+                "output folder holds files that are not a campaign's; choose a new or empty folder",
                 path=out,
             )
     doc = to_jsonable(result.to_dict())
@@ -230,9 +254,11 @@ def write_campaign(
         fig.savefig(buf, format="png", dpi=110)
         img = base64.b64encode(buf.getvalue()).decode()
     pages = [*_text_pages(doc), *([fig] if fig is not None else [])] if pdf else []
-    reports = {(d["station"], d["day"]): day_report_name(d["station"], d["day"])
-               for d, document in zip(doc["days"], result.documents, strict=False)
-               if document is not None}  # fmt: skip
+    reports = {
+        (d["station"], d["day"]): day_report_name(d["station"], d["day"])
+        for d, document in zip(doc["days"], result.documents, strict=False)
+        if document is not None
+    }
     with atomic_folder(out, replace=True) as tmp:
         (tmp / "campaign.json").write_text(json_text(doc))
         (tmp / "campaign.html").write_text(_page(doc, result.summary(), img))
@@ -251,8 +277,9 @@ def write_campaign(
     return {n.split(".")[0] if n == NETWORK_PAGE else n.split(".")[1]: out / n for n in names}
 
 
-def _write_day_reports(folder: Path, doc: dict[str, Any],
-                       documents: list[dict[str, Any] | None]) -> None:  # fmt: skip
+def _write_day_reports(
+    folder: Path, doc: dict[str, Any], documents: list[dict[str, Any] | None]
+) -> None:
     """Write each fitted station-day's HTML report into ``folder/days``."""
     from psdbound.reports import render_html
 

@@ -150,19 +150,30 @@ class CampaignResult:
 
     def to_dict(self) -> dict[str, Any]:
         """Return the ``campaign.json`` content (schema ``psdbound-campaign/2``)."""
-        return {"schema": SCHEMA, "verdict": self.verdict, "stations": self.stations,
-                "days": self.days, "held_out": self.held_out, "n_computed": self.n_computed,
-                "n_cached": self.n_cached, **self.meta}  # fmt: skip
+        return {
+            "schema": SCHEMA,
+            "verdict": self.verdict,
+            "stations": self.stations,
+            "days": self.days,
+            "held_out": self.held_out,
+            "n_computed": self.n_computed,
+            "n_cached": self.n_cached,
+            **self.meta,
+        }
 
     def summary(self) -> str:
         """Return a text summary: verdicts of the stations and days, and the held-out tests."""
-        lines = [f"campaign verdict: {self.verdict.upper()}",
-                 f"{len(self.days)} station-days ({self.n_computed} computed, {self.n_cached} "
-                 f"from the cache); {len(self.stations)} station(s)"]  # fmt: skip
+        lines = [
+            f"campaign verdict: {self.verdict.upper()}",
+            f"{len(self.days)} station-days ({self.n_computed} computed, {self.n_cached} "
+            f"from the cache); {len(self.stations)} station(s)",
+        ]
         lines += [line for s in self.stations for line in _station_lines(s)]
         for d in self.days:
-            lines.append(f"  {d['station']} {d['day']}: {d['verdict']}"
-                         + ("" if d["in_pool"] else " (not pooled)"))  # fmt: skip
+            lines.append(
+                f"  {d['station']} {d['day']}: {d['verdict']}"
+                + ("" if d["in_pool"] else " (not pooled)")
+            )
             lines += [f"    reason: {x}" for x in d["verdict_reasons"]]
         for h in self.held_out:
             lines.append(
@@ -183,9 +194,11 @@ def _station_lines(s: dict[str, Any]) -> list[str]:
     """Summary lines of one station: pooled bound, verdict and reasons, what is missing."""
     head = f"  {s['station']}: {s['verdict']}"
     if s["n_pooled"]:
-        head += (f"; pooled over {s['n_pooled']} of {s['n_days']} day(s): sigma_GM "
-                 f"{1e3 * s['sigma_gm_m']:.2f} mm, tau {s['tau_s']:.1f} s, sigma_WN "
-                 f"{1e3 * s['sigma_wn_m']:.2f} mm")  # fmt: skip
+        head += (
+            f"; pooled over {s['n_pooled']} of {s['n_days']} day(s): sigma_GM "
+            f"{1e3 * s['sigma_gm_m']:.2f} mm, tau {s['tau_s']:.1f} s, sigma_WN "
+            f"{1e3 * s['sigma_wn_m']:.2f} mm"
+        )
     lines = [head] + [f"    reason: {x}" for x in s["verdict_reasons"]]
     if s["comparison_note"]:
         lines.append(f"    {s['comparison_note']}")
@@ -194,10 +207,12 @@ def _station_lines(s: dict[str, Any]) -> list[str]:
 
 def _public(result: dict[str, Any], item: dict[str, Any], in_pool: bool) -> dict[str, Any]:
     """Return a day's entry in ``campaign.json``: no PSD arrays; its files; whether pooled."""
-    out = {k: (v.tolist() if isinstance(v, np.ndarray) else v)
-           for k, v in result.items() if not k.startswith("psd_") and k != "document"}  # fmt: skip
-    out.update(obs=[Path(p).name for p in item["obs"]], nav=Path(item["nav"]).name,
-               in_pool=in_pool)  # fmt: skip
+    out = {
+        k: (v.tolist() if isinstance(v, np.ndarray) else v)
+        for k, v in result.items()
+        if not k.startswith("psd_") and k != "document"
+    }
+    out.update(obs=[Path(p).name for p in item["obs"]], nav=Path(item["nav"]).name, in_pool=in_pool)
     return out
 
 
@@ -207,13 +222,17 @@ def _day_options(options: dict[str, dict[str, Any]] | None) -> Any:
 
     options = options or {}
     if options.get("code_multipath", {}).get("codes"):
-        raise InputError("[code_multipath] is a fit option: a campaign pools the carrier-phase "
-                         "bounds only; run `psdbound fit --code-multipath` per day, or remove it")
+        raise InputError(
+            "[code_multipath] is a fit option: a campaign pools the carrier-phase "
+            "bounds only; run `psdbound fit --code-multipath` per day, or remove it"
+        )
     cfg = FitConfig.from_dict(options, source="campaign options")
     if cfg.bound.rule != "pooled":
-        raise InputError(f"bound rule {cfg.bound.rule!r}: a campaign pools the days' window "
-                         "spectra with the pooled rule; remove the envelope rule "
-                         "(--rule pooled, the default)")  # fmt: skip
+        raise InputError(
+            f"bound rule {cfg.bound.rule!r}: a campaign pools the days' window "
+            "spectra with the pooled rule; remove the envelope rule "
+            "(--rule pooled, the default)"
+        )
     return cfg
 
 
@@ -266,21 +285,32 @@ def run_campaign(
     cfg = _day_options(options)
     plan = plan_campaign(obs, nav, system=cfg.inputs.system)
     items = [_item(sd, options or {}) for sd in plan]
-    run = run_tasks(station_day_task, items, workers=workers, scheduler=scheduler,
-                    cache=_cache(cache_dir), progress=progress)  # fmt: skip
+    run = run_tasks(
+        station_day_task,
+        items,
+        workers=workers,
+        scheduler=scheduler,
+        cache=_cache(cache_dir),
+        progress=progress,
+    )
     results = list(run.results)
-    stations, pooled = pool_stations(results, bound_options=cfg.bound,
-                                     verdict_options=cfg.verdict)  # fmt: skip
+    stations, pooled = pool_stations(results, bound_options=cfg.bound, verdict_options=cfg.verdict)
     return CampaignResult(
-        days=[_public(r, it, any(r is p for p in pooled))
-              for r, it in zip(results, items, strict=True)],  # fmt: skip
+        days=[
+            _public(r, it, any(r is p for p in pooled))
+            for r, it in zip(results, items, strict=True)
+        ],
         stations=stations,
         held_out=held_out(pooled, options=cfg.bound),
         n_computed=run.n_computed,
         n_cached=run.n_cached,
-        meta={"files": [{"station": it["station"], "day": it["day"], "sha256": it["sha256"]}
-                        for it in items], "options": options or {},
-              "psdbound": __version__},  # fmt: skip
+        meta={
+            "files": [
+                {"station": it["station"], "day": it["day"], "sha256": it["sha256"]} for it in items
+            ],
+            "options": options or {},
+            "psdbound": __version__,
+        },
         documents=[r.get("document") for r in results],
     )
 
@@ -290,8 +320,14 @@ def _item(sd: StationDay, options: dict[str, dict[str, Any]]) -> dict[str, Any]:
     from psdbound.common import file_sha256
 
     digests = {Path(p).name: file_sha256(p) for p in (*sd.obs, sd.nav)}
-    return {"station": sd.station, "day": sd.day, "obs": list(sd.obs), "nav": sd.nav,
-            "sha256": digests, "options": options}  # fmt: skip
+    return {
+        "station": sd.station,
+        "day": sd.day,
+        "obs": list(sd.obs),
+        "nav": sd.nav,
+        "sha256": digests,
+        "options": options,
+    }
 
 
 def _cache(cache_dir: str | os.PathLike[str] | None) -> Any:
@@ -301,7 +337,13 @@ def _cache(cache_dir: str | os.PathLike[str] | None) -> Any:
 
     return DiskCache(
         cache_dir or default_cache_dir("campaign"),
-        key=lambda it: cache_key({"task": "station-day", "version": __version__,
-                                  "code": code_digest(), "sha256": it["sha256"],
-                                  "options": it["options"]}),
-    )  # fmt: skip
+        key=lambda it: cache_key(
+            {
+                "task": "station-day",
+                "version": __version__,
+                "code": code_digest(),
+                "sha256": it["sha256"],
+                "options": it["options"],
+            }
+        ),
+    )

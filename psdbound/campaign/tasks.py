@@ -71,8 +71,9 @@ def station_day_task(item: dict[str, Any]) -> dict[str, Any]:
         res = fit(config=day_config(item))
     except (InputError, NoDataError) as exc:
         error = " ".join(str(exc).split())
-        out.update(verdict="failed", verdict_reasons=[f"no bound (fit exits 2): {error}"],
-                   error=error)  # fmt: skip
+        out.update(
+            verdict="failed", verdict_reasons=[f"no bound (fit exits 2): {error}"], error=error
+        )
         return out
     out.update(verdict=res.verdict, verdict_reasons=res.verdict_reasons)
     out.update(_position(res.inputs))
@@ -84,8 +85,11 @@ def station_day_task(item: dict[str, Any]) -> dict[str, Any]:
 def _position(inputs: Any) -> dict[str, Any]:
     """Return the station's position from its header (APPROX POSITION XYZ): ECEF and geodetic."""
     xyz = inputs.receiver_xyz_m[0] if inputs.receiver_xyz_m else None
-    return {"position_xyz_m": None if xyz is None else [float(v) for v in xyz],
-            "lat_deg": inputs.lat_deg, "lon_deg": inputs.lon_deg}  # fmt: skip
+    return {
+        "position_xyz_m": None if xyz is None else [float(v) for v in xyz],
+        "lat_deg": inputs.lat_deg,
+        "lon_deg": inputs.lon_deg,
+    }
 
 
 def _psd_values(res: Any) -> list[np.ndarray]:
@@ -99,10 +103,12 @@ def _psd_values(res: Any) -> list[np.ndarray]:
     def gain(f: np.ndarray) -> np.ndarray:
         return res.config.filter.response(f, b.dt_s, cutoff.f_c_hz) ** 2
 
-    gains = [smoothed_response(gain, p.f_hz, float(p.params.get("bandwidth_hz", 0.0)))
-             for p in psds]  # fmt: skip
-    return [np.where(g >= 0.5, v / np.maximum(g, 0.5), v)
-            for v, g in zip(values, gains, strict=True)]  # fmt: skip
+    gains = [
+        smoothed_response(gain, p.f_hz, float(p.params.get("bandwidth_hz", 0.0))) for p in psds
+    ]
+    return [
+        np.where(g >= 0.5, v / np.maximum(g, 0.5), v) for v, g in zip(values, gains, strict=True)
+    ]
 
 
 def _day_bound(res: Any) -> dict[str, Any]:
@@ -112,8 +118,11 @@ def _day_bound(res: Any) -> dict[str, Any]:
     data_s = res.screened.series.data_s
     return {
         "fitted": True,
-        "sigma_gm_m": b.sigma_gm_m, "tau_s": b.tau_s, "sigma_wn_m": b.sigma_wn_m,
-        "dt_s": b.dt_s, "f_min_hz": b.f_min_hz,
+        "sigma_gm_m": b.sigma_gm_m,
+        "tau_s": b.tau_s,
+        "sigma_wn_m": b.sigma_wn_m,
+        "dt_s": b.dt_s,
+        "f_min_hz": b.f_min_hz,
         "f_c_hz": None if res.cutoff is None else res.cutoff.f_c_hz,
         "mapping": [win.mapping.a, win.mapping.b, win.mapping.c_deg],
         "n_windows": len(w),
@@ -128,7 +137,7 @@ def _day_bound(res: Any) -> dict[str, Any]:
         "win_sats": [x.sats for x in w.windows],
         "win_t_start_gps_s": np.array([x.t_start_gps_s for x in w.windows]),
         "estimator": res.bounded.estimator,
-    }  # fmt: skip
+    }
 
 
 def psds_from_result(result: dict[str, Any]) -> list[Any]:
@@ -150,15 +159,20 @@ def psds_from_result(result: dict[str, Any]) -> list[Any]:
     f, s, d = (np.asarray(result[k], dtype=float) for k in ("psd_f_hz", "psd_m2_hz", "psd_dof"))
     width = result.get("psd_bandwidth_hz", np.zeros(len(result["psd_n"])))
     return [
-        PSDEstimate(f[a:b], s[a:b], d[a:b], str(result.get("estimator", "multitaper")),
-                    params={"bandwidth_hz": float(w)} if w else {},
-                    dt_s=float(result["dt_s"]), n_samples=int(n))  # fmt: skip
+        PSDEstimate(
+            f[a:b],
+            s[a:b],
+            d[a:b],
+            str(result.get("estimator", "multitaper")),
+            params={"bandwidth_hz": float(w)} if w else {},
+            dt_s=float(result["dt_s"]),
+            n_samples=int(n),
+        )
         for a, b, n, w in zip(edges[:-1], edges[1:], result["psd_n"], width, strict=True)
     ]
 
 
-def pooled_days_bound(days: list[dict[str, Any]], *, f_min_hz: float,
-                      options: Any = None) -> Any:  # fmt: skip
+def pooled_days_bound(days: list[dict[str, Any]], *, f_min_hz: float, options: Any = None) -> Any:
     """Pool the windows of several days of one station; a sidereal repeat is not independent.
 
     Windows of one satellite a whole number of sidereal days apart repeat
@@ -206,9 +220,16 @@ def pooled_days_bound(days: list[dict[str, Any]], *, f_min_hz: float,
     # like data with no low-frequency power)
     filtered = any(r.get("f_c_hz") for r in days)
     return fit_stated_bound(
-        psds, dt, f_min_hz=f_min_hz, confidence_level=opt.confidence_level,
+        psds,
+        dt,
+        f_min_hz=f_min_hz,
+        confidence_level=opt.confidence_level,
         filtered=filtered,
-        tau_max_s=opt.tau_max_s, objective=opt.objective, coverage=opt.coverage,
-        shape_alpha=opt.shape_alpha, bands_per_decade=opt.bands_per_decade, clusters=clusters,
+        tau_max_s=opt.tau_max_s,
+        objective=opt.objective,
+        coverage=opt.coverage,
+        shape_alpha=opt.shape_alpha,
+        bands_per_decade=opt.bands_per_decade,
+        clusters=clusters,
         cluster_correlation=1.0 if clusters is not None else 0.0,
-    )  # fmt: skip
+    )

@@ -32,9 +32,15 @@ __all__ = ["add_parser", "run"]
 
 #: Most epochs one run evaluates (--hours * 3600 / --step-s).
 MAX_EPOCHS = 100_000
-_SERIES_OPTIONS = {"position": "--position", "start": "--start", "hours": "--hours",
-                   "step_s": "--step-s", "mask_deg": "--mask-deg", "val_m": "--val-m",
-                   "systems": "--systems"}  # fmt: skip
+_SERIES_OPTIONS = {
+    "position": "--position",
+    "start": "--start",
+    "hours": "--hours",
+    "step_s": "--step-s",
+    "mask_deg": "--mask-deg",
+    "val_m": "--val-m",
+    "systems": "--systems",
+}
 _SYSTEM_NAMES = {"G": "GPS (G)", "E": "Galileo (E)"}
 
 

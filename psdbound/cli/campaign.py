@@ -19,8 +19,18 @@ __all__ = ["add_parser", "day_options", "run"]
 #: FitConfig options a campaign sets itself (files, method) or does not use (outputs).
 _CAMPAIGN_OWNS = {("inputs", "obs"), ("inputs", "nav"), ("inputs", "method")}
 #: Sections a campaign takes for every day (inputs only ``system`` and ``signals``).
-_DAY_SECTIONS = ("arcs", "cutoff", "filter", "screening", "mapping", "stationarity", "spectra",
-                 "bound", "verdict", "validation")  # fmt: skip
+_DAY_SECTIONS = (
+    "arcs",
+    "cutoff",
+    "filter",
+    "screening",
+    "mapping",
+    "stationarity",
+    "spectra",
+    "bound",
+    "verdict",
+    "validation",
+)
 _DAY_INPUTS = ("system", "signals")
 
 
@@ -89,8 +99,11 @@ def _as_fit_args(args: argparse.Namespace) -> argparse.Namespace:
 def _changed(obj: Any) -> dict[str, Any]:
     """Return the options of a configuration section that differ from their defaults."""
     default = type(obj)()
-    return {f.name: getattr(obj, f.name) for f in fields(obj)
-            if getattr(obj, f.name) != getattr(default, f.name)}  # fmt: skip
+    return {
+        f.name: getattr(obj, f.name)
+        for f in fields(obj)
+        if getattr(obj, f.name) != getattr(default, f.name)
+    }
 
 
 def day_options(args: argparse.Namespace) -> dict[str, dict[str, Any]]:
@@ -115,9 +128,11 @@ def day_options(args: argparse.Namespace) -> dict[str, dict[str, Any]]:
             if (section, name) in _CAMPAIGN_OWNS:
                 continue
             if section not in _DAY_SECTIONS and name not in _DAY_INPUTS:
-                raise InputError(f"[{section}] {name} (in {args.config}) is not a campaign "
-                                 "option: a campaign fits every day dual-frequency from its own "
-                                 "files and writes its own outputs; remove it")  # fmt: skip
+                raise InputError(
+                    f"[{section}] {name} (in {args.config}) is not a campaign "
+                    "option: a campaign fits every day dual-frequency from its own "
+                    "files and writes its own outputs; remove it"
+                )
             out.setdefault(section, {})[name] = value
     return out
 
@@ -133,9 +148,15 @@ def run(args: argparse.Namespace) -> int:
     check_writable_folder(args.out, option="--out")
     options = day_options(args)
 
-    res = run_campaign(args.obs, args.nav, workers=args.workers, scheduler=args.scheduler,
-                       cache_dir=args.cache_dir, options=options,
-                       progress=counter("station-days computed"))  # fmt: skip
+    res = run_campaign(
+        args.obs,
+        args.nav,
+        workers=args.workers,
+        scheduler=args.scheduler,
+        cache_dir=args.cache_dir,
+        options=options,
+        progress=counter("station-days computed"),
+    )
     files = write_campaign(res, args.out, pdf=not args.no_pdf)
     print(res.summary())
     for f in files.values():

@@ -27,8 +27,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "export",
         formatter_class=DefaultsFormatter,
-        usage="psdbound export [OBS ...] [--nav NAV] [-o FILE] [--format {csv,netcdf}] "
-        "[options]",
+        usage="psdbound export [OBS ...] [--nav NAV] [-o FILE] [--format {csv,netcdf}] [options]",
         help="write the isolated multipath series (per epoch and satellite) as CSV or netCDF",
         description="Fit as `psdbound fit` does (same inputs and options; no files: the "
         "embedded demo) and write only the isolated multipath series: one row per satellite "
@@ -42,21 +41,31 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     add_input_options(p)
     g = p.add_argument_group("outputs")
-    g.add_argument("-o", "--out", metavar="FILE",
-                   help="output file (default: reports/<run-name>-series.csv, or .nc with "
-                   "--format netcdf); .csv.gz is gzip-compressed CSV")  # fmt: skip
-    g.add_argument("--format", choices=("csv", "netcdf"),
-                   help="file format (default: from the name of -o: .nc netCDF, .csv or "
-                   ".csv.gz CSV; csv without -o)")  # fmt: skip
+    g.add_argument(
+        "-o",
+        "--out",
+        metavar="FILE",
+        help="output file (default: reports/<run-name>-series.csv, or .nc with "
+        "--format netcdf); .csv.gz is gzip-compressed CSV",
+    )
+    g.add_argument(
+        "--format",
+        choices=("csv", "netcdf"),
+        help="file format (default: from the name of -o: .nc netCDF, .csv or "
+        ".csv.gz CSV; csv without -o)",
+    )
     g.add_argument("--name", help="run name (default from the first observation file)")
-    g.add_argument("--overwrite", action="store_true",
-                   help="replace an existing file that psdbound did not write (an earlier "
-                   "series file is always replaced)")  # fmt: skip
+    g.add_argument(
+        "--overwrite",
+        action="store_true",
+        help="replace an existing file that psdbound did not write (an earlier "
+        "series file is always replaced)",
+    )
     talk = g.add_mutually_exclusive_group()
-    talk.add_argument("-q", "--quiet", action="store_true",
-                      help="print only errors and the result")  # fmt: skip
-    talk.add_argument("-v", "--verbose", action="store_true",
-                      help="print stage timings and tracebacks")  # fmt: skip
+    talk.add_argument("-q", "--quiet", action="store_true", help="print only errors and the result")
+    talk.add_argument(
+        "-v", "--verbose", action="store_true", help="print stage timings and tracebacks"
+    )
     p.set_defaults(func=run)
 
 

@@ -74,106 +74,310 @@ _O = CliOption
 #: Every ``fit`` option on the command line: its configuration field, flag, help and group.
 #: Types, choices, ranges, units and defaults come from the schema (psdbound.pipeline.FitConfig).
 OPTIONS: tuple[CliOption, ...] = (
-    _O("inputs", "obs", ("obs",), "observation file(s) of one station (consecutive files are "
-       "merged), or of the two antennas named by --pair (default: none, the embedded demo)",
-       "inputs", {"nargs": "*"}),
-    _O("inputs", "nav", ("--nav",), "navigation (RINEX 2/3/4) or SP3 file, repeatable: several "
-       "(e.g. of consecutive days, or a zip of them) are joined (required with OBS, unless OBS "
-       "is a zip archive that also holds the navigation file)", "inputs",
-       {"action": "append", "metavar": "NAV"}),
+    _O(
+        "inputs",
+        "obs",
+        ("obs",),
+        "observation file(s) of one station (consecutive files are "
+        "merged), or of the two antennas named by --pair (default: none, the embedded demo)",
+        "inputs",
+        {"nargs": "*"},
+    ),
+    _O(
+        "inputs",
+        "nav",
+        ("--nav",),
+        "navigation (RINEX 2/3/4) or SP3 file, repeatable: several "
+        "(e.g. of consecutive days, or a zip of them) are joined (required with OBS, unless OBS "
+        "is a zip archive that also holds the navigation file)",
+        "inputs",
+        {"action": "append", "metavar": "NAV"},
+    ),
     _O("inputs", "system", ("--system",), "satellite system letter", _G_IN),
-    _O("inputs", "signals", ("--signals",), "dual-frequency phase pair, e.g. L1C,L2W or "
-       "L1C,L5Q (default: the system's usual pair, GPS L1C,L2W)", _G_IN),
-    _O("cutoff", "f_c_hz", ("--cutoff-hz",), "high-pass cutoff frequency, Hz (default: none; "
-       "the cutoff comes from --cutoff-source)", _G_CUT, {"type": float}),
-    _O("cutoff", "source", ("--cutoff-source",), "cutoff source (auto: --cutoff-hz if given, "
-       "else the shipped world map)", _G_CUT,
-       {"choices": ("auto", "given", "map", "computed", "thesis")}),
-    _O("arcs", "min_length_s", ("--min-arc-min",), "minimum arc length, min", _G_CUT,
-       {"type": float}, convert=_minutes, scale=60.0, unit="min"),
+    _O(
+        "inputs",
+        "signals",
+        ("--signals",),
+        "dual-frequency phase pair, e.g. L1C,L2W or "
+        "L1C,L5Q (default: the system's usual pair, GPS L1C,L2W)",
+        _G_IN,
+    ),
+    _O(
+        "cutoff",
+        "f_c_hz",
+        ("--cutoff-hz",),
+        "high-pass cutoff frequency, Hz (default: none; the cutoff comes from --cutoff-source)",
+        _G_CUT,
+        {"type": float},
+    ),
+    _O(
+        "cutoff",
+        "source",
+        ("--cutoff-source",),
+        "cutoff source (auto: --cutoff-hz if given, else the shipped world map)",
+        _G_CUT,
+        {"choices": ("auto", "given", "map", "computed", "thesis")},
+    ),
+    _O(
+        "arcs",
+        "min_length_s",
+        ("--min-arc-min",),
+        "minimum arc length, min",
+        _G_CUT,
+        {"type": float},
+        convert=_minutes,
+        scale=60.0,
+        unit="min",
+    ),
     _O("arcs", "elevation_mask_deg", ("--elevation-mask-deg",), "elevation mask, deg", _G_CUT),
     _O("filter", "kind", ("--filter",), "high-pass design", _G_CUT),
-    _O("filter", "order", ("--filter-order",), "IIR filter order, 1 to 20 (dimensionless)",
-       _G_CUT, {"type": float}),
+    _O(
+        "filter",
+        "order",
+        ("--filter-order",),
+        "IIR filter order, 1 to 20 (dimensionless)",
+        _G_CUT,
+        {"type": float},
+    ),
     _O("filter", "edge", ("--edge",), "filter edge handling", _G_CUT),
-    _O("screening", "roti_threshold_tecu_min", ("--roti-threshold",),
-       "screening: ROTI above this is ionosphere, TECU/min", _G_SCR),
-    _O("mapping", "kind", ("--mapping",), "elevation mapping: thesis, fit, or a,b,c (a, b "
-       "dimensionless, c in deg) (default: fit, fitted to the data)", _G_SCR, {"choices": None},
-       convert=_mapping, sets=("a", "b", "c_deg")),
-    _O("stationarity", "test", ("--stationarity",), "stationarity test: spectral homogeneity "
-       "of the window halves, valid for correlated samples, or thesis (Levene then K-S)",
-       _G_WIN),
-    _O("stationarity", "windows", ("--windows",), "windows: disjoint tiles (needed by --rule "
-       "pooled) or the thesis's overlapping slide rule", _G_WIN),
-    _O("stationarity", "alpha", ("--alpha",), "stationarity significance level (probability)",
-       _G_WIN),
-    _O("stationarity", "p_slide", ("--p-slide",), "windowing slide coefficient "
-       "(dimensionless)", _G_WIN),
-    _O("stationarity", "p_trim", ("--p-trim",), "windowing trim coefficient (dimensionless)",
-       _G_WIN),
-    _O("stationarity", "min_window_s", ("--min-window-s",), "minimum window length, s; the "
-       "spectral test needs at least 68 samples (34 min at 30 s), a shorter value is an error",
-       _G_WIN),
+    _O(
+        "screening",
+        "roti_threshold_tecu_min",
+        ("--roti-threshold",),
+        "screening: ROTI above this is ionosphere, TECU/min",
+        _G_SCR,
+    ),
+    _O(
+        "mapping",
+        "kind",
+        ("--mapping",),
+        "elevation mapping: thesis, fit, or a,b,c (a, b "
+        "dimensionless, c in deg) (default: fit, fitted to the data)",
+        _G_SCR,
+        {"choices": None},
+        convert=_mapping,
+        sets=("a", "b", "c_deg"),
+    ),
+    _O(
+        "stationarity",
+        "test",
+        ("--stationarity",),
+        "stationarity test: spectral homogeneity "
+        "of the window halves, valid for correlated samples, or thesis (Levene then K-S)",
+        _G_WIN,
+    ),
+    _O(
+        "stationarity",
+        "windows",
+        ("--windows",),
+        "windows: disjoint tiles (needed by --rule pooled) or the thesis's overlapping slide rule",
+        _G_WIN,
+    ),
+    _O(
+        "stationarity",
+        "alpha",
+        ("--alpha",),
+        "stationarity significance level (probability)",
+        _G_WIN,
+    ),
+    _O(
+        "stationarity",
+        "p_slide",
+        ("--p-slide",),
+        "windowing slide coefficient (dimensionless)",
+        _G_WIN,
+    ),
+    _O(
+        "stationarity",
+        "p_trim",
+        ("--p-trim",),
+        "windowing trim coefficient (dimensionless)",
+        _G_WIN,
+    ),
+    _O(
+        "stationarity",
+        "min_window_s",
+        ("--min-window-s",),
+        "minimum window length, s; the "
+        "spectral test needs at least 68 samples (34 min at 30 s), a shorter value is an error",
+        _G_WIN,
+    ),
     _O("spectra", "estimator", ("--estimator",), "PSD estimator", _G_BND),
-    _O("bound", "rule", ("--rule",), "bound pooled confidence limits of the windows' spectra "
-       "or the thesis's envelope of every window's PSD (use with --windows slide)", _G_BND),
-    _O("bound", "confidence_level", ("--confidence-level",), "family-wise confidence of the "
-       "pooled bound (probability)", _G_BND),
-    _O("bound", "coverage", ("--coverage",), "pooled rule: fraction of differing windows "
-       "covered (probability)", _G_BND),
+    _O(
+        "bound",
+        "rule",
+        ("--rule",),
+        "bound pooled confidence limits of the windows' spectra "
+        "or the thesis's envelope of every window's PSD (use with --windows slide)",
+        _G_BND,
+    ),
+    _O(
+        "bound",
+        "confidence_level",
+        ("--confidence-level",),
+        "family-wise confidence of the pooled bound (probability)",
+        _G_BND,
+    ),
+    _O(
+        "bound",
+        "coverage",
+        ("--coverage",),
+        "pooled rule: fraction of differing windows covered (probability)",
+        _G_BND,
+    ),
     _O("bound", "objective", ("--objective",), "tightness objective", _G_BND),
-    _O("bound", "target", ("--target",), "envelope rule: bound the estimates or their "
-       "confidence-interval tops", _G_BND),
-    _O("bound", "level", ("--level",), "envelope rule: confidence level for --target upper "
-       "(probability)", _G_BND),
-    _O("bound", "tau_max_s", ("--tau-max-s",), "pooled rule: prior upper limit of the "
-       "multipath time constant, s, used below the lowest band where the data do not bound it",
-       _G_BND),
-    _O("verdict", "low_frequency", ("--low-frequency",), "when the data do not bound the time "
-       "constant: state the bound on the prior --tau-max-s, or refuse (exit 3)", _G_VER),
-    _O("validation", "geometries", ("--geometry",), "reflection geometry for the cutoff check, "
-       "e.g. wall:d=25 (d, h in m; repeatable)", _G_VER, {"action": "append"}),
-    _O("validation", "threshold", ("--validation-threshold",), "largest fraction of reflector "
-       "multipath power below f_c (fraction)", _G_VER),
-    _O("inputs", "method", ("--method",), "isolation method: df dual-frequency, da "
-       "dual-antenna, auto by the inputs", _G_DA),
+    _O(
+        "bound",
+        "target",
+        ("--target",),
+        "envelope rule: bound the estimates or their confidence-interval tops",
+        _G_BND,
+    ),
+    _O(
+        "bound",
+        "level",
+        ("--level",),
+        "envelope rule: confidence level for --target upper (probability)",
+        _G_BND,
+    ),
+    _O(
+        "bound",
+        "tau_max_s",
+        ("--tau-max-s",),
+        "pooled rule: prior upper limit of the "
+        "multipath time constant, s, used below the lowest band where the data do not bound it",
+        _G_BND,
+    ),
+    _O(
+        "verdict",
+        "low_frequency",
+        ("--low-frequency",),
+        "when the data do not bound the time "
+        "constant: state the bound on the prior --tau-max-s, or refuse (exit 3)",
+        _G_VER,
+    ),
+    _O(
+        "validation",
+        "geometries",
+        ("--geometry",),
+        "reflection geometry for the cutoff check, e.g. wall:d=25 (d, h in m; repeatable)",
+        _G_VER,
+        {"action": "append"},
+    ),
+    _O(
+        "validation",
+        "threshold",
+        ("--validation-threshold",),
+        "largest fraction of reflector multipath power below f_c (fraction)",
+        _G_VER,
+    ),
+    _O(
+        "inputs",
+        "method",
+        ("--method",),
+        "isolation method: df dual-frequency, da dual-antenna, auto by the inputs",
+        _G_DA,
+    ),
     _O("inputs", "da_signal", ("--da-signal",), "dual-antenna phase code", _G_DA),
-    _O("inputs", "pair", ("--pair",), "dual-antenna pair: antenna A and antenna B, each a "
-       "station (marker) name among OBS or an observation file (default: none)", _G_DA,
-       {"nargs": 2, "metavar": ("A", "B")}),
-    _O("inputs", "position_a_m", ("--position-a",), "ECEF position of the (first) antenna, m "
-       "(default: the header's)", _G_DA, {"nargs": 3, "type": float,
-                                           "metavar": ("X", "Y", "Z")}),
-    _O("inputs", "position_b_m", ("--position-b",), "ECEF position of antenna B of a pair, m "
-       "(default: the header's)", _G_DA, {"nargs": 3, "type": float,
-                                          "metavar": ("X", "Y", "Z")}),
-    _O("inputs", "baseline", ("--baseline",), "dual-antenna baseline: auto uses the estimate "
-       "from the double differences when it moves antenna B by more than "
-       "--baseline-tolerance-m and 3 standard errors; estimate always; given keeps the "
-       "positions", _G_DA),
-    _O("inputs", "baseline_tolerance_m", ("--baseline-tolerance-m",), "correction above which "
-       "--baseline auto uses the estimate, m", _G_DA),
-    _O("code_multipath", "codes", ("--code-multipath",), "also estimate code multipath by "
-       "carrier levelling and overbound it per elevation bin: one pseudorange code (C1C: MP "
-       "combination) or two (C1C,C5Q: ionosphere-free); result.json code_multipath and a "
-       "report section (default: off)", _G_CODE, {"metavar": "CODES"}),
-    _O("code_multipath", "edges_deg", ("--code-edges-deg",), "elevation bin edges of the "
-       "code-multipath overbound, deg", _G_CODE, {"metavar": "EDGES"}),
-    _O("code_multipath", "method", ("--code-overbound",), "Gaussian overbound construction of "
-       "the code multipath", _G_CODE),
+    _O(
+        "inputs",
+        "pair",
+        ("--pair",),
+        "dual-antenna pair: antenna A and antenna B, each a "
+        "station (marker) name among OBS or an observation file (default: none)",
+        _G_DA,
+        {"nargs": 2, "metavar": ("A", "B")},
+    ),
+    _O(
+        "inputs",
+        "position_a_m",
+        ("--position-a",),
+        "ECEF position of the (first) antenna, m (default: the header's)",
+        _G_DA,
+        {"nargs": 3, "type": float, "metavar": ("X", "Y", "Z")},
+    ),
+    _O(
+        "inputs",
+        "position_b_m",
+        ("--position-b",),
+        "ECEF position of antenna B of a pair, m (default: the header's)",
+        _G_DA,
+        {"nargs": 3, "type": float, "metavar": ("X", "Y", "Z")},
+    ),
+    _O(
+        "inputs",
+        "baseline",
+        ("--baseline",),
+        "dual-antenna baseline: auto uses the estimate "
+        "from the double differences when it moves antenna B by more than "
+        "--baseline-tolerance-m and 3 standard errors; estimate always; given keeps the "
+        "positions",
+        _G_DA,
+    ),
+    _O(
+        "inputs",
+        "baseline_tolerance_m",
+        ("--baseline-tolerance-m",),
+        "correction above which --baseline auto uses the estimate, m",
+        _G_DA,
+    ),
+    _O(
+        "code_multipath",
+        "codes",
+        ("--code-multipath",),
+        "also estimate code multipath by "
+        "carrier levelling and overbound it per elevation bin: one pseudorange code (C1C: MP "
+        "combination) or two (C1C,C5Q: ionosphere-free); result.json code_multipath and a "
+        "report section (default: off)",
+        _G_CODE,
+        {"metavar": "CODES"},
+    ),
+    _O(
+        "code_multipath",
+        "edges_deg",
+        ("--code-edges-deg",),
+        "elevation bin edges of the code-multipath overbound, deg",
+        _G_CODE,
+        {"metavar": "EDGES"},
+    ),
+    _O(
+        "code_multipath",
+        "method",
+        ("--code-overbound",),
+        "Gaussian overbound construction of the code multipath",
+        _G_CODE,
+    ),
     _O("output", "out", ("-o", "--out"), "output folder (default reports/<run-name>)", _G_OUT),
-    _O("output", "name", ("--name",), "run name (default from the first observation file)",
-       _G_OUT),
-    _O("output", "pdf", ("--no-pdf",), "skip the PDF report", _G_OUT,
-       {"action": "store_true"}, convert=lambda given: {"pdf": not given}),
-    _O("output", "series", ("--series",), "also write series.csv.gz: every isolated sample "
-       "with its time, satellite, azimuth, elevation, value, screening and window", _G_OUT,
-       {"action": "store_true"}),
-    _O("output", "overwrite", ("--overwrite",), "write into an existing folder that is not a "
-       "psdbound output (psdbound's files are replaced, nothing else is touched); a previous "
-       "psdbound output is always replaced", _G_OUT, {"action": "store_true"}),
-)  # fmt: skip
+    _O("output", "name", ("--name",), "run name (default from the first observation file)", _G_OUT),
+    _O(
+        "output",
+        "pdf",
+        ("--no-pdf",),
+        "skip the PDF report",
+        _G_OUT,
+        {"action": "store_true"},
+        convert=lambda given: {"pdf": not given},
+    ),
+    _O(
+        "output",
+        "series",
+        ("--series",),
+        "also write series.csv.gz: every isolated sample "
+        "with its time, satellite, azimuth, elevation, value, screening and window",
+        _G_OUT,
+        {"action": "store_true"},
+    ),
+    _O(
+        "output",
+        "overwrite",
+        ("--overwrite",),
+        "write into an existing folder that is not a "
+        "psdbound output (psdbound's files are replaced, nothing else is touched); a previous "
+        "psdbound output is always replaced",
+        _G_OUT,
+        {"action": "store_true"},
+    ),
+)
 
 
 def _spec(section: str, name: str) -> Any:
@@ -191,10 +395,10 @@ def add_output_options(p: argparse.ArgumentParser) -> None:
     """Options shared by the commands that write reports (outputs, ``-q``/``-v``)."""
     g = add_options(p, _options((_G_OUT,)), _spec, groups=(_G_OUT,))[_G_OUT]
     talk = g.add_mutually_exclusive_group()
-    talk.add_argument("-q", "--quiet", action="store_true",
-                      help="print only errors and the result")  # fmt: skip
-    talk.add_argument("-v", "--verbose", action="store_true",
-                      help="print stage timings and tracebacks")  # fmt: skip
+    talk.add_argument("-q", "--quiet", action="store_true", help="print only errors and the result")
+    talk.add_argument(
+        "-v", "--verbose", action="store_true", help="print stage timings and tracebacks"
+    )
 
 
 def help_text(action: argparse.Action) -> str:
@@ -206,8 +410,10 @@ def help_text(action: argparse.Action) -> str:
     from psdbound.pipeline import FitConfig
 
     text = action.help or ""
-    opt = next((o for o in OPTIONS if action.option_strings
-                and o.flags[-1] == action.option_strings[-1]), None)  # fmt: skip
+    opt = next(
+        (o for o in OPTIONS if action.option_strings and o.flags[-1] == action.option_strings[-1]),
+        None,
+    )
     if opt is None or "default" in text or opt.convert is _mapping:
         return text
     obj = getattr(FitConfig(), opt.section)
@@ -282,8 +488,9 @@ def _toml_names(path: str | None) -> set[tuple[str, str]]:
     return {(s, k) for s, v in data.items() if isinstance(v, dict) for k in v}
 
 
-def _updated(cfg: Any, section: str, given: list[tuple[CliOption, dict[str, Any]]],
-             args: argparse.Namespace) -> Any:  # fmt: skip
+def _updated(
+    cfg: Any, section: str, given: list[tuple[CliOption, dict[str, Any]]], args: argparse.Namespace
+) -> Any:
     """Return ``cfg`` with one section's command-line values; errors name the flag."""
     from psdbound.common.options import OptionError
 
@@ -407,12 +614,21 @@ def run(args: argparse.Namespace) -> int:
     except InputError as exc:
         raise with_files(exc, cfg.inputs.obs) from None
     extra = {"series.csv.gz": result.series_csv()} if cfg.output.series else None
-    names = ["result.json", "report.html", *(["report.pdf"] if cfg.output.pdf else []),
-             *(extra or {})]  # fmt: skip
+    names = [
+        "result.json",
+        "report.html",
+        *(["report.pdf"] if cfg.output.pdf else []),
+        *(extra or {}),
+    ]
     say(f"writing {out}/ ({', '.join(names)})")
-    paths = write_report_folder(result.document, out, pdf=cfg.output.pdf,
-                                overwrite=cfg.output.overwrite, option="--out",
-                                extra=extra)  # fmt: skip
+    paths = write_report_folder(
+        result.document,
+        out,
+        pdf=cfg.output.pdf,
+        overwrite=cfg.output.overwrite,
+        option="--out",
+        extra=extra,
+    )
     print(result.summary())
     for p in paths.values():
         print(p)

@@ -12,13 +12,30 @@ from psdbound.cli.exit_codes import EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_NOT_BOUN
 from psdbound.errors import InputError
 from psdbound.version import __version__
 
-__all__ = ["main", "console", "build_parser", "EXIT_OK", "EXIT_BAD_INPUT", "EXIT_INTERNAL",
-           "EXIT_NOT_BOUNDED"]
+__all__ = [
+    "main",
+    "console",
+    "build_parser",
+    "EXIT_OK",
+    "EXIT_BAD_INPUT",
+    "EXIT_INTERNAL",
+    "EXIT_NOT_BOUNDED",
+]
 
 
 # subcommand modules psdbound.cli.<name>, each with add_parser(sub) and run(args)
-_COMMANDS = ("inspect", "fit", "export", "campaign", "cutoff", "validate", "simulate", "report",
-             "overbound", "budget")
+_COMMANDS = (
+    "inspect",
+    "fit",
+    "export",
+    "campaign",
+    "cutoff",
+    "validate",
+    "simulate",
+    "report",
+    "overbound",
+    "budget",
+)
 
 
 class _Parser(argparse.ArgumentParser):

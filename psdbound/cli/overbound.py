@@ -151,8 +151,9 @@ def _check_options(args: argparse.Namespace) -> None:
     if not 0.0 < args.confidence < 1.0:
         raise InputError(f"--confidence must be in (0, 1), got {args.confidence}")
     if args.method == "paired" and args.min_abs_z is not None:
-        raise InputError("--min-abs-z applies to --method two_step / cdf: the paired overbound "
-                         "exempts no core")  # fmt: skip
+        raise InputError(
+            "--min-abs-z applies to --method two_step / cdf: the paired overbound exempts no core"
+        )
     if args.min_abs_z is None:
         args.min_abs_z = 0.25
     if not args.code and args.nav:
@@ -166,10 +167,16 @@ def _samples_overbound(args: argparse.Namespace) -> Any:
     errors, elevation = read_samples(args.samples)
     try:
         return overbound_by_elevation(
-            errors, elevation, edges_deg=args.edges, method=args.method, bias=args.bias,
-            min_abs_z=args.min_abs_z, min_samples=args.min_samples, unit=args.unit,
+            errors,
+            elevation,
+            edges_deg=args.edges,
+            method=args.method,
+            bias=args.bias,
+            min_abs_z=args.min_abs_z,
+            min_samples=args.min_samples,
+            unit=args.unit,
             confidence=args.confidence,
-        )  # fmt: skip
+        )
     except InputError as exc:
         raise InputError(exc.reason, path=args.samples) from None
 
@@ -189,19 +196,27 @@ def _code_overbound(args: argparse.Namespace) -> tuple[Any, dict[str, Any]]:
     if not 1 <= len([c for c in args.code.split(",") if c.strip()]) <= 2:
         raise InputError(f"--code takes one code or two separated by a comma, got {args.code!r}")
     series = code_multipath_from_files(
-        args.samples, args.nav, args.code, system=args.system,
-        elevation_mask_deg=max(0.0, min(args.edges)), min_length_s=args.min_arc_s,
-    )  # fmt: skip
+        args.samples,
+        args.nav,
+        args.code,
+        system=args.system,
+        elevation_mask_deg=max(0.0, min(args.edges)),
+        min_length_s=args.min_arc_s,
+    )
     print(series.summary())
     try:
         res, sparse = overbound_code_series(
-            series, args.edges, method=args.method, min_samples=args.min_samples,
-            min_abs_z=args.min_abs_z, bias=args.bias, confidence=args.confidence,
-        )  # fmt: skip
+            series,
+            args.edges,
+            method=args.method,
+            min_samples=args.min_samples,
+            min_abs_z=args.min_abs_z,
+            bias=args.bias,
+            confidence=args.confidence,
+        )
     except InputError as exc:
         raise InputError(exc.reason, path=args.samples) from None
     for note in sparse:
         print(f"note: {note}")
     info = describe_code_series(series, min_length_s=args.min_arc_s)
-    return res, {"code_multipath": {"source": str(args.samples), **info,
-                                    "bins_left_out": sparse}}  # fmt: skip
+    return res, {"code_multipath": {"source": str(args.samples), **info, "bins_left_out": sparse}}

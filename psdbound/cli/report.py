@@ -45,8 +45,9 @@ def run(args: argparse.Namespace) -> int:
     result = psdbound.load(args.result)
     option = "--out" if args.out else "the result file's folder (the default --out)"
     check_output_folder(out, overwrite=args.overwrite, option=option)
-    paths = write_report_folder(result.document, out, pdf=not args.no_pdf,
-                                overwrite=args.overwrite, option=option)  # fmt: skip
+    paths = write_report_folder(
+        result.document, out, pdf=not args.no_pdf, overwrite=args.overwrite, option=option
+    )
     if not args.quiet:
         for p in paths.values():
             print(p)

@@ -97,9 +97,13 @@ def _spec_kwargs(opt: CliOption, spec: Any) -> dict[str, Any]:
     return out
 
 
-def add_options(parser: argparse.ArgumentParser, table: Iterable[CliOption],
-                specs: Callable[[str, str], Any], *,
-                groups: Iterable[str]) -> dict[str, Any]:  # fmt: skip
+def add_options(
+    parser: argparse.ArgumentParser,
+    table: Iterable[CliOption],
+    specs: Callable[[str, str], Any],
+    *,
+    groups: Iterable[str],
+) -> dict[str, Any]:
     """Add the table's options of the given groups, one argument group each, in order.
 
     Parameters
@@ -138,8 +142,9 @@ def _as_field(opt: CliOption, value: Any) -> dict[str, Any]:
     return {opt.name: value}
 
 
-def given_values(args: argparse.Namespace, table: Iterable[CliOption]
-                 ) -> dict[str, list[tuple[CliOption, dict[str, Any]]]]:  # fmt: skip
+def given_values(
+    args: argparse.Namespace, table: Iterable[CliOption]
+) -> dict[str, list[tuple[CliOption, dict[str, Any]]]]:
     """Return, per section, the options given on the command line and their field values.
 
     Parameters

@@ -62,8 +62,14 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 #: Scenario fields set by a flag of their own (error messages name the flag).
-_FLAGS = {"start_gps": "--start", "nav_path": "--nav", "receiver_noise_m": "--receiver-noise-m",
-          "duration_s": "--duration-h", "interval_s": "--interval-s", "seed": "--seed"}  # fmt: skip
+_FLAGS = {
+    "start_gps": "--start",
+    "nav_path": "--nav",
+    "receiver_noise_m": "--receiver-noise-m",
+    "duration_s": "--duration-h",
+    "interval_s": "--interval-s",
+    "seed": "--seed",
+}
 
 
 def _warn_beyond_limit(sc: Any, args: argparse.Namespace) -> None:
@@ -97,15 +103,21 @@ def run(args: argparse.Namespace) -> int:
 
     checks = {
         "--seed": (args.seed, Number(lo=0, hi=2**63 - 1, integer=True, optional=True)),
-        "--duration-h": (args.duration_h, Number(lo=0, hi=24 * 366, lo_open=True, unit="h",
-                                                 optional=True)),
-        "--interval-s": (args.interval_s, Number(lo=0, hi=3600, lo_open=True, unit="s",
-                                                 optional=True)),
+        "--duration-h": (
+            args.duration_h,
+            Number(lo=0, hi=24 * 366, lo_open=True, unit="h", optional=True),
+        ),
+        "--interval-s": (
+            args.interval_s,
+            Number(lo=0, hi=3600, lo_open=True, unit="s", optional=True),
+        ),
         "--lat-deg": (args.lat_deg, Number(lo=-90, hi=90, unit="deg", optional=True)),
         "--lon-deg": (args.lon_deg, Number(lo=-180, hi=360, unit="deg", optional=True)),
-        "--receiver-noise-m": (args.receiver_noise_m, Number(lo=0, hi=MAX_MULTIPATH_M, unit="m",
-                                                             optional=True)),
-    }  # fmt: skip
+        "--receiver-noise-m": (
+            args.receiver_noise_m,
+            Number(lo=0, hi=MAX_MULTIPATH_M, unit="m", optional=True),
+        ),
+    }
     for flag, (value, spec) in checks.items():
         spec(flag, value)
     if args.out:

@@ -166,19 +166,29 @@ def run(args: argparse.Namespace) -> int:
     checks = {
         "--cutoff-hz": (args.cutoff_hz, Number(lo=1e-6, hi=10.0, unit="Hz")),
         "--theta0-deg": (args.theta0_deg, Number(lo=-90.0, hi=90.0, unit="deg")),
-        "--amplitude-deg": (args.amplitude_deg, Number(lo=0.0, hi=90.0, lo_open=True, unit="deg",
-                                                       optional=True)),
-        "--elevation-mask-deg": (args.elevation_mask_deg, Number(lo=0.0, hi=90.0, hi_open=True,
-                                                                 unit="deg")),
+        "--amplitude-deg": (
+            args.amplitude_deg,
+            Number(lo=0.0, hi=90.0, lo_open=True, unit="deg", optional=True),
+        ),
+        "--elevation-mask-deg": (
+            args.elevation_mask_deg,
+            Number(lo=0.0, hi=90.0, hi_open=True, unit="deg"),
+        ),
         "--min-pass-min": (args.min_pass_min, Number(lo=0.0, hi=1440.0, lo_open=True, unit="min")),
         "--alpha": (args.alpha, Number(lo=0.0, hi=1.0, lo_open=True)),
         "--threshold": (args.threshold, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True)),
-        "--wavelength-m": (args.wavelength_m, Number(lo=0.0, hi=10.0, lo_open=True, unit="m",
-                                                     optional=True)),
+        "--wavelength-m": (
+            args.wavelength_m,
+            Number(lo=0.0, hi=10.0, lo_open=True, unit="m", optional=True),
+        ),
         "--distance-tolerance-m": (args.distance_tolerance_m, Number(lo=0.0, hi=1e4, unit="m")),
-        "--receiver-ecef": (args.receiver_ecef, Tuple(Number(), lengths=(3,), what="X Y Z in m")
-                            if args.receiver_ecef is not None else Number(optional=True)),
-    }  # fmt: skip
+        "--receiver-ecef": (
+            args.receiver_ecef,
+            Tuple(Number(), lengths=(3,), what="X Y Z in m")
+            if args.receiver_ecef is not None
+            else Number(optional=True),
+        ),
+    }
     for flag, (value, spec) in checks.items():
         spec(flag, value)
     if args.nav and args.receiver_ecef is None:

@@ -158,8 +158,9 @@ class Spec:
         except OptionError:
             raise
         except _ItemError as exc:
-            raise OptionError(name, exc.value, exc.expected, detail=exc.detail,
-                              item=f" item {exc.index}") from None  # fmt: skip
+            raise OptionError(
+                name, exc.value, exc.expected, detail=exc.detail, item=f" item {exc.index}"
+            ) from None
         except (ValueError, TypeError) as exc:
             raise OptionError(name, value, self.describe(), detail=str(exc)) from None
 
@@ -396,8 +397,12 @@ class Table(Spec):
         return out
 
 
-def option(default: Any = _MISSING, spec: Spec | None = None, *,
-           default_factory: Callable[[], Any] | None = None) -> Any:  # fmt: skip
+def option(
+    default: Any = _MISSING,
+    spec: Spec | None = None,
+    *,
+    default_factory: Callable[[], Any] | None = None,
+) -> Any:
     """Declare a dataclass field with its schema (:class:`Spec`).
 
     Parameters

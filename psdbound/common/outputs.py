@@ -119,9 +119,13 @@ def check_writable_folder(path: str | os.PathLike[str], *, option: str = "output
     return p
 
 
-def check_output_file(path: str | os.PathLike[str], *, overwrite: bool = False,
-                      option: str = "output file",
-                      ours: Callable[[Path], bool] | None = None) -> Path:  # fmt: skip
+def check_output_file(
+    path: str | os.PathLike[str],
+    *,
+    overwrite: bool = False,
+    option: str = "output file",
+    ours: Callable[[Path], bool] | None = None,
+) -> Path:
     """Check that one output file can be written at ``path`` (nothing is created).
 
     Parameters
@@ -150,12 +154,17 @@ def check_output_file(path: str | os.PathLike[str], *, overwrite: bool = False,
     p = Path(path)
     if p.exists() or p.is_symlink():
         if not p.is_file():
-            raise InputError(f"{option} is an existing folder (or not a regular file); give a "
-                             "file name (nothing was written)", path=p)  # fmt: skip
+            raise InputError(
+                f"{option} is an existing folder (or not a regular file); give a "
+                "file name (nothing was written)",
+                path=p,
+            )
         if not overwrite and not (ours is not None and ours(p)):
-            raise InputError(f"{option} is an existing file that psdbound did not write; give "
-                             "another name, or --overwrite to replace it (nothing was written)",
-                             path=p)  # fmt: skip
+            raise InputError(
+                f"{option} is an existing file that psdbound did not write; give "
+                "another name, or --overwrite to replace it (nothing was written)",
+                path=p,
+            )
     check_writable_folder(p.parent if str(p.parent) else Path("."), option=f"{option}'s folder")
     return p
 
@@ -265,8 +274,9 @@ def output_folder(
         # the destination may have changed while the outputs were built: check again
         now = check_output_folder(out, overwrite=overwrite, option=option)
         if now == "merge" and mode != "merge":
-            raise InputError(f"{option} changed while psdbound was running; nothing was written",
-                             path=out)  # fmt: skip
+            raise InputError(
+                f"{option} changed while psdbound was running; nothing was written", path=out
+            )
         if now == "merge":
             _merge(tmp, out, new)
         else:

@@ -11,9 +11,16 @@ __all__ = ["file_sha256", "package_versions", "DEPENDENCIES"]
 
 #: Runtime dependencies whose versions are recorded with every result.
 DEPENDENCIES = (
-    "numpy", "scipy", "astropy", "statsmodels", "hatanaka", "PyIRI", "matplotlib", "jinja2",
+    "numpy",
+    "scipy",
+    "astropy",
+    "statsmodels",
+    "hatanaka",
+    "PyIRI",
+    "matplotlib",
+    "jinja2",
     "dask",
-)  # fmt: skip
+)
 
 
 def file_sha256(path: str | os.PathLike[str]) -> str:

@@ -39,8 +39,15 @@ from psdbound.io._header import ObsHeader, missing_systems
 from psdbound.io.timescales import utc_to_gps_s
 
 #: Largest satellite number per system letter (RINEX 3.05 ids; SBAS ids are PRN - 100).
-PRN_RANGE = {"G": (1, 63), "R": (1, 36), "E": (1, 50), "C": (1, 63), "J": (1, 10),
-             "S": (20, 59), "I": (1, 14)}  # fmt: skip
+PRN_RANGE = {
+    "G": (1, 63),
+    "R": (1, 36),
+    "E": (1, 50),
+    "C": (1, 63),
+    "J": (1, 10),
+    "S": (20, 59),
+    "I": (1, 14),
+}
 #: Plausible values per observation type (first letter), in RINEX units; outside them a
 #: column is not what the header says it is.
 VALUE_LIMITS = {
@@ -128,10 +135,14 @@ class _Collector:
         if m is None:
             raise self.fail(
                 f"bad epoch date {ln[:29].decode('ascii', 'replace')!r} (expected "
-                + ("'> yyyy mm dd hh mm ss.sssssss'" if layout is _DATE_V3
-                   else "' yy mm dd hh mm ss.sssssss'") + ")",
+                + (
+                    "'> yyyy mm dd hh mm ss.sssssss'"
+                    if layout is _DATE_V3
+                    else "' yy mm dd hh mm ss.sssssss'"
+                )
+                + ")",
                 i,
-            )  # fmt: skip
+            )
         g = m.groups()
         self.times.append((int(g[0]), int(g[1]), int(g[2]), int(g[3]), int(g[4]), float(g[5])))
         self.lines.append(i)
@@ -238,8 +249,10 @@ class _Collector:
 
     def _check_span(self, labels: np.ndarray, dates: np.ndarray) -> None:
         h = self.header
-        for rec, name, sign in ((h.first_obs, "TIME OF FIRST OBS", -1),
-                                (h.last_obs, "TIME OF LAST OBS", 1)):  # fmt: skip
+        for rec, name, sign in (
+            (h.first_obs, "TIME OF FIRST OBS", -1),
+            (h.last_obs, "TIME OF LAST OBS", 1),
+        ):
             if rec is None or _bad_date(rec, h.time_system):
                 continue
             limit = _label(rec)
@@ -298,8 +311,9 @@ def _check_widths(acc: _Collector, system: str, recs: list[bytes], width: int) -
             )
 
 
-def _check_values(acc: _Collector, system: str, codes: Sequence[str], values: np.ndarray,
-                  row0: int = 0) -> None:  # fmt: skip
+def _check_values(
+    acc: _Collector, system: str, codes: Sequence[str], values: np.ndarray, row0: int = 0
+) -> None:
     for k, code in enumerate(codes):
         lim = VALUE_LIMITS.get(code[0])
         if lim is None:
@@ -378,8 +392,9 @@ def _build_blocks(
     return blocks
 
 
-def _parse_block(acc: _Collector, system: str, chars: np.ndarray, n_types: int,
-                 cols: list[int]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
+def _parse_block(
+    acc: _Collector, system: str, chars: np.ndarray, n_types: int, cols: list[int]
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Parse every field of every record, a chunk of rows at a time; keep ``cols``.
 
     All fields are parsed and range-checked, also those not kept: a column
@@ -493,8 +508,9 @@ def parse_v3(
     for k in range(len(starts) - 1):
         i, nxt = starts[k], starts[k + 1]
         ln = lines[i]
-        flag, nsat = _epoch_numbers(acc, ln, i, 31,
-                                    "expected '> yyyy mm dd hh mm ss.sssssss  f nnn'")  # fmt: skip
+        flag, nsat = _epoch_numbers(
+            acc, ln, i, 31, "expected '> yyyy mm dd hh mm ss.sssssss  f nnn'"
+        )
         if i + 1 + nsat != nxt:
             short = i + 1 + nsat > nxt
             where = "the file ends" if nxt == n_lines else "the next epoch starts"
@@ -603,8 +619,7 @@ def parse_v2(
         if not ln.strip():
             i += 1
             continue
-        flag, nsat = _epoch_numbers(acc, ln, i, 28,
-                                    "expected ' yy mm dd hh mm ss.sssssss  f nnn'")  # fmt: skip
+        flag, nsat = _epoch_numbers(acc, ln, i, 28, "expected ' yy mm dd hh mm ss.sssssss  f nnn'")
         if flag in (2, 3, 4, 5):
             if i + 1 + nsat > n_lines:
                 raise acc.fail(f"truncated event: {nsat} records announced, the file ends", i)

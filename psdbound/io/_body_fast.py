@@ -77,8 +77,9 @@ class Scan:
         self.seen: set[str] = set()
 
 
-def _gather(buf: NDArray[np.uint8], starts: NDArray[np.int64], lengths: NDArray[np.int64],
-            width: int) -> NDArray[np.uint8]:  # fmt: skip
+def _gather(
+    buf: NDArray[np.uint8], starts: NDArray[np.int64], lengths: NDArray[np.int64], width: int
+) -> NDArray[np.uint8]:
     """Rows ``buf[start:start + length]`` cut to ``width`` and space-padded, in chunks."""
     n = starts.size
     out = np.full((n, width), _SPACE, dtype=np.uint8)
@@ -140,8 +141,9 @@ def _sat_counts(n_c: NDArray[np.uint8]) -> NDArray[np.int64] | None:
     return _number(np.where(n_c == _SPACE, 0, n_c.astype(np.int64) - _ZERO), [0, 1, 2])
 
 
-def _epoch_fields(chars: NDArray[np.uint8]) -> tuple[NDArray[np.float64], NDArray[np.int64],
-                                                     NDArray[np.int64]] | None:  # fmt: skip
+def _epoch_fields(
+    chars: NDArray[np.uint8],
+) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.int64]] | None:
     """Dates, flags and satellite counts of strict epoch records; None if any is not."""
     if not _is_strict_epoch(chars):
         return None
@@ -163,8 +165,9 @@ def _line_bounds(buf: NDArray[np.uint8]) -> tuple[NDArray[np.int64], NDArray[np.
     ends = np.concatenate([nl, [buf.size]]).astype(np.int64)
     lengths = ends - starts
     n_lines = lengths.size
-    while n_lines and (lengths[n_lines - 1] == 0 or _WHITE[
-            buf[starts[n_lines - 1] : ends[n_lines - 1]]].all()):  # fmt: skip
+    while n_lines and (
+        lengths[n_lines - 1] == 0 or _WHITE[buf[starts[n_lines - 1] : ends[n_lines - 1]]].all()
+    ):
         n_lines -= 1
     return starts[:n_lines], lengths[:n_lines]
 
@@ -220,8 +223,7 @@ def _system_records(
     return True
 
 
-def scan_v3(body: bytes, systems: Collection[str] | None,
-            widths: dict[str, int]) -> Scan | None:  # fmt: skip
+def scan_v3(body: bytes, systems: Collection[str] | None, widths: dict[str, int]) -> Scan | None:
     """Scan a regular RINEX 3 data section at once.
 
     Parameters

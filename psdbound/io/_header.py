@@ -101,8 +101,15 @@ _TYPE_NAMES = {
 }
 
 #: Name of each system letter.
-SYSTEM_NAMES = {"G": "GPS", "E": "Galileo", "R": "GLONASS", "C": "BeiDou", "J": "QZSS",
-                "S": "SBAS", "I": "NavIC"}  # fmt: skip
+SYSTEM_NAMES = {
+    "G": "GPS",
+    "E": "Galileo",
+    "R": "GLONASS",
+    "C": "BeiDou",
+    "J": "QZSS",
+    "S": "SBAS",
+    "I": "NavIC",
+}
 #: Time systems an observation file may use.
 TIME_SYSTEMS = ("GPS", "GLO", "GAL", "BDT", "QZS", "IRN", "UTC")
 #: The RINEX observation versions read, for messages.
@@ -274,8 +281,7 @@ def missing_systems(path: Path, missing, held, where: str) -> NoDataError:
     """
     want = system_list(missing)
     if not held:
-        return NoDataError(f"no {want} observations: the file holds none of any system",
-                           path=path)  # fmt: skip
+        return NoDataError(f"no {want} observations: the file holds none of any system", path=path)
     first = sorted(held, key=lambda s: SYSTEM_LETTERS.find(s) % 99)[0]
     return NoDataError(
         f"no {want} observations: the file holds {system_list(held)} only ({where}); choose "

@@ -142,9 +142,11 @@ class TypeLists:
                 f"observation code {number} of {self.count[self.cur]} is blank (columns "
                 f"{cols}): the type list is damaged and every later column would be misread"
             )
-        ok = (_V3_CODE.fullmatch(code) or _V3_IONO.fullmatch(code)) if self.v3 else (
-            _V2_CODE.fullmatch(code)
-        )  # fmt: skip
+        ok = (
+            (_V3_CODE.fullmatch(code) or _V3_IONO.fullmatch(code))
+            if self.v3
+            else (_V2_CODE.fullmatch(code))
+        )
         if not ok:
             raise ValueError(f"{code!r} in columns {cols} is not an observation code")
         if code in self.types[self.cur]:
@@ -169,22 +171,48 @@ class TypeLists:
 KNOWN_LABELS = frozenset(
     {
         # RINEX 2.11
-        "RINEX VERSION / TYPE", "PGM / RUN BY / DATE", "COMMENT", "MARKER NAME",
-        "MARKER NUMBER", "OBSERVER / AGENCY", "REC # / TYPE / VERS", "ANT # / TYPE",
-        "APPROX POSITION XYZ", "ANTENNA: DELTA H/E/N", "WAVELENGTH FACT L1/2",
-        "# / TYPES OF OBSERV", "INTERVAL", "TIME OF FIRST OBS", "TIME OF LAST OBS",
-        "RCV CLOCK OFFS APPL", "LEAP SECONDS", "# OF SATELLITES", "PRN / # OF OBS",
+        "RINEX VERSION / TYPE",
+        "PGM / RUN BY / DATE",
+        "COMMENT",
+        "MARKER NAME",
+        "MARKER NUMBER",
+        "OBSERVER / AGENCY",
+        "REC # / TYPE / VERS",
+        "ANT # / TYPE",
+        "APPROX POSITION XYZ",
+        "ANTENNA: DELTA H/E/N",
+        "WAVELENGTH FACT L1/2",
+        "# / TYPES OF OBSERV",
+        "INTERVAL",
+        "TIME OF FIRST OBS",
+        "TIME OF LAST OBS",
+        "RCV CLOCK OFFS APPL",
+        "LEAP SECONDS",
+        "# OF SATELLITES",
+        "PRN / # OF OBS",
         "END OF HEADER",
         # RINEX 3.0x
-        "MARKER TYPE", "ANTENNA: DELTA X/Y/Z", "ANTENNA: PHASECENTER", "ANTENNA: B.SIGHT XYZ",
-        "ANTENNA: ZERODIR AZI", "ANTENNA: ZERODIR XYZ", "CENTER OF MASS: XYZ",
-        "SYS / # / OBS TYPES", "SIGNAL STRENGTH UNIT", "SYS / DCBS APPLIED",
-        "SYS / PCVS APPLIED", "SYS / SCALE FACTOR", "SYS / PHASE SHIFT",
-        "GLONASS SLOT / FRQ #", "GLONASS COD/PHS/BIS",
+        "MARKER TYPE",
+        "ANTENNA: DELTA X/Y/Z",
+        "ANTENNA: PHASECENTER",
+        "ANTENNA: B.SIGHT XYZ",
+        "ANTENNA: ZERODIR AZI",
+        "ANTENNA: ZERODIR XYZ",
+        "CENTER OF MASS: XYZ",
+        "SYS / # / OBS TYPES",
+        "SIGNAL STRENGTH UNIT",
+        "SYS / DCBS APPLIED",
+        "SYS / PCVS APPLIED",
+        "SYS / SCALE FACTOR",
+        "SYS / PHASE SHIFT",
+        "GLONASS SLOT / FRQ #",
+        "GLONASS COD/PHS/BIS",
         # RINEX 4.0x
-        "DOI", "LICENSE OF USE", "STATION INFORMATION",
+        "DOI",
+        "LICENSE OF USE",
+        "STATION INFORMATION",
     }
-)  # fmt: skip
+)
 
 
 class HeaderRecords:

@@ -105,8 +105,15 @@ KEPLER_LINES = 8
 Epoch = tuple[int, int, int, int, int, float]
 
 #: Satellite numbers per system letter in navigation files (RINEX 3 ids).
-PRN_RANGE = {"G": (1, 63), "R": (1, 36), "E": (1, 50), "C": (1, 63), "J": (1, 10),
-             "S": (20, 59), "I": (1, 14)}  # fmt: skip
+PRN_RANGE = {
+    "G": (1, 63),
+    "R": (1, 36),
+    "E": (1, 50),
+    "C": (1, 63),
+    "J": (1, 10),
+    "S": (20, 59),
+    "I": (1, 14),
+}
 #: Plausible Keplerian elements; a record outside them cannot be a GNSS orbit.
 _PLAUSIBLE = {
     "sqrt_a": (2000.0, 10000.0, "sqrt(A) of 2000-10000 m^0.5"),
@@ -127,8 +134,20 @@ def valid_calendar(ep: Epoch, two_digit_year: bool = False) -> bool:
         return False
     if not 0.0 <= s < 60.0:  # also False for NaN
         return False
-    days = [31, 29 if (y % 4 == 0 and y % 100 != 0) or y % 400 == 0 else 28, 31, 30, 31, 30,
-            31, 31, 30, 31, 30, 31]  # fmt: skip
+    days = [
+        31,
+        29 if (y % 4 == 0 and y % 100 != 0) or y % 400 == 0 else 28,
+        31,
+        30,
+        31,
+        30,
+        31,
+        31,
+        30,
+        31,
+        30,
+        31,
+    ]
     return 1 <= d <= days[mo - 1]
 
 
@@ -246,8 +265,10 @@ class RecordParser:
             cols = self.cols[system] = {a: [] for a in ATTRS}
             self.sats[system] = []
             self.epochs[system] = []
-        values = {attr: self.number(rec, k, j, sat, attr, required)
-                  for (k, j), attr, required in FIELD_TABLE}  # fmt: skip
+        values = {
+            attr: self.number(rec, k, j, sat, attr, required)
+            for (k, j), attr, required in FIELD_TABLE
+        }
         reason = self.damage(ep, values)
         if reason:
             self.damaged.append((rec[0], sat, reason))

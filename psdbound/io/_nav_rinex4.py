@@ -141,9 +141,8 @@ class Rinex4Parser(Rinex3Parser):
         if not fewest <= len(rec) <= most:
             want = f"{fewest}" if fewest == most else f"{fewest} or {most}"
             self.damaged.append(
-                (i, sat, f"{len(rec)} lines after the record header, {message} records have "
-                 f"{want}")
-            )  # fmt: skip
+                (i, sat, f"{len(rec)} lines after the record header, {message} records have {want}")
+            )
             return
         found = self.lines[rec[0]][:3].replace(" ", "0")
         if found != sat:

@@ -82,8 +82,9 @@ def _decompress(p: Path, raw: bytes) -> bytes:
         raise
     except Exception as exc:  # gzip/zlib/bz2/zip/LZW errors: the compressed stream is damaged
         detail = " ".join(str(exc).split()) or type(exc).__name__
-        raise InputError(f"cannot decompress: {detail} (damaged or truncated file?)",
-                         path=p) from None  # fmt: skip
+        raise InputError(
+            f"cannot decompress: {detail} (damaged or truncated file?)", path=p
+        ) from None
     return raw
 
 

@@ -57,11 +57,19 @@ __all__ = [
 ]
 
 #: Gravitational constant times Earth mass used by each system's ICD, m^3/s^2.
-GM_M3_S2 = {"G": GM_GPS_M3_S2, "J": GM_GPS_M3_S2, "E": GM_BEIDOU_GALILEO_M3_S2,
-            "C": GM_BEIDOU_GALILEO_M3_S2}  # fmt: skip
+GM_M3_S2 = {
+    "G": GM_GPS_M3_S2,
+    "J": GM_GPS_M3_S2,
+    "E": GM_BEIDOU_GALILEO_M3_S2,
+    "C": GM_BEIDOU_GALILEO_M3_S2,
+}
 #: Earth rotation rate used by each system's ICD, rad/s.
-OMEGA_E_BY_SYSTEM_RAD_S = {"G": OMEGA_E_RAD_S, "J": OMEGA_E_RAD_S, "E": OMEGA_E_RAD_S,
-                           "C": OMEGA_E_BEIDOU_RAD_S}  # fmt: skip
+OMEGA_E_BY_SYSTEM_RAD_S = {
+    "G": OMEGA_E_RAD_S,
+    "J": OMEGA_E_RAD_S,
+    "E": OMEGA_E_RAD_S,
+    "C": OMEGA_E_BEIDOU_RAD_S,
+}
 #: Largest |t - toe| for which a record is used, s.
 MAX_AGE_S = {"G": 4 * 3600.0, "J": 4 * 3600.0, "E": 4 * 3600.0, "C": 4 * 3600.0}
 #: Half a week, s (time-from-ephemeris crossover wrap).

@@ -123,8 +123,7 @@ def _merged_block(
 ) -> SystemBlock:
     """Return one system's block over all files: the union of satellites and codes."""
     sats = sorted({s for o in order if sys_ in o.blocks for s in o.blocks[sys_].sats})
-    codes = list(dict.fromkeys(c for o in order if sys_ in o.blocks
-                               for c in o.blocks[sys_].codes))  # fmt: skip
+    codes = list(dict.fromkeys(c for o in order if sys_ in o.blocks for c in o.blocks[sys_].codes))
     parts_v, parts_l, parts_s = [], [], []
     for o in order:
         n = o.t_gps_s.size
@@ -141,8 +140,7 @@ def _merged_block(
     def pick(parts: list[NDArray]) -> NDArray:
         return np.concatenate(parts)[keep][sort]
 
-    return SystemBlock(sys_, tuple(sats), tuple(codes), pick(parts_v),
-                       pick(parts_l), pick(parts_s))  # fmt: skip
+    return SystemBlock(sys_, tuple(sats), tuple(codes), pick(parts_v), pick(parts_l), pick(parts_s))
 
 
 def merge_observations(files: Sequence[Observations]) -> Observations:

@@ -278,8 +278,14 @@ def _keep_codes(raw: dict[str, RawBlock], codes: set[str]) -> dict[str, RawBlock
     for s, b in raw.items():
         k = [i for i, c in enumerate(b.codes) if c in codes]
         if k:
-            out[s] = RawBlock(s, b.sats, tuple(b.codes[i] for i in k), b.values[:, :, k],
-                              b.lli[:, :, k], b.ssi[:, :, k])  # fmt: skip
+            out[s] = RawBlock(
+                s,
+                b.sats,
+                tuple(b.codes[i] for i in k),
+                b.values[:, :, k],
+                b.lli[:, :, k],
+                b.ssi[:, :, k],
+            )
     return out
 
 
@@ -325,8 +331,14 @@ def _wanted_codes(
     for c in codes:
         found = _codes_in_header(c, header, want_sys)
         if not found:
-            avail = sorted({t for s, ts in header.obs_types.items() for t in ts
-                            if want_sys is None or s in want_sys})  # fmt: skip
+            avail = sorted(
+                {
+                    t
+                    for s, ts in header.obs_types.items()
+                    for t in ts
+                    if want_sys is None or s in want_sys
+                }
+            )
             raise InputError(
                 f"observation code {c!r} is not in the header; available: {' '.join(avail)}",
                 path=p,

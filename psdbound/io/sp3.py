@@ -568,10 +568,16 @@ def merge_precise(orbits: Sequence[PreciseOrbit], path: str | Path) -> PreciseOr
     """
     steps = {round(float(np.median(np.diff(o.t_gps_s))), 3) for o in orbits if o.t_gps_s.size > 1}
     if len(steps) > 1:
-        names = ", ".join(f"{Path(o.path).name} ({float(np.median(np.diff(o.t_gps_s))):g} s)"
-                          for o in orbits if o.t_gps_s.size > 1)  # fmt: skip
-        raise InputError(f"SP3 files with different epoch intervals: {names}; give files of "
-                         "one interval (one product)", path=path)  # fmt: skip
+        names = ", ".join(
+            f"{Path(o.path).name} ({float(np.median(np.diff(o.t_gps_s))):g} s)"
+            for o in orbits
+            if o.t_gps_s.size > 1
+        )
+        raise InputError(
+            f"SP3 files with different epoch intervals: {names}; give files of "
+            "one interval (one product)",
+            path=path,
+        )
     sats = tuple(dict.fromkeys(s for o in orbits for s in o.sats))
     t_all = np.concatenate([o.t_gps_s for o in orbits])
     t, first = np.unique(t_all, return_index=True)  # the first file's epoch where repeated
@@ -586,5 +592,11 @@ def merge_precise(orbits: Sequence[PreciseOrbit], path: str | Path) -> PreciseOr
         xyz[at[:, None], cols] = o.xyz_m[keep]
         clk[at[:, None], cols] = o.clock_s[keep]
         offset += o.t_gps_s.size
-    return PreciseOrbit(path=Path(path), t_gps_s=t, sats=sats, xyz_m=xyz, clock_s=clk,
-                        time_system=orbits[0].time_system)  # fmt: skip
+    return PreciseOrbit(
+        path=Path(path),
+        t_gps_s=t,
+        sats=sats,
+        xyz_m=xyz,
+        clock_s=clk,
+        time_system=orbits[0].time_system,
+    )

@@ -313,10 +313,23 @@ def plot_world_map(doc: dict, path: str | os.PathLike[str]) -> Path:
         mesh = ax.pcolormesh(edges_lon, edges_lat, f_w, norm=norm, cmap="viridis", shading="flat")
         for st in layer["stations"]:
             v = st["recommended_f_c_hz"]
-            ax.scatter([st["lon_deg"]], [st["lat_deg"]], c=[v], norm=norm, cmap="viridis",
-                       edgecolors="w", s=45)  # fmt: skip
-            ax.annotate(st["name"], (st["lon_deg"], st["lat_deg"]), xytext=(3, 3),
-                        textcoords="offset points", fontsize=6, color="w")  # fmt: skip
+            ax.scatter(
+                [st["lon_deg"]],
+                [st["lat_deg"]],
+                c=[v],
+                norm=norm,
+                cmap="viridis",
+                edgecolors="w",
+                s=45,
+            )
+            ax.annotate(
+                st["name"],
+                (st["lon_deg"], st["lat_deg"]),
+                xytext=(3, 3),
+                textcoords="offset points",
+                fontsize=6,
+                color="w",
+            )
         ax.set_xlim(-180, 180)
         ax.set_ylim(-90, 90)
         ax.set_aspect("equal")

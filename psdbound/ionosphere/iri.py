@@ -351,9 +351,16 @@ def pyiri_density(
 
             try:
                 out = sh.IRI_density_1day(
-                    date.year, date.month, date.day, ut_h, lon_deg, lat_deg, alt_km,
-                    f107_sfu, old_output=True,
-                )  # fmt: skip
+                    date.year,
+                    date.month,
+                    date.day,
+                    ut_h,
+                    lon_deg,
+                    lat_deg,
+                    alt_km,
+                    f107_sfu,
+                    old_output=True,
+                )
             except TypeError:  # PyIRI < 0.1.7 has no old_output
                 out = sh.IRI_density_1day(
                     date.year, date.month, date.day, ut_h, lon_deg, lat_deg, alt_km, f107_sfu
@@ -364,9 +371,17 @@ def pyiri_density(
             except ImportError:  # pragma: no cover - older PyIRI
                 import PyIRI.main_library as lib
             out = lib.IRI_density_1day(
-                date.year, date.month, date.day, ut_h, lon_deg, lat_deg, alt_km,
-                f107_sfu, PyIRI.coeff_dir, 1 if iri_model == "ursi" else 0,
-            )  # fmt: skip
+                date.year,
+                date.month,
+                date.day,
+                ut_h,
+                lon_deg,
+                lat_deg,
+                alt_km,
+                f107_sfu,
+                PyIRI.coeff_dir,
+                1 if iri_model == "ursi" else 0,
+            )
     return np.asarray(out[-1], dtype=np.float64)
 
 

@@ -136,8 +136,9 @@ def _map_margin_db(mp_sigma_m: float, margin_db: float) -> float:
     return margin_db - 20.0 * math.log10(mp_sigma_m / DEFAULT_MP_SIGMA_M)
 
 
-def _at_margin(doc: dict[str, Any], lat: float, lon: float, f107: float,
-               margin: float) -> tuple[float, dict[str, Any]]:  # fmt: skip
+def _at_margin(
+    doc: dict[str, Any], lat: float, lon: float, f107: float, margin: float
+) -> tuple[float, dict[str, Any]]:
     """Interpolated cutoff at a margin below the map's reference (log f_c linear in dB)."""
     from psdbound.ionosphere.worldmap import interpolate_map
 
@@ -236,8 +237,9 @@ def cutoff_from_map(
     return f_c, out
 
 
-def _map_by_margin(doc: dict[str, Any], lat: float, lon: float,
-                   f107: float) -> list[dict[str, float]]:  # fmt: skip
+def _map_by_margin(
+    doc: dict[str, Any], lat: float, lon: float, f107: float
+) -> list[dict[str, float]]:
     """Return the map's cutoff at every recorded margin below its 1 mm reference.
 
     Each entry: ``margin_db`` (dB below the reference), ``threshold_m`` (the
@@ -249,8 +251,13 @@ def _map_by_margin(doc: dict[str, Any], lat: float, lon: float,
     out = []
     for m in sorted(float(k) for k in doc["layers"][0]["grid"]["by_margin_hz"]):
         f_c, _ = interpolate_map(doc, lat, lon, f107, margin_db=m)
-        out.append({"margin_db": m, "threshold_m": DEFAULT_MP_SIGMA_M * 10 ** (-m / 20.0),
-                    "f_c_hz": float(f_c)})  # fmt: skip
+        out.append(
+            {
+                "margin_db": m,
+                "threshold_m": DEFAULT_MP_SIGMA_M * 10 ** (-m / 20.0),
+                "f_c_hz": float(f_c),
+            }
+        )
     return out
 
 
@@ -298,9 +305,14 @@ def cutoff_computed(
         CutoffSettings(), f107_sfu=float(f107), mp_sigma_m=mp_sigma_m, margin_db=margin_db
     )
     res = station_cutoffs(
-        lat_deg, lon_deg, select_days(year), name="receiver", settings=settings,
-        workers=workers, keep_series=False,
-    )  # fmt: skip
+        lat_deg,
+        lon_deg,
+        select_days(year),
+        name="receiver",
+        settings=settings,
+        workers=workers,
+        keep_series=False,
+    )
     summ = res.summary()
     return float(summ["recommended_f_c_hz"]), {
         "computed": summ,
@@ -388,9 +400,13 @@ def choose_cutoff(
         raise InputError(f"cutoff source {src!r} needs a receiver position")
     elif src == "map":
         f_c, info = cutoff_from_map(
-            lat_deg, lon_deg, year=year, date=date,
-            mp_sigma_m=options.mp_sigma_m, margin_db=options.margin_db,
-        )  # fmt: skip
+            lat_deg,
+            lon_deg,
+            year=year,
+            date=date,
+            mp_sigma_m=options.mp_sigma_m,
+            margin_db=options.margin_db,
+        )
         warnings += info.pop("warnings")
         c = info["cell"]
         source = (
@@ -401,12 +417,17 @@ def choose_cutoff(
         choice = CutoffChoice(f_c, source, info)
     else:
         f_c, info = cutoff_computed(
-            lat_deg, lon_deg, year, date=date,
-            mp_sigma_m=options.mp_sigma_m, margin_db=options.margin_db,
-        )  # fmt: skip
+            lat_deg,
+            lon_deg,
+            year,
+            date=date,
+            mp_sigma_m=options.mp_sigma_m,
+            margin_db=options.margin_db,
+        )
         choice = CutoffChoice(
-            f_c, f"computed (PyIRI, residual criterion, {year}, F10.7 {info['f107_sfu']:.0f} sfu)",
+            f_c,
+            f"computed (PyIRI, residual criterion, {year}, F10.7 {info['f107_sfu']:.0f} sfu)",
             info,
-        )  # fmt: skip
+        )
     warnings += _band_warning(choice.f_c_hz, interval_s)
     return dataclasses.replace(choice, warnings=(*choice.warnings, *warnings))

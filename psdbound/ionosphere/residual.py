@@ -232,8 +232,9 @@ def _zero_phase_sumsq(
     return np.sum(np.where(kept, r * r, 0.0), axis=1), np.maximum(n - 2 * k_trim, 0)
 
 
-def _usable(arcs: list[NDArray[np.float64]], dt_s: float, f_c_hz: float, hp: HighPass,
-            min_kept_s: float) -> list[bool]:  # fmt: skip
+def _usable(
+    arcs: list[NDArray[np.float64]], dt_s: float, f_c_hz: float, hp: HighPass, min_kept_s: float
+) -> list[bool]:
     """Which arcs keep at least ``min_kept_s`` after trimming (the fit drops the others)."""
     k = int(np.ceil(1.0 / (f_c_hz * dt_s))) if hp.edge == "trim" else 0
     return [a.size - 2 * k >= 2 and (a.size - 2 * k - 1) * dt_s >= min_kept_s for a in arcs]
@@ -271,8 +272,11 @@ def residual_rms(
     """
     hp = HighPass() if highpass is None else highpass
     hp.check_cutoff(f_c_hz, dt_s)
-    use = [a - a.mean() for a, ok in zip(arcs, _usable(arcs, dt_s, f_c_hz, hp, min_kept_s),
-                                         strict=True) if ok]  # fmt: skip
+    use = [
+        a - a.mean()
+        for a, ok in zip(arcs, _usable(arcs, dt_s, f_c_hz, hp, min_kept_s), strict=True)
+        if ok
+    ]
     if not use:
         return 0.0, 0
     ss, cnt = _zero_phase_sumsq(use, dt_s, f_c_hz, hp)
@@ -365,8 +369,9 @@ def _search_grid(
     f_top = nyquist_fraction * 0.5 / dt_s
     if not 0 < f_min_hz < f_top:
         raise InputError(f"need 0 < f_min_hz < {f_top:g} Hz, got {f_min_hz}")
-    return np.geomspace(f_top, f_min_hz, int(np.ceil(np.log10(f_top / f_min_hz)
-                                                     * points_per_decade)) + 1)  # fmt: skip
+    return np.geomspace(
+        f_top, f_min_hz, int(np.ceil(np.log10(f_top / f_min_hz) * points_per_decade)) + 1
+    )
 
 
 def _sums_at(
@@ -380,8 +385,7 @@ def _sums_at(
     """Return the high-passed sum of squares (m^2) and samples of the series ``idx`` at ``f``."""
     owner, batch = [], []
     for i in idx:
-        for a, ok in zip(arcs[i], _usable(arcs[i], dt_s, f, hp, min_kept_s),
-                         strict=True):  # fmt: skip
+        for a, ok in zip(arcs[i], _usable(arcs[i], dt_s, f, hp, min_kept_s), strict=True):
             if ok:
                 owner.append(i)
                 batch.append(a)
@@ -432,8 +436,7 @@ def _by_threshold(
             by_thr[th] = float(grid[0])
         else:
             j = int(above[0])
-            by_thr[th] = _crossing(float(f[j - 1]), float(r[j - 1]), float(f[j]),
-                                   float(r[j]), th)  # fmt: skip
+            by_thr[th] = _crossing(float(f[j - 1]), float(r[j - 1]), float(f[j]), float(r[j]), th)
     return by_thr
 
 

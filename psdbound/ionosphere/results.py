@@ -155,14 +155,32 @@ class StationCutoffs:
         """Per-series table as CSV text."""
         if self.settings.criterion == "residual":
             cols = [
-                "date", "sat", "f_c_hz", "tau_c_min", "reached", "floor", "n_samples",
-                "n_arcs", "threshold_m", "scale", "variance_m2",
-            ]  # fmt: skip
+                "date",
+                "sat",
+                "f_c_hz",
+                "tau_c_min",
+                "reached",
+                "floor",
+                "n_samples",
+                "n_arcs",
+                "threshold_m",
+                "scale",
+                "variance_m2",
+            ]
         else:
             cols = [
-                "date", "sat", "f_c_hz", "tau_c_min", "reached", "n_samples", "peak_hz",
-                "peak_psd_m2_hz", "threshold_m2_hz", "residual_m2", "variance_m2",
-            ]  # fmt: skip
+                "date",
+                "sat",
+                "f_c_hz",
+                "tau_c_min",
+                "reached",
+                "n_samples",
+                "peak_hz",
+                "peak_psd_m2_hz",
+                "threshold_m2_hz",
+                "residual_m2",
+                "variance_m2",
+            ]
         buf = io.StringIO()
         w = csv.writer(buf, lineterminator="\n")
         w.writerow(cols)
@@ -232,9 +250,17 @@ class CutoffMap:
     def table_csv(self) -> str:
         """Station table as CSV text."""
         cols = [
-            "name", "lat_deg", "lon_deg", "n_series", "mean_f_c_hz", "min_f_c_hz",
-            "max_f_c_hz", "recommended_f_c_hz", "recommended_tau_c_min", "n_skipped",
-        ]  # fmt: skip
+            "name",
+            "lat_deg",
+            "lon_deg",
+            "n_series",
+            "mean_f_c_hz",
+            "min_f_c_hz",
+            "max_f_c_hz",
+            "recommended_f_c_hz",
+            "recommended_tau_c_min",
+            "n_skipped",
+        ]
         buf = io.StringIO()
         w = csv.writer(buf, lineterminator="\n")
         w.writerow(cols)

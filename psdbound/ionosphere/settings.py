@@ -57,15 +57,34 @@ LEVELS_DB = (20.0, 30.0, 40.0, 50.0)
 
 # settings handed to simulate_slant_delay under the same name
 _SIMULATION = (
-    "f107_sfu", "elevation_mask_deg", "method", "frequency_hz", "second_frequency_hz",
-    "sampling_s", "iri_model", "alt_range_km", "alt_resolution", "shell_height_km", "grid_size",
-    "ut_step_h", "ray_stride",
-)  # fmt: skip
+    "f107_sfu",
+    "elevation_mask_deg",
+    "method",
+    "frequency_hz",
+    "second_frequency_hz",
+    "sampling_s",
+    "iri_model",
+    "alt_range_km",
+    "alt_resolution",
+    "shell_height_km",
+    "grid_size",
+    "ut_step_h",
+    "ray_stride",
+)
 # settings handed to series_cutoff under the same name (plus sampling_s as dt_s)
 _SERIES = (
-    "copies", "oversample", "nyquist_fraction", "criterion", "drop_db", "reference",
-    "variance_m2", "degree", "quantile", "envelope_method", "bins_per_decade",
-)  # fmt: skip
+    "copies",
+    "oversample",
+    "nyquist_fraction",
+    "criterion",
+    "drop_db",
+    "reference",
+    "variance_m2",
+    "degree",
+    "quantile",
+    "envelope_method",
+    "bins_per_decade",
+)
 
 
 def parse_carriers(text: str) -> tuple[float, float | None]:
@@ -194,10 +213,15 @@ class CutoffSettings:
         CutoffSettings
         """
         base = {
-            "criterion": "relative", "second_frequency_hz": None, "sampling_s": 12.0,
-            "alt_resolution": "fine", "grid_size": 21, "ut_step_h": 0.5, "ray_stride": 5,
+            "criterion": "relative",
+            "second_frequency_hz": None,
+            "sampling_s": 12.0,
+            "alt_resolution": "fine",
+            "grid_size": 21,
+            "ut_step_h": 0.5,
+            "ray_stride": 5,
             "min_samples": MIN_SERIES_SAMPLES,
-        }  # fmt: skip
+        }
         return cls(**{**base, **changes})
 
     @classmethod

@@ -450,9 +450,7 @@ def simulate_slant_delay(
     visible = el_deg >= elevation_mask_deg
 
     alt_km = altitude_nodes_km(*alt_range_km, resolution=alt_resolution)
-    model = _Model(
-        method, iri_model, f107_sfu, alt_km, shell_height_km, grid_size, ut_step_h, n_ut
-    )
+    model = _Model(method, iri_model, f107_sfu, alt_km, shell_height_km, grid_size, ut_step_h, n_ut)
     min_el = min(elevation_mask_deg, float(np.nanmin(el_deg[visible])))
     layers = _layer_fields(day, lat, lon, min_el, radius_m, model)
     stec, ks, arcs = _ray_tec(el_deg, az_deg, visible, t - t0, radius_m, layers, ray_stride, model)

@@ -61,7 +61,6 @@ MAP_STATIONS: tuple[Station, ...] = (
 CHICAGO = Station("CHICAGO", 41.84, -87.63)
 
 
-
 def validate_station(lat_deg: float, lon_deg: float) -> tuple[float, float]:
     """Check a station position; return latitude and longitude in (-180, 180].
 

@@ -212,8 +212,9 @@ def _layer_doc(
         "name": layer.name,
         "year": layer.year,
         "f107_sfu": round(s_l.f107_sfu, 2),
-        "f107_source": "given" if layer.f107_sfu is not None else
-        f"mean monthly F10.7 of {layer.year} ({f107_table()['source']})",
+        "f107_source": "given"
+        if layer.f107_sfu is not None
+        else f"mean monthly F10.7 of {layer.year} ({f107_table()['source']})",
         "days": [d.isoformat() for d in day_list],
         "grid": {
             "recommended_f_c_hz": field("recommended_f_c_hz"),
@@ -221,14 +222,12 @@ def _layer_doc(
             "min_f_c_hz": field("min_f_c_hz"),
             "n_series": field("n_series"),
             "by_margin_hz": {
-                m: np.array([e["by_margin_hz"][m] for e in g], dtype=object)
-                .reshape(shape)
-                .tolist()
+                m: np.array([e["by_margin_hz"][m] for e in g], dtype=object).reshape(shape).tolist()
                 for m in margins
             },
         },
         "stations": st_entries,
-    }  # fmt: skip
+    }
 
 
 def _criterion_doc(settings: CutoffSettings) -> dict[str, Any]:
@@ -469,7 +468,7 @@ def interpolate_map(
                 "f_c_hz": v,
             }
             for layer, v in zip(layers, vals, strict=True)
-        ],  # fmt: skip
+        ],
         "f107_sfu": float(f107_sfu),
         "solar": solar,
     }
@@ -497,8 +496,7 @@ def map_validation(doc: dict[str, Any]) -> list[dict[str, Any]]:
         for st in layer["stations"]:
             if st["recommended_f_c_hz"] is None:
                 continue
-            v, _ = _bilinear(doc, layer["grid"]["recommended_f_c_hz"], st["lat_deg"],
-                             st["lon_deg"])  # fmt: skip
+            v, _ = _bilinear(doc, layer["grid"]["recommended_f_c_hz"], st["lat_deg"], st["lon_deg"])
             errs.append((v / st["recommended_f_c_hz"] - 1.0, st["name"]))
         if not errs:
             continue
@@ -544,5 +542,5 @@ def nearest_map_station(doc: dict[str, Any], lat_deg: float, lon_deg: float) -> 
                 s["recommended_f_c_hz"] for s in layer["stations"] if s["name"] == st.name
             )
             for layer in doc["layers"]
-        },  # fmt: skip
+        },
     }

@@ -46,6 +46,7 @@ __all__ = [
     "span",
 ]
 
+
 @dataclass
 class SDArc:
     """A single-difference arc on the common epoch axis."""

@@ -171,8 +171,9 @@ def estimate_baseline_correction(
                 "three baseline coordinates"
             )
         d = np.linalg.solve(a_sum, b_k[used].sum(axis=0))
-        arc_rms = np.array([np.sqrt(np.mean((y - x @ d) ** 2))
-                            for x, y in zip(xc, yc, strict=True)])  # fmt: skip
+        arc_rms = np.array(
+            [np.sqrt(np.mean((y - x @ d) ** 2)) for x, y in zip(xc, yc, strict=True)]
+        )
         good = np.flatnonzero(arc_rms <= OUTLIER_RMS_FACTOR * np.median(arc_rms))
         if good.size < MIN_ARCS or np.array_equal(good, used):
             break

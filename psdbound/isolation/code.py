@@ -237,10 +237,18 @@ def isolate_code_multipath(
     """
     system, fcodes = _check_codes(obs, codes, system)
     pi, pj = _choose_phases(obs, system, fcodes, phases)
-    arcs = find_arcs(obs, (pi, pj), system=system, orbit=orbit, receiver_xyz_m=receiver_xyz_m,
-                     min_length_s=min_length_s, gap_factor=gap_factor,
-                     slip_threshold_m=slip_threshold_m, elevation_mask_deg=elevation_mask_deg,
-                     satellites=satellites)  # fmt: skip
+    arcs = find_arcs(
+        obs,
+        (pi, pj),
+        system=system,
+        orbit=orbit,
+        receiver_xyz_m=receiver_xyz_m,
+        min_length_s=min_length_s,
+        gap_factor=gap_factor,
+        slip_threshold_m=slip_threshold_m,
+        elevation_mask_deg=elevation_mask_deg,
+        satellites=satellites,
+    )
     if len(arcs) == 0:
         raise NoDataError(arcs.empty_reason(), path=arcs.path)
     lv = _Levelling(fcodes, min_length_s, outlier_m, min_jump_m, notes=list(arcs.warnings))
@@ -350,13 +358,17 @@ class _Levelling:
         cuts = level_shifts(raw, min_jump_m=self.min_jump_m)
         if cuts.size:
             self.shifts[arc.sat] += int(cuts.size)
-            self.notes.append(warn(
-                f"{arc.sat} ({self.fcodes[0]}, {t[0]:.0f}-{t[-1]:.0f} GPS s): the "
-                f"code-minus-carrier level steps by {_steps_text(raw, cuts)} m "
-                "(a slip the geometry-free test cannot see, a code jump, or a reacquisition at "
-                "the arc's edge): the arc is split "
-                "there, each piece levelled on its own", path=obs.path,
-                stacklevel=_WARN_STACKLEVEL))  # fmt: skip
+            self.notes.append(
+                warn(
+                    f"{arc.sat} ({self.fcodes[0]}, {t[0]:.0f}-{t[-1]:.0f} GPS s): the "
+                    f"code-minus-carrier level steps by {_steps_text(raw, cuts)} m "
+                    "(a slip the geometry-free test cannot see, a code jump, or a reacquisition at "
+                    "the arc's edge): the arc is split "
+                    "there, each piece levelled on its own",
+                    path=obs.path,
+                    stacklevel=_WARN_STACKLEVEL,
+                )
+            )
         for a, b in zip(np.r_[0, cuts], np.r_[cuts, t.size], strict=True):
             if b - a < 2 or t[b - 1] - t[a] < self.min_length_s:
                 self.shift_dropped += b - a
@@ -488,8 +500,9 @@ def level_shifts(
 
 def _steps_text(x: NDArray[np.float64], cuts: NDArray[np.intp], k: int = 5) -> str:
     """Format the level steps at ``cuts`` as text, metres."""
-    return ", ".join(f"{abs(np.median(x[i:i + k]) - np.median(x[max(0, i - k):i])):.1f}"
-                     for i in cuts)  # fmt: skip
+    return ", ".join(
+        f"{abs(np.median(x[i : i + k]) - np.median(x[max(0, i - k) : i])):.1f}" for i in cuts
+    )
 
 
 def rms_by_satellite(series: MultipathSeries) -> dict[str, float]:

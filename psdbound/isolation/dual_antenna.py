@@ -217,17 +217,45 @@ def isolate_dual_antenna(
     False
     """
     files = f"{obs1.path} and {obs2.path}"
-    inp = _check_inputs(obs1, obs2, files, receiver1_xyz_m, receiver2_xyz_m, system=system,
-                        signal=signal, slip_signal=slip_signal, max_baseline_m=max_baseline_m,
-                        baseline=baseline, baseline_tolerance_m=baseline_tolerance_m)
+    inp = _check_inputs(
+        obs1,
+        obs2,
+        files,
+        receiver1_xyz_m,
+        receiver2_xyz_m,
+        system=system,
+        signal=signal,
+        slip_signal=slip_signal,
+        max_baseline_m=max_baseline_m,
+        baseline=baseline,
+        baseline_tolerance_m=baseline_tolerance_m,
+    )
     i1, i2 = match_epochs(obs1, obs2, files)
     sats = common_satellites(obs1, obs2, system, inp.code1, inp.code2, i1, i2, files)
 
     # geometry at the nominal epochs: receiver clocks and the find_arcs pre-filter
-    trk1 = _track(obs1, inp.pos1, inp.code1, inp.slip1, orbit, sats, system=system,
-                  min_length_s=min_length_s, elevation_mask_deg=elevation_mask_deg)
-    trk2 = _track(obs2, inp.pos2, inp.code2, inp.slip2, orbit, sats, system=system,
-                  min_length_s=min_length_s, elevation_mask_deg=elevation_mask_deg)
+    trk1 = _track(
+        obs1,
+        inp.pos1,
+        inp.code1,
+        inp.slip1,
+        orbit,
+        sats,
+        system=system,
+        min_length_s=min_length_s,
+        elevation_mask_deg=elevation_mask_deg,
+    )
+    trk2 = _track(
+        obs2,
+        inp.pos2,
+        inp.code2,
+        inp.slip2,
+        orbit,
+        sats,
+        system=system,
+        min_length_s=min_length_s,
+        elevation_mask_deg=elevation_mask_deg,
+    )
     common = _Common.of(obs1, obs2, i1, i2, trk1, trk2, inp)
 
     sd = _single_differences(trk1.arcs, trk2.arcs, common, orbit, min_length_s)
@@ -239,8 +267,9 @@ def isolate_dual_antenna(
         )
     sd.arcs.sort(key=lambda a: (int(a.ci[0]), a.sat))
 
-    lam = wavelength_m(sats[0], RINEX2_TO_RINEX3.get(inp.code1, inp.code1),
-                       obs1.header.glonass_channels)
+    lam = wavelength_m(
+        sats[0], RINEX2_TO_RINEX3.get(inp.code1, inp.code1), obs1.header.glonass_channels
+    )
     dd = _double_differences(sd.arcs, common.t_s, DD_JUMP_FRACTION * lam, min_length_s)
     if not dd.pieces:
         raise NoDataError(
@@ -388,9 +417,7 @@ def _track(
     rho, tau, el = geometry_all(orbit, sats, obs.t_gps_s, pos)
     dt, code_c, n_interp = estimate_receiver_clock(obs, orbit, sats, code, rho, tau)
     visible = [
-        s
-        for k, s in enumerate(sats)
-        if any_above(obs, s, code, slip, el[:, k], elevation_mask_deg)
+        s for k, s in enumerate(sats) if any_above(obs, s, code, slip, el[:, k], elevation_mask_deg)
     ]
     pair = (code, code if slip is None else slip)
     arcs = find_arcs(
@@ -526,8 +553,13 @@ def _double_differences(
     out = _DoubleDifferences([], reference_periods(sd_arcs))
     for ref, k0, k1 in out.periods:
         in_period = (ref.ci >= k0) & (ref.ci <= k1)
-        window = SDArc(ref.sat, ref.ci[in_period], ref.sd_m[in_period], ref.el_deg[in_period],
-                       ref.los[in_period])
+        window = SDArc(
+            ref.sat,
+            ref.ci[in_period],
+            ref.sd_m[in_period],
+            ref.el_deg[in_period],
+            ref.los[in_period],
+        )
         for other in sd_arcs:
             if other.sat == ref.sat or other.ci[-1] < k0 or other.ci[0] > k1:
                 continue
@@ -584,16 +616,25 @@ def _choose_baseline(
     )
     use = est is not None and (
         baseline == "estimate"
-        or (baseline == "auto" and est.length_m > baseline_tolerance_m
-            and est.length_m > SIGNIFICANCE * est.sigma_length_m)
-    )  # fmt: skip
+        or (
+            baseline == "auto"
+            and est.length_m > baseline_tolerance_m
+            and est.length_m > SIGNIFICANCE * est.sigma_length_m
+        )
+    )
     arcs: list[dict[str, Any]] = []
     for sats_name, tp, v, el, g in pieces:
         if use:
             assert est is not None
             v = v - est.correct(g)
-        arcs.append({"sats": sats_name, "t_gps_s": tp, "value_m": DA_SCALING * (v - v.mean()),
-                     "elevation_deg": el})  # fmt: skip
+        arcs.append(
+            {
+                "sats": sats_name,
+                "t_gps_s": tp,
+                "value_m": DA_SCALING * (v - v.mean()),
+                "elevation_deg": el,
+            }
+        )
     pos2_used = pos2 + est.correction_m if use and est is not None else pos2
     info: dict[str, Any] = {
         "mode": baseline,
@@ -602,10 +643,11 @@ def _choose_baseline(
         "given_baseline_m": inp.baseline_m,
         "given_positions_m": (pos1.tolist(), pos2.tolist()),
         "estimate": None if est is None else est.as_dict(),
-        "estimated_baseline_m": None if est is None
+        "estimated_baseline_m": None
+        if est is None
         else float(np.linalg.norm(pos2 + est.correction_m - pos1)),
         "reason": why_not,
-    }  # fmt: skip
+    }
     if not use:
         return _BaselineChoice(arcs, pos2_used, inp.baseline_m, inp.src2, info)
     baseline_m = float(np.linalg.norm(pos2_used - pos1))

@@ -102,7 +102,9 @@ _EXPORTS = {
     "ErrorStateSpace": ("psdbound.kalman.error_model", "ErrorStateSpace"),
     "PositionCovariance": ("psdbound.kalman.kf_araim", "PositionCovariance"),
     "monte_carlo_position_covariance": (
-        "psdbound.kalman.kf_araim", "monte_carlo_position_covariance"),
+        "psdbound.kalman.kf_araim",
+        "monte_carlo_position_covariance",
+    ),
     "predict_position_covariance": ("psdbound.kalman.kf_araim", "predict_position_covariance"),
     "pvt_model": ("psdbound.kalman.kf_araim", "pvt_model"),
     "ErrorProcess": ("psdbound.kalman.process", "ErrorProcess"),

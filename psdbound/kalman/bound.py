@@ -292,14 +292,19 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
         interval = _number(s, "sampling", "interval_s", p, positive=True)
         nyq = _number(s, "sampling", "nyquist_hz", p, positive=True)
         _check_redundant(n_wn, sigma_wn, dt, interval, nyq, p)
-        slow = [c for c in (doc.get("error_model") or {}).get("components", [])
-                if c.get("name") == "slow"]  # fmt: skip
+        slow = [
+            c
+            for c in (doc.get("error_model") or {}).get("components", [])
+            if c.get("name") == "slow"
+        ]
         if slow:
             warnings.warn(
                 f"{p}: the fit's error model also has a slow component the bound does not "
                 f"carry (multipath the high-pass removed: {1000 * slow[0]['sigma_m']:.2f} mm, "
                 f"tau {slow[0]['tau_s']:.4g} s); psdbound.load(path).error_model exports every "
-                f"component", stacklevel=2)  # fmt: skip
+                f"component",
+                stacklevel=2,
+            )
         mapping = _read_mapping(doc, p)
         return cls(sigma_gm, tau, sigma_wn, dt, mapping=mapping, source=str(p))
 
@@ -478,7 +483,9 @@ def _check_verdict(doc: dict[str, Any], p: Path, allow_not_bounded: bool) -> Non
         why = "; ".join(str(r) for r in doc.get("verdict_reasons", [])) or "no reason given"
         raise InputError(
             f"the verdict is {verdict!r} ({why}): this bound is not for a filter; pass "
-            "allow_not_bounded=True to read it anyway", path=p)  # fmt: skip
+            "allow_not_bounded=True to read it anyway",
+            path=p,
+        )
 
 
 def _section(doc: dict[str, Any], name: str, p: Path) -> dict[str, Any]:
@@ -491,9 +498,7 @@ def _section(doc: dict[str, Any], name: str, p: Path) -> dict[str, Any]:
     return sec
 
 
-def _number(
-    sec: dict[str, Any], sname: str, key: str, p: Path, *, positive: bool = False
-) -> float:
+def _number(sec: dict[str, Any], sname: str, key: str, p: Path, *, positive: bool = False) -> float:
     """Return ``sec[key]`` checked: a finite number, >= 0 (> 0 when ``positive``)."""
     if key not in sec:
         raise InputError(f"missing key '{sname}.{key}'", path=p)

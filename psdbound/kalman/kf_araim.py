@@ -193,9 +193,18 @@ def _run(
     F, Q, H = pvt_model(los_unit, dt_s, **model_kw)
     bounds, p0 = _designs(models, H.shape[0])
     return analyze_covariance(
-        F, Q, H, r_other_m2, bounds, truth, dt_s=dt_s, n_steps=n_steps,
-        p0_base=_default_p0(p0_base), p0_gm_m2=p0, steady_state=False,
-    )  # fmt: skip
+        F,
+        Q,
+        H,
+        r_other_m2,
+        bounds,
+        truth,
+        dt_s=dt_s,
+        n_steps=n_steps,
+        p0_base=_default_p0(p0_base),
+        p0_gm_m2=p0,
+        steady_state=False,
+    )
 
 
 def predict_position_covariance(
@@ -296,8 +305,16 @@ def monte_carlo_position_covariance(
         raise InputError(
             f"multipath_m must have shape (n_paths, n_steps, {u.shape[0]}), got {x.shape}"
         )
-    res = _run(models, u, float(dt_s), x.shape[1], ErrorSequences(x, float(dt_s)), p0_base,
-               r_other_m2, model_kw)  # fmt: skip
+    res = _run(
+        models,
+        u,
+        float(dt_s),
+        x.shape[1],
+        ErrorSequences(x, float(dt_s)),
+        p0_base,
+        r_other_m2,
+        model_kw,
+    )
     return PositionCovariance(
         time_s=np.arange(res.n_steps) * float(dt_s),
         p_design_m2=res.p_filter_m2[:, _POS, _POS],

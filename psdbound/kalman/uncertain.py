@@ -531,10 +531,19 @@ def verify_design(
     notes: list[str] = []
     for i, (tau, sigma) in enumerate(grid):
         res = analyze_covariance(
-            F, Q, H, R, design.bound, gm_set.process(tau, sigma, dt_s, white_noise=white_noise),
-            dt_s=dt_s, n_steps=n_steps, p0_base=p0_base, p0_gm_m2=design.p0_m2,
-            steady_state=steady_state, white_noise=white_noise,
-        )  # fmt: skip
+            F,
+            Q,
+            H,
+            R,
+            design.bound,
+            gm_set.process(tau, sigma, dt_s, white_noise=white_noise),
+            dt_s=dt_s,
+            n_steps=n_steps,
+            p0_base=p0_base,
+            p0_gm_m2=design.p0_m2,
+            steady_state=steady_state,
+            white_noise=white_noise,
+        )
         eig[i] = res.max_eig_ratio
         steps[i] = res.worst_step
         notes.extend(n for n in res.notes if n not in notes)

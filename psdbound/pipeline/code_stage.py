@@ -71,11 +71,15 @@ def code_overbound(
     rx = inputs.receiver_xyz_m[0]
     try:
         series = isolate_code_multipath(
-            obs, codes, orbit=inputs.orbit,
-            receiver_xyz_m=None if rx is None else np.asarray(rx, dtype=float), system=system,
-            elevation_mask_deg=arcs.elevation_mask_deg, min_length_s=options.min_length_s,
+            obs,
+            codes,
+            orbit=inputs.orbit,
+            receiver_xyz_m=None if rx is None else np.asarray(rx, dtype=float),
+            system=system,
+            elevation_mask_deg=arcs.elevation_mask_deg,
+            min_length_s=options.min_length_s,
             slip_threshold_m=arcs.slip_threshold_m,
-        )  # fmt: skip
+        )
     except NoDataError as exc:
         note = f"code multipath not computed: {exc}"
         return CodeOverbound(None, None, {"codes": list(codes), "status": note}, (note,))
@@ -83,12 +87,16 @@ def code_overbound(
     edges = tuple(options.edges_deg)
     if mask > edges[0]:  # no sample below the mask: the first bin starts at it (honest labels)
         edges = (mask, *(e for e in edges if e > mask))
-    details: dict[str, Any] = {**describe_code_series(series, min_length_s=options.min_length_s),
-                               "codes": list(codes), "status": "computed",
-                               "edges_deg": list(edges)}  # fmt: skip
+    details: dict[str, Any] = {
+        **describe_code_series(series, min_length_s=options.min_length_s),
+        "codes": list(codes),
+        "status": "computed",
+        "edges_deg": list(edges),
+    }
     try:
-        result, sparse = overbound_code_series(series, edges, method=options.method,
-                                               min_samples=options.min_samples)  # fmt: skip
+        result, sparse = overbound_code_series(
+            series, edges, method=options.method, min_samples=options.min_samples
+        )
     except InputError as exc:  # no bin full enough: said, not fatal to the carrier-phase fit
         note = f"code multipath not overbounded: {exc.reason}"
         details["status"] = note

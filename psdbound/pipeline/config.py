@@ -128,27 +128,45 @@ class InputsConfig:
     """
 
     obs: tuple[str, ...] = option(
-        (), Tuple(Text(what="a file name", paths=True), max_len=100,
-                  what="a list of observation file names"),
-    )  # fmt: skip
+        (),
+        Tuple(
+            Text(what="a file name", paths=True),
+            max_len=100,
+            what="a list of observation file names",
+        ),
+    )
     nav: tuple[str, ...] = option(
-        (), Tuple(Text(what="a file name", paths=True), max_len=100,
-                  what="a list of navigation or SP3 file names"),
-    )  # fmt: skip
+        (),
+        Tuple(
+            Text(what="a file name", paths=True),
+            max_len=100,
+            what="a list of navigation or SP3 file names",
+        ),
+    )
     method: str = option("auto", Choice(("auto", "df", "da"), noun="isolation method"))
     system: str = option("G", Choice(_SYSTEMS, noun="satellite system"))
     signals: tuple[str, ...] = option(
-        (), Tuple(Text(_PHASE_CODE, what="a phase code such as 'L1C'"), lengths=(0, 2),
-                  split=",", distinct=True, what="two phase codes such as 'L1C,L2W'"),
-    )  # fmt: skip
+        (),
+        Tuple(
+            Text(_PHASE_CODE, what="a phase code such as 'L1C'"),
+            lengths=(0, 2),
+            split=",",
+            distinct=True,
+            what="two phase codes such as 'L1C,L2W'",
+        ),
+    )
     da_signal: str = option("L1C", Text(_PHASE_CODE, what="a phase code such as 'L1C'"))
     receiver_xyz_m: tuple[tuple[float, float, float], ...] = option(
         (), Tuple(_Position(), max_len=2, what="a list of ECEF positions [x, y, z] in m")
     )
     pair: tuple[str, ...] = option(
-        (), Tuple(Text(what="a station name or observation file", paths=True), lengths=(0, 2),
-                  what="two stations or files: antenna A, antenna B"),
-    )  # fmt: skip
+        (),
+        Tuple(
+            Text(what="a station name or observation file", paths=True),
+            lengths=(0, 2),
+            what="two stations or files: antenna A, antenna B",
+        ),
+    )
     position_a_m: tuple[float, float, float] | None = option(None, _Position(optional=True))
     position_b_m: tuple[float, float, float] | None = option(None, _Position(optional=True))
     baseline: str = option("auto", Choice(BASELINE_MODES, noun="baseline mode"))
@@ -171,9 +189,12 @@ class OutputConfig:
     out: str | None = option(None, Text(what="a folder name", paths=True, optional=True))
     name: str | None = option(
         None,
-        Text(r"(?!\.\.?$)[A-Za-z0-9._+-]+", optional=True,
-             what="a run name of letters, digits and . _ + -"),
-    )  # fmt: skip
+        Text(
+            r"(?!\.\.?$)[A-Za-z0-9._+-]+",
+            optional=True,
+            what="a run name of letters, digits and . _ + -",
+        ),
+    )
     pdf: bool = option(True, Boolean())
     overwrite: bool = option(False, Boolean())
     series: bool = option(False, Boolean())
@@ -205,6 +226,7 @@ _CUTOFF_SPECS: dict[str, Spec] = {
     "mp_sigma_m": Number(lo=0.0, hi=1.0, lo_open=True, unit="m"),
     "margin_db": Number(lo=0.0, hi=200.0, unit="dB"),
 }
+
 
 def section_spec(section: str, name: str) -> Spec | None:
     """Return the schema entry of an option: ``[section] name`` of a fit (None: no such option).
@@ -392,8 +414,11 @@ def _show(label: str, value: Any) -> str:
 def _changed(obj: Any) -> dict[str, Any]:
     """Return the options of a section that differ from their defaults."""
     default = type(obj)()
-    return {f.name: getattr(obj, f.name) for f in fields(obj)
-            if getattr(obj, f.name) != getattr(default, f.name)}  # fmt: skip
+    return {
+        f.name: getattr(obj, f.name)
+        for f in fields(obj)
+        if getattr(obj, f.name) != getattr(default, f.name)
+    }
 
 
 def _method(cfg: FitConfig) -> str:
@@ -581,8 +606,11 @@ def _rule_spectra(cfg: FitConfig, label: Label) -> None:
             f"used with {_show(label('bound', 'rule'), 'envelope')}; the pooled rule states "
             f"its confidence with {label('bound', 'confidence_level')}"
         )
-    pooled_only = [k for k in ("confidence_level", "coverage", "shape_alpha",
-                               "bands_per_decade") if k in _changed(b)]  # fmt: skip
+    pooled_only = [
+        k
+        for k in ("confidence_level", "coverage", "shape_alpha", "bands_per_decade")
+        if k in _changed(b)
+    ]
     if b.rule == "envelope" and pooled_only:
         raise InputError(
             f"{_show(label('bound', pooled_only[0]), getattr(b, pooled_only[0]))} is only "

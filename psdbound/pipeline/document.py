@@ -81,14 +81,16 @@ def _bound_notes(res: BoundResults) -> list[str]:
             f"models with tau up to the prior {low.tau_max_s:g} s (bound.tau_max_s); it was "
             f"raised for that from {1000 * b.get('sigma_gm_m', np.nan):.2f} mm / "
             f"{b.get('tau_s', np.nan):.4g} s (the tightest bound over the bands alone)"
-            if low.raised else
-            f"the data do not bound the time constant above: below the lowest stated frequency "
-            f"{res.bound.f_min_hz:.3g} Hz the statement rests on the prior tau <= "
+            if low.raised
+            else "the data do not bound the time constant above: below the lowest stated "
+            f"frequency {res.bound.f_min_hz:.3g} Hz the statement rests on the prior tau <= "
             f"{low.tau_max_s:g} s (bound.tau_max_s)"
         )
     if low is not None and low.status == "unchecked":
-        out.append(f"below the lowest stated frequency {res.bound.f_min_hz:.3g} Hz the bound is "
-                   f"an extrapolation not checked against the data ({low.reason})")
+        out.append(
+            f"below the lowest stated frequency {res.bound.f_min_hz:.3g} Hz the bound is "
+            f"an extrapolation not checked against the data ({low.reason})"
+        )
     if ms is not None and ms.widening > 1.0:
         out.append(
             f"no Gauss-Markov + white-noise model fits every band's "
@@ -122,7 +124,8 @@ def _bound_section(res: BoundResults) -> dict[str, Any]:
         "min_margin": float(b.margins.min()),
         "median_margin": float(np.median(b.margins)),
         "margin_note": (
-            "per group of windows: bound / pooled upper limit (>= 1)" if res.rule == "pooled"
+            "per group of windows: bound / pooled upper limit (>= 1)"
+            if res.rule == "pooled"
             else "per window: bound / bounded estimate (>= 1)"
         ),
         "pooled": _pooled_section(res),
@@ -141,14 +144,18 @@ def _demo_truth(scenario: dict[str, Any], res: BoundResults, interval_s: float) 
     """Return the injected truth as the pipeline sees it at zenith, and the bound against it."""
     mp = scenario["multipath"]
     wn = float(np.hypot(mp["sigma_wn_m"], scenario.get("receiver_noise_m", 0.0)))
-    truth = GaussMarkovWhiteNoise(sigma_gm_m=mp["sigma_gm_m"], tau_s=mp["tau_s"],
-                                  sigma_wn_m=wn, dt_s=interval_s)  # fmt: skip
+    truth = GaussMarkovWhiteNoise(
+        sigma_gm_m=mp["sigma_gm_m"], tau_s=mp["tau_s"], sigma_wn_m=wn, dt_s=interval_s
+    )
     b = res.bound
     f = np.geomspace(b.f_min_hz, 0.5 / interval_s, 400)
     f_all = np.r_[0.0, np.geomspace(1e-4 * b.f_min_hz, 0.5 / interval_s, 800)]
     return {
-        "truth_model": {**truth.params(), "note": "mapped DF error at zenith: GM + white "
-                        "noise (multipath white noise and receiver noise combined)"},
+        "truth_model": {
+            **truth.params(),
+            "note": "mapped DF error at zenith: GM + white "
+            "noise (multipath white noise and receiver noise combined)",
+        },
         "truth_curve": {"f_hz": f, "psd_m2_hz": truth.sampled_psd(f)},
         "variance_ratio": b.total_variance_m2 / truth.total_variance_m2,
         "min_psd_ratio": float(np.min(b.psd(f) / truth.sampled_psd(f))),
@@ -170,10 +177,16 @@ def _mapping_section(windowed: Windowed, res: BoundResults, screened: Screened) 
             continue
         rms = float(np.sqrt(np.mean(x[sel] ** 2)))
         mid = lo + 5.0
-        rows.append({"elevation_deg": [lo, lo + 10], "n": int(sel.sum()), "mapped_rms_m": rms,
-                     "rms_over_bound_sigma": rms / sigma if sigma > 0 else None,
-                     "factor": float(mp.factor(mid)),
-                     "factor_rel_sigma": float(mp.factor_sigma(mid) / mp.factor(mid))})  # fmt: skip
+        rows.append(
+            {
+                "elevation_deg": [lo, lo + 10],
+                "n": int(sel.sum()),
+                "mapped_rms_m": rms,
+                "rms_over_bound_sigma": rms / sigma if sigma > 0 else None,
+                "factor": float(mp.factor(mid)),
+                "factor_rel_sigma": float(mp.factor_sigma(mid) / mp.factor(mid)),
+            }
+        )
     out = mp.as_dict()
     ok = np.isfinite(el)
     rms_factor = float(np.sqrt(np.mean(mp.factor(el[ok]) ** 2))) if ok.any() else 1.0
@@ -184,7 +197,8 @@ def _mapping_section(windowed: Windowed, res: BoundResults, screened: Screened) 
         "that elevation. factor_rel_sigma: relative standard error of m(el) from the fit",
         "bins": rows,
         "max_rms_over_bound_sigma": max((r["rms_over_bound_sigma"] or 0.0) for r in rows)
-        if rows else None,
+        if rows
+        else None,
     }
     if mp.covariance_bc is not None:
         out["uncertainty_note"] = (
@@ -200,8 +214,12 @@ def _model_set_section(res: BoundResults) -> dict[str, Any]:
     ms = res.model_set
     if ms is None:
         why = res.model_set_note or "envelope rule: no pooled spectrum"
-        return {"tau_interval_s": None, "sigma_gm_interval_m": None, "sigma_wn_interval_m": None,
-                "model_set": {"reason": why}}  # fmt: skip
+        return {
+            "tau_interval_s": None,
+            "sigma_gm_interval_m": None,
+            "sigma_wn_interval_m": None,
+            "model_set": {"reason": why},
+        }
     return {
         "tau_interval_s": list(ms.tau_interval_s),
         "sigma_gm_interval_m": list(ms.sigma_gm_interval_m),
@@ -252,16 +270,21 @@ def _cutoff_section(cutoff: CutoffChoice | None) -> dict[str, Any]:
     }
 
 
-def _windows_section(
-    windowed: Windowed, res: BoundResults, screened: Screened
-) -> dict[str, Any]:
+def _windows_section(windowed: Windowed, res: BoundResults, screened: Screened) -> dict[str, Any]:
     w = windowed.windows
     per_window = [
-        {"arc": x.arc_id, "sats": x.sats, "t_start_gps_s": x.t_start_gps_s,
-         "t_stop_gps_s": x.t_stop_gps_s, "n": x.n, "margin": float(mg),
-         "levene_p": x.levene_p, "ks_p": x.ks_p}
+        {
+            "arc": x.arc_id,
+            "sats": x.sats,
+            "t_start_gps_s": x.t_start_gps_s,
+            "t_stop_gps_s": x.t_stop_gps_s,
+            "n": x.n,
+            "margin": float(mg),
+            "levene_p": x.levene_p,
+            "ks_p": x.ks_p,
+        }
         for x, mg in zip(w.windows, res.margins, strict=True)
-    ]  # fmt: skip
+    ]
     data_s = screened.series.data_s
     return {
         "count": len(w),
@@ -287,9 +310,11 @@ def _windows_section(
 def _roti_rule(sc: Any) -> str:
     """Return how the ROTI threshold of a block was set, in words."""
     if sc.null is not None:
-        return (f"max(threshold, the {1 - sc.options.false_alarm:g} quantile of the ROTI the "
-                f"series' own multipath produces in the block's elevation band: a scaled "
-                f"chi-square fitted to the band's lower half) per 5-min block")  # fmt: skip
+        return (
+            f"max(threshold, the {1 - sc.options.false_alarm:g} quantile of the ROTI the "
+            f"series' own multipath produces in the block's elevation band: a scaled "
+            f"chi-square fitted to the band's lower half) per 5-min block"
+        )
     if sc.options.elevation_scaled:
         return "min(threshold x m(el), cap) per 5-min block, m the elevation mapping"
     return "flat threshold"
@@ -313,13 +338,16 @@ def _screening_section(screened: Screened) -> dict[str, Any]:
         "false_alarm_per_block": sc.options.false_alarm if sc.null is not None else None,
         "three_frequency": sc.three_frequency,
         "roti": "5-min blocks of ROT sampled at 30 s (Pi et al. 1997)",
-        "options": {"guard_s": sc.guard_s, "ionosphere": sc.options.ionosphere,
-                    "plausibility": sc.options.plausibility,
-                    "elevation_scaled": sc.options.elevation_scaled,
-                    "multipath_null": sc.options.multipath_null,
-                    "three_frequency": sc.options.three_frequency},
+        "options": {
+            "guard_s": sc.guard_s,
+            "ionosphere": sc.options.ionosphere,
+            "plausibility": sc.options.plausibility,
+            "elevation_scaled": sc.options.elevation_scaled,
+            "multipath_null": sc.options.multipath_null,
+            "three_frequency": sc.options.three_frequency,
+        },
         "notes": list(sc.notes),
-    }  # fmt: skip
+    }
 
 
 def _error_model(doc: dict[str, Any]) -> dict[str, Any]:
@@ -329,13 +357,20 @@ def _error_model(doc: dict[str, Any]) -> dict[str, Any]:
     if slow and slow["sigma_m"] > 0:
         site = val.get("site_reflection") or {}
         how = "measured from the SNR" if site.get("measured") else "assumed (configuration)"
-        comps.append(Component(
-            "slow", "gauss-markov", float(slow["sigma_m"]), float(slow["tau_s"]), False,
-            f"multipath the high-pass removes below f_c from {slow['geometry']} along the "
-            f"data's arcs ({slow['n_arcs']} arcs, removed RMS "
-            f"{1000 * slow['removed_rms_m']:.2f} mm; amplitude ratio {slow['alpha']:.3g}, "
-            f"{how}): the least-variance Gauss-Markov process above its spectrum "
-            f"(validation.slow)"))  # fmt: skip
+        comps.append(
+            Component(
+                "slow",
+                "gauss-markov",
+                float(slow["sigma_m"]),
+                float(slow["tau_s"]),
+                False,
+                f"multipath the high-pass removes below f_c from {slow['geometry']} along the "
+                f"data's arcs ({slow['n_arcs']} arcs, removed RMS "
+                f"{1000 * slow['removed_rms_m']:.2f} mm; amplitude ratio {slow['alpha']:.3g}, "
+                f"{how}): the least-variance Gauss-Markov process above its spectrum "
+                f"(validation.slow)",
+            )
+        )
     return error_model_section(doc["bound"], mapping=doc.get("mapping"), slow=comps)
 
 
@@ -374,13 +409,19 @@ def build_document(
     interval_s = inputs.interval_s
     t_all = isolated.series.t_gps_s
     figures = figure_data(
-        series=series, arcs=isolated.arcs, windows=windowed.windows, bound_results=bounded,
-        t_ref_gps_s=inputs.t_ref_gps_s, interval_s=interval_s,
+        series=series,
+        arcs=isolated.arcs,
+        windows=windowed.windows,
+        bound_results=bounded,
+        t_ref_gps_s=inputs.t_ref_gps_s,
+        interval_s=interval_s,
         cutoff_info=None if cutoff is None else cutoff.info,
-        validation_report=validated.report, screening=screened.screening,
-    )  # fmt: skip
-    grouped = stage_warnings(inputs, cutoff, isolated, screened, windowed, bounded, validated,
-                             interval_s, code)  # fmt: skip
+        validation_report=validated.report,
+        screening=screened.screening,
+    )
+    grouped = stage_warnings(
+        inputs, cutoff, isolated, screened, windowed, bounded, validated, interval_s, code
+    )
     doc: dict[str, Any] = {
         "schema_version": SCHEMA_VERSION,
         "method": inputs.method.upper(),
@@ -424,12 +465,22 @@ def build_document(
             **_demo_truth(meta["scenario"], bounded, inputs.interval_s),
         }
     doc = to_jsonable(doc)
-    facts = verdict_facts(bounded=bounded, windowed=windowed, screened=screened,
-                          isolated=isolated, cutoff=cutoff, interval_s=interval_s)
+    facts = verdict_facts(
+        bounded=bounded,
+        windowed=windowed,
+        screened=screened,
+        isolated=isolated,
+        cutoff=cutoff,
+        interval_s=interval_s,
+    )
     checks = verdict_checks(facts, config.verdict)
     verdict, reasons = verdict_of(checks)
-    out = {"schema_version": doc.pop("schema_version"), "verdict": verdict,
-           "verdict_reasons": reasons,
-           "verdict_checks": [c.as_dict() for c in checks], **doc}  # fmt: skip
+    out = {
+        "schema_version": doc.pop("schema_version"),
+        "verdict": verdict,
+        "verdict_reasons": reasons,
+        "verdict_checks": [c.as_dict() for c in checks],
+        **doc,
+    }
     out["headline"] = headline(out)
     return out

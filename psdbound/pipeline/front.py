@@ -51,8 +51,9 @@ class FitResults:
         The optional code-multipath stage (None when not asked for, or loaded).
     """
 
-    def __init__(self, document: dict[str, Any], *, config: FitConfig | None = None,
-                 **stage_results: Any) -> None:  # fmt: skip
+    def __init__(
+        self, document: dict[str, Any], *, config: FitConfig | None = None, **stage_results: Any
+    ) -> None:
         self.document = document
         self.config = config
         self._source = str(stage_results.pop("source", ""))
@@ -149,11 +150,17 @@ class FitResults:
         from psdbound.results.series_table import series_table
 
         if self.isolated is None:
-            raise InputError("this result was read from a file, which holds no per-epoch "
-                             "series: fit again (psdbound.fit(...), or fit --series)")  # fmt: skip
+            raise InputError(
+                "this result was read from a file, which holds no per-epoch "
+                "series: fit again (psdbound.fit(...), or fit --series)"
+            )
         d = self.document
-        return series_table(self.isolated.series, self.isolated.arcs,
-                            d["screening"]["excluded"], d["windows"]["per_window"])  # fmt: skip
+        return series_table(
+            self.isolated.series,
+            self.isolated.arcs,
+            d["screening"]["excluded"],
+            d["windows"]["per_window"],
+        )
 
     def series_csv(self, *, gz: bool = True) -> bytes:
         """Return :meth:`series_table` as CSV bytes (gzip-compressed by default)."""
@@ -192,8 +199,9 @@ class FitResults:
         """
         from psdbound.results.series_export import series_attrs, write_series
 
-        return write_series(self.series_table(), path, fmt=format,
-                            attrs=series_attrs(self.document))  # fmt: skip
+        return write_series(
+            self.series_table(), path, fmt=format, attrs=series_attrs(self.document)
+        )
 
     # ------------------------------------------------------------- figures
     def plot(self, name: str) -> Any:
@@ -258,11 +266,15 @@ class FitResults:
         cm = d.get("code_multipath")
         if cm:
             bins = (cm.get("overbound") or {}).get("bins", [])
-            per_bin = ", ".join(f"{x['elevation_deg'][0]:g}-{x['elevation_deg'][1]:g} deg "
-                                f"{100 * x['sigma']:.1f} cm (x{x['inflation']:.2f})"
-                                for x in bins)  # fmt: skip
-            lines.append(f"  code multipath {'+'.join(cm['codes'])}: "
-                         + (f"overbound sigma (inflation) {per_bin}" if bins else cm["status"]))
+            per_bin = ", ".join(
+                f"{x['elevation_deg'][0]:g}-{x['elevation_deg'][1]:g} deg "
+                f"{100 * x['sigma']:.1f} cm (x{x['inflation']:.2f})"
+                for x in bins
+            )
+            lines.append(
+                f"  code multipath {'+'.join(cm['codes'])}: "
+                + (f"overbound sigma (inflation) {per_bin}" if bins else cm["status"])
+            )
         demo = d.get("demo")
         if demo and demo.get("variance_ratio") is not None:
             lines.append(
@@ -281,8 +293,10 @@ class FitResults:
 
     def __repr__(self) -> str:
         b = self.document["bound"]
-        return (f"<FitResults {self.document['method']}: sigma_gm_m={b['sigma_gm_m']:.4g}, "
-                f"tau_s={b['tau_s']:.4g}, sigma_wn_m={b['sigma_wn_m']:.4g}>")  # fmt: skip
+        return (
+            f"<FitResults {self.document['method']}: sigma_gm_m={b['sigma_gm_m']:.4g}, "
+            f"tau_s={b['tau_s']:.4g}, sigma_wn_m={b['sigma_wn_m']:.4g}>"
+        )
 
     # ------------------------------------------------------------- output
     def to_json(self, path: str | os.PathLike[str]) -> Path:
@@ -311,8 +325,9 @@ class FitResults:
         return write_report_folder(self.document, out_dir, pdf=pdf)
 
 
-def _names(paths: Sequence[str | os.PathLike[str]] | str | os.PathLike[str] | None
-           ) -> tuple[str, ...]:  # fmt: skip
+def _names(
+    paths: Sequence[str | os.PathLike[str]] | str | os.PathLike[str] | None,
+) -> tuple[str, ...]:
     """File names of a path, a sequence of paths or None."""
     if paths is None:
         return ()
@@ -321,9 +336,12 @@ def _names(paths: Sequence[str | os.PathLike[str]] | str | os.PathLike[str] | No
     return tuple(os.fspath(p) for p in paths)
 
 
-def _config_from(obs: Sequence[str | os.PathLike[str]] | str | os.PathLike[str],
-                 nav: Sequence[str | os.PathLike[str]] | str | os.PathLike[str] | None,
-                 config: FitConfig | None, options: dict[str, Any]) -> FitConfig:  # fmt: skip
+def _config_from(
+    obs: Sequence[str | os.PathLike[str]] | str | os.PathLike[str],
+    nav: Sequence[str | os.PathLike[str]] | str | os.PathLike[str] | None,
+    config: FitConfig | None,
+    options: dict[str, Any],
+) -> FitConfig:
     cfg = config if config is not None else FitConfig()
     files = {"obs": _names(obs), "nav": _names(nav)}
     cfg = cfg.updated("inputs", **{k: v for k, v in files.items() if v})
@@ -417,8 +435,7 @@ def fit(
     t0 = time.perf_counter()
     run = run_stages(cfg, progress=progress)
     products = run.products()
-    document = build_document(config=run.config, run_time_s=time.perf_counter() - t0,
-                              **products)  # fmt: skip
+    document = build_document(config=run.config, run_time_s=time.perf_counter() - t0, **products)
     return FitResults(document, config=run.config, **products)
 
 

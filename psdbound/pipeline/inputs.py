@@ -89,8 +89,11 @@ def _unpack(paths: Sequence[Path], tmp: Path) -> tuple[list[Source], list[Path]]
         folder.mkdir()
         members = extract_zip(p, folder)
         kinds = [file_kind(m) for m in members]
-        obs = [(m, member_label(p, m)) for m, kind in zip(members, kinds, strict=True)
-               if kind not in ("nav", "sp3")]  # fmt: skip
+        obs = [
+            (m, member_label(p, m))
+            for m, kind in zip(members, kinds, strict=True)
+            if kind not in ("nav", "sp3")
+        ]
         if not obs:
             raise InputError(
                 f"the archive holds no observation file ({len(members)} navigation/SP3 files: "
@@ -137,8 +140,9 @@ def _orbit_sources(
     used because ``--nav`` is given).
     """
     if nav:
-        notes = [f"{p.name}: its navigation/SP3 members are not used (--nav given)"
-                 for p in with_orbits]  # fmt: skip
+        notes = [
+            f"{p.name}: its navigation/SP3 members are not used (--nav given)" for p in with_orbits
+        ]
         return list(nav), notes
     if with_orbits:
         return list(with_orbits), []
@@ -303,8 +307,9 @@ def _positions(options: InputsConfig, n: int) -> tuple[tuple[float, float, float
     return tuple(rx)
 
 
-def read_inputs(options: InputsConfig, *, progress: Progress = quiet,
-                extra_codes: tuple[str, ...] = ()) -> InputData:  # fmt: skip
+def read_inputs(
+    options: InputsConfig, *, progress: Progress = quiet, extra_codes: tuple[str, ...] = ()
+) -> InputData:
     """Read the observation and orbit files (or the embedded demo when none are given).
 
     Parameters
@@ -333,19 +338,23 @@ def read_inputs(options: InputsConfig, *, progress: Progress = quiet,
     with tempfile.TemporaryDirectory(prefix="psdbound-zip-") as tmp:
         sources, with_orbits = _unpack(obs_paths, Path(tmp))
         orbit_paths, notes = _orbit_sources(nav_paths, with_orbits)
-        progress(f"reading {len(obs_paths)} observation file(s) and "
-                 f"{', '.join(p.name for p in orbit_paths)}")  # fmt: skip
+        progress(
+            f"reading {len(obs_paths)} observation file(s) and "
+            f"{', '.join(p.name for p in orbit_paths)}"
+        )
         codes = None if extra_codes else _codes_needed(method_options)
-        groups = _group_stations(_read_observations(sources, options.system, codes),
-                                 options.pair)  # fmt: skip
+        groups = _group_stations(_read_observations(sources, options.system, codes), options.pair)
     _check_stations(groups, method_options)
     method = _method(method_options, len(groups))
     if method == "df":
         _refuse_pair_options(options, groups)
     obs = tuple(merge_observations(g) for g in groups)
-    merged = [f"{station_key(g[0])}: {len(g)} observation files merged in time order into one "
-              f"data set ({len(obs[k].t_gps_s)} epochs)"
-              for k, g in enumerate(groups) if len(g) > 1]  # fmt: skip
+    merged = [
+        f"{station_key(g[0])}: {len(g)} observation files merged in time order into one "
+        f"data set ({len(obs[k].t_gps_s)} epochs)"
+        for k, g in enumerate(groups)
+        if len(g) > 1
+    ]
     if merged:
         progress("; ".join(merged))
     orbit, coverage_notes = _orbit_for(orbit_paths, obs, options.system)
@@ -397,8 +406,9 @@ def _refuse_pair_options(options: InputsConfig, groups: list[list[Observations]]
             )
 
 
-def _orbit_for(paths: Sequence[Path], obs: Sequence[Observations],
-               system: str) -> tuple[object, list[str]]:  # fmt: skip
+def _orbit_for(
+    paths: Sequence[Path], obs: Sequence[Observations], system: str
+) -> tuple[object, list[str]]:
     """Read the orbit files; refuse orbits that do not cover the observations (one clear error).
 
     Returns the orbit and the coverage warnings.
@@ -413,8 +423,9 @@ def _orbit_for(paths: Sequence[Path], obs: Sequence[Observations],
     return orbit, notes
 
 
-def _lat_lon(obs: Observations, given: tuple[float, float, float] | None
-             ) -> tuple[float | None, float | None]:  # fmt: skip
+def _lat_lon(
+    obs: Observations, given: tuple[float, float, float] | None
+) -> tuple[float | None, float | None]:
     """Geodetic latitude and longitude of the (first) antenna, deg (None without a position)."""
     pos = obs.header.approx_position_m if given is None else np.asarray(given)
     if pos is None:

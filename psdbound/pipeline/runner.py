@@ -72,8 +72,13 @@ def _inputs(run: StageProducts, say: Progress) -> StageProducts:
 
 def _code(run: StageProducts, say: Progress) -> StageProducts:
     cfg = run.config
-    code = code_overbound(run.inputs, options=cfg.code_multipath, arcs=cfg.arcs,
-                          system=cfg.inputs.system, progress=say)  # fmt: skip
+    code = code_overbound(
+        run.inputs,
+        options=cfg.code_multipath,
+        arcs=cfg.arcs,
+        system=cfg.inputs.system,
+        progress=say,
+    )
     return replace(run, code=code)
 
 
@@ -83,55 +88,78 @@ def _cutoff(run: StageProducts, say: Progress) -> StageProducts:
 
 def _isolated(run: StageProducts, say: Progress) -> StageProducts:
     cfg = run.config
-    isolated = stages.isolate(run.inputs, run.cutoff, arcs=cfg.arcs, highpass=cfg.filter,
-                              options=cfg.inputs, progress=say)  # fmt: skip
+    isolated = stages.isolate(
+        run.inputs, run.cutoff, arcs=cfg.arcs, highpass=cfg.filter, options=cfg.inputs, progress=say
+    )
     return replace(run, isolated=isolated)
 
 
 def _screened(run: StageProducts, say: Progress) -> StageProducts:
     cfg = run.config
     provisional = stages.map_elevation(run.isolated.series, cfg.mapping)
-    screened = stages.screen(run.isolated, options=cfg.screening, mapping=provisional,
-                             min_length_s=cfg.stationarity.min_window_s, progress=say)
+    screened = stages.screen(
+        run.isolated,
+        options=cfg.screening,
+        mapping=provisional,
+        min_length_s=cfg.stationarity.min_window_s,
+        progress=say,
+    )
     return replace(run, screened=screened)
 
 
 def _windowed(run: StageProducts, say: Progress) -> StageProducts:
     cfg = run.config
     mapping = stages.map_elevation(run.screened.series, cfg.mapping)
-    windowed = stages.window(run.screened, mapping=mapping, options=cfg.stationarity,
-                             progress=say)  # fmt: skip
+    windowed = stages.window(run.screened, mapping=mapping, options=cfg.stationarity, progress=say)
     return replace(run, windowed=windowed)
 
 
 def _bounded(run: StageProducts, say: Progress) -> StageProducts:
     cfg = run.config
-    bounded = stages.bound(run.windowed, spectra=cfg.spectra, options=cfg.bound,
-                           cutoff=run.cutoff, highpass=cfg.filter, progress=say)  # fmt: skip
+    bounded = stages.bound(
+        run.windowed,
+        spectra=cfg.spectra,
+        options=cfg.bound,
+        cutoff=run.cutoff,
+        highpass=cfg.filter,
+        progress=say,
+    )
     return replace(run, bounded=bounded)
 
 
 def _validated(run: StageProducts, say: Progress) -> StageProducts:
     cfg = run.config
-    validated = stages.validate(run.cutoff, inputs=run.inputs, isolated=run.isolated,
-                                arcs=cfg.arcs, options=cfg.validation, highpass=cfg.filter,
-                                progress=say)  # fmt: skip
+    validated = stages.validate(
+        run.cutoff,
+        inputs=run.inputs,
+        isolated=run.isolated,
+        arcs=cfg.arcs,
+        options=cfg.validation,
+        highpass=cfg.filter,
+        progress=say,
+    )
     return replace(run, validated=validated)
 
 
 #: The stages in the order they run, each with the step that runs it.
 _STEPS: tuple[tuple[str, Callable[[StageProducts, Progress], StageProducts]], ...] = (
-    ("inputs", _inputs), ("code", _code), ("cutoff", _cutoff), ("isolated", _isolated),
-    ("screened", _screened), ("windowed", _windowed), ("bounded", _bounded),
+    ("inputs", _inputs),
+    ("code", _code),
+    ("cutoff", _cutoff),
+    ("isolated", _isolated),
+    ("screened", _screened),
+    ("windowed", _windowed),
+    ("bounded", _bounded),
     ("validated", _validated),
-)  # fmt: skip
+)
 
 #: Stage names in running order (the ``until`` values of :func:`run_stages`).
 STAGES: tuple[str, ...] = tuple(name for name, _ in _STEPS)
 
 
-def run_stages(config: FitConfig, *, until: str | None = None,
-               progress: Progress | None = None) -> StageProducts:  # fmt: skip
+def run_stages(
+    config: FitConfig, *, until: str | None = None, progress: Progress | None = None
+) -> StageProducts:
     """Run the fit's stages in order and return their products.
 
     Parameters

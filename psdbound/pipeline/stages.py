@@ -71,6 +71,7 @@ __all__ = [
     "window",
 ]
 
+
 def choose_cutoff(inputs: InputData, options: CutoffOptions) -> CutoffChoice | None:
     """Choose the high-pass cutoff (dual-frequency only; None for dual-antenna).
 
@@ -88,8 +89,14 @@ def choose_cutoff(inputs: InputData, options: CutoffOptions) -> CutoffChoice | N
     if inputs.method == "da":
         return None
     date = str(inputs.observations[0].times[0])[:10]
-    return _choose_cutoff(options, lat_deg=inputs.lat_deg, lon_deg=inputs.lon_deg,
-                          year=inputs.year, date=date, interval_s=inputs.interval_s)  # fmt: skip
+    return _choose_cutoff(
+        options,
+        lat_deg=inputs.lat_deg,
+        lon_deg=inputs.lon_deg,
+        year=inputs.year,
+        date=date,
+        interval_s=inputs.interval_s,
+    )
 
 
 def _xyz(rx: tuple[float, float, float] | None) -> np.ndarray | None:
@@ -106,22 +113,37 @@ def _offered(arcs: ArcSet, interval_s: float) -> dict[str, float] | None:
     if not n:
         return None
     offered = n["both_signals"] - n["below_mask"]
-    return {"samples_both_signals": n["both_signals"], "samples_without_orbit": n["without_orbit"],
-            "samples_below_mask": n["below_mask"], "offered_s": offered * interval_s}  # fmt: skip
+    return {
+        "samples_both_signals": n["both_signals"],
+        "samples_without_orbit": n["without_orbit"],
+        "samples_below_mask": n["below_mask"],
+        "offered_s": offered * interval_s,
+    }
 
 
-def _isolate_df(inputs: InputData, cutoff: CutoffChoice, arcs_opt: ArcOptions,
-                highpass: HighPass, signals: tuple[str, ...], system: str,
-                progress: Progress) -> Isolated:  # fmt: skip
+def _isolate_df(
+    inputs: InputData,
+    cutoff: CutoffChoice,
+    arcs_opt: ArcOptions,
+    highpass: HighPass,
+    signals: tuple[str, ...],
+    system: str,
+    progress: Progress,
+) -> Isolated:
     progress("arcs (gaps, loss of lock, cycle slips, elevations)")
     arcs = find_arcs(
-        inputs.observations[0], signals or None, system=system, orbit=inputs.orbit,
-        receiver_xyz_m=_xyz(inputs.receiver_xyz_m[0]), min_length_s=arcs_opt.min_length_s,
+        inputs.observations[0],
+        signals or None,
+        system=system,
+        orbit=inputs.orbit,
+        receiver_xyz_m=_xyz(inputs.receiver_xyz_m[0]),
+        min_length_s=arcs_opt.min_length_s,
         slip_threshold_m=arcs_opt.slip_threshold_m,
         elevation_mask_deg=arcs_opt.elevation_mask_deg,
-    )  # fmt: skip
-    arcs = add_third_carrier(arcs, inputs.observations[0],
-                             slip_threshold_m=arcs_opt.slip_threshold_m)  # fmt: skip
+    )
+    arcs = add_third_carrier(
+        arcs, inputs.observations[0], slip_threshold_m=arcs_opt.slip_threshold_m
+    )
     progress(f"dual-frequency isolation (high-pass {cutoff.f_c_hz:.4g} Hz)")
     series = isolate_dual_frequency(arcs, cutoff.f_c_hz, highpass=highpass)
     safety = filter_safety_check(series)
@@ -155,19 +177,26 @@ def _isolate_df(inputs: InputData, cutoff: CutoffChoice, arcs_opt: ArcOptions,
     return Isolated(series, arcs, details, warnings)
 
 
-def _isolate_da(inputs: InputData, arcs_opt: ArcOptions, options: InputsConfig,
-                progress: Progress) -> Isolated:  # fmt: skip
-    progress("dual-antenna double differences (receiver clocks, geometry, re-referencing, "
-             "baseline)")  # fmt: skip
+def _isolate_da(
+    inputs: InputData, arcs_opt: ArcOptions, options: InputsConfig, progress: Progress
+) -> Isolated:
+    progress(
+        "dual-antenna double differences (receiver clocks, geometry, re-referencing, baseline)"
+    )
     rx = inputs.receiver_xyz_m
     series = isolate_dual_antenna(
-        inputs.observations[0], inputs.observations[1], inputs.orbit,
-        signal=options.da_signal, system=options.system, receiver1_xyz_m=_xyz(rx[0]),
+        inputs.observations[0],
+        inputs.observations[1],
+        inputs.orbit,
+        signal=options.da_signal,
+        system=options.system,
+        receiver1_xyz_m=_xyz(rx[0]),
         receiver2_xyz_m=_xyz(rx[1]) if len(rx) > 1 else None,
         min_length_s=min(arcs_opt.min_length_s, 600.0),
         elevation_mask_deg=arcs_opt.elevation_mask_deg,
-        baseline=options.baseline, baseline_tolerance_m=options.baseline_tolerance_m,
-    )  # fmt: skip
+        baseline=options.baseline,
+        baseline_tolerance_m=options.baseline_tolerance_m,
+    )
     m = series.meta
     details = {
         "signals": list(series.signals),
@@ -223,8 +252,9 @@ def isolate(
     if inputs.method == "df":
         if cutoff is None:
             raise InputError("dual-frequency isolation needs a cutoff frequency")
-        return _isolate_df(inputs, cutoff, arcs, highpass, tuple(options.signals),
-                           options.system, progress)  # fmt: skip
+        return _isolate_df(
+            inputs, cutoff, arcs, highpass, tuple(options.signals), options.system, progress
+        )
     return _isolate_da(inputs, arcs, options, progress)
 
 
@@ -279,8 +309,9 @@ def screen(
     progress("screening (ROTI of the geometry-free phase, carrier-multipath limit)")
     s = isolated.series
     channels = isolated.arcs.glonass_channels if isolated.arcs is not None else None
-    sc = screen_series(s, options, min_length_s=min_length_s, mapping=mapping,
-                       glonass_channels=channels)  # fmt: skip
+    sc = screen_series(
+        s, options, min_length_s=min_length_s, mapping=mapping, glonass_channels=channels
+    )
     if sc.series.n_arcs == 0:
         raise NoDataError(
             f"screening excluded all {sc.input_s / 3600:.2f} h of data "
@@ -354,10 +385,16 @@ def window(
     raised = _check_min_window(options, series.interval_s)
     m = mapping
     windows = find_stationary_windows(
-        series, mapping=m, alpha=options.alpha, p_slide=options.p_slide,
-        p_trim=options.p_trim, min_length_s=options.min_window_s, center=options.levene_center,
-        test=options.test, overlap=options.windows == "slide",
-    )  # fmt: skip
+        series,
+        mapping=m,
+        alpha=options.alpha,
+        p_slide=options.p_slide,
+        p_trim=options.p_trim,
+        min_length_s=options.min_window_s,
+        center=options.levene_center,
+        test=options.test,
+        overlap=options.windows == "slide",
+    )
     if len(windows) == 0:
         raise NoDataError(
             f"no stationary window of at least {options.min_window_s:g} s in {series.n_arcs} "
@@ -409,8 +446,9 @@ def bound(
     -------
     BoundResults
     """
-    progress(f"{len(windowed.windows)} windows: PSDs ({spectra.estimator}) and the "
-             f"{options.rule} bound")  # fmt: skip
+    progress(
+        f"{len(windowed.windows)} windows: PSDs ({spectra.estimator}) and the {options.rule} bound"
+    )
     model = BoundModel(windowed.windows, estimator=spectra.estimator, **spectra.options)
     f_min_hz = gain = None
     if cutoff is not None:
@@ -422,36 +460,56 @@ def bound(
 
     return model.fit(
         power_response=gain if options.rule == "pooled" else None,
-        rule=options.rule, objective=options.objective, f_min_hz=f_min_hz,
-        confidence_level=options.confidence_level, coverage=options.coverage,
-        shape_alpha=options.shape_alpha, tau_max_s=options.tau_max_s,
-        bands_per_decade=options.bands_per_decade, target=options.target, level=options.level,
-    )  # fmt: skip
+        rule=options.rule,
+        objective=options.objective,
+        f_min_hz=f_min_hz,
+        confidence_level=options.confidence_level,
+        coverage=options.coverage,
+        shape_alpha=options.shape_alpha,
+        tau_max_s=options.tau_max_s,
+        bands_per_decade=options.bands_per_decade,
+        target=options.target,
+        level=options.level,
+    )
 
 
-def _resolve_geometries(inputs: InputData, options: ValidationOptions,
-                        measured_h_m: float | None = None) -> tuple[list[str], str]:  # fmt: skip
+def _resolve_geometries(
+    inputs: InputData, options: ValidationOptions, measured_h_m: float | None = None
+) -> tuple[list[str], str]:
     """Replace ``ground:h=header`` by the SNR-measured height, the header's, or the fallback."""
     out, note = [], ""
     for g in options.geometries:
         if g.replace(" ", "").lower() == "ground:h=header":
             h = float(inputs.observations[0].header.antenna_delta_hen_m[0])
             if measured_h_m is not None:
-                h, note = measured_h_m, (f"ground reflector height {measured_h_m:.3g} m "
-                                         "measured from the SNR (validation.site_reflection)")
+                h, note = (
+                    measured_h_m,
+                    (
+                        f"ground reflector height {measured_h_m:.3g} m "
+                        "measured from the SNR (validation.site_reflection)"
+                    ),
+                )
             elif h > 0:
                 note = f"ground reflector height {h:g} m from the RINEX header (ANTENNA: DELTA H)"
             else:
                 h = options.ground_height_m
-                note = (f"the RINEX header gives no antenna height (DELTA H = 0): ground "
-                        f"reflector height {h:g} m from the configuration")  # fmt: skip
+                note = (
+                    f"the RINEX header gives no antenna height (DELTA H = 0): ground "
+                    f"reflector height {h:g} m from the configuration"
+                )
             g = f"ground:h={h:.3g}"
         out.append(g)
     return out, note
 
 
-def _slow_component(series: Any, geoms: Sequence[str], site: Any, lams: Sequence[float],
-                    hp: HighPass, cutoff_hz: float) -> list[dict[str, Any]]:  # fmt: skip
+def _slow_component(
+    series: Any,
+    geoms: Sequence[str],
+    site: Any,
+    lams: Sequence[float],
+    hp: HighPass,
+    cutoff_hz: float,
+) -> list[dict[str, Any]]:
     """Per geometry: the removed multipath along the data's arcs and its slow GM (largest first).
 
     A ground height measured from the SNR is taken with its tolerance
@@ -463,10 +521,16 @@ def _slow_component(series: Any, geoms: Sequence[str], site: Any, lams: Sequence
     from psdbound.validation.site import height_tolerance_m
 
     def removed(label: str) -> Any:
-        return removed_along_arcs(series.elevation_deg, series.arc_id,
-                                  geometry=parse_geometry(label), alpha=site.alpha,
-                                  wavelengths_m=lams, highpass=hp, dt_s=series.interval_s,
-                                  cutoff_hz=cutoff_hz)  # fmt: skip
+        return removed_along_arcs(
+            series.elevation_deg,
+            series.arc_id,
+            geometry=parse_geometry(label),
+            alpha=site.alpha,
+            wavelengths_m=lams,
+            highpass=hp,
+            dt_s=series.interval_s,
+            cutoff_hz=cutoff_hz,
+        )
 
     rows = []
     for geom in dict.fromkeys(geoms):
@@ -474,26 +538,43 @@ def _slow_component(series: Any, geoms: Sequence[str], site: Any, lams: Sequence
         h = site.ground_height_m
         if rm is not None and h is not None and geom == f"ground:h={h:.3g}":
             d = height_tolerance_m(h)
-            rm = envelope([rm, removed(f"ground:h={max(h - d, 0.05):.4g}"),
-                           removed(f"ground:h={h + d:.4g}")], geom)  # fmt: skip
+            rm = envelope(
+                [rm, removed(f"ground:h={max(h - d, 0.05):.4g}"), removed(f"ground:h={h + d:.4g}")],
+                geom,
+            )
         if rm is not None:
             rows.append(rm.as_dict())
     return sorted(rows, key=lambda r: -r["sigma_m"])
 
 
-def _site(inputs: InputData, series: Any, sats: Sequence[str], pos: Any,
-          options: ValidationOptions, cutoff_hz: float, lam_m: float) -> Any:  # fmt: skip
+def _site(
+    inputs: InputData,
+    series: Any,
+    sats: Sequence[str],
+    pos: Any,
+    options: ValidationOptions,
+    cutoff_hz: float,
+    lam_m: float,
+) -> Any:
     """Return the ground height and alpha: from the SNR when the options ask and it can."""
     from psdbound.validation.site import SiteReflection, removed_weight, site_reflection
 
     if not options.snr or not sats:
-        return SiteReflection(options.alpha, None, False,
-                              note=f"alpha {options.alpha:g} assumed (configuration)")  # fmt: skip
-    weight = removed_weight(series.elevation_deg, series.t_gps_s, series.arc_id,
-                            wavelength_m=lam_m, cutoff_hz=cutoff_hz)  # fmt: skip
-    return site_reflection(inputs.observations[0], inputs.orbit, phase_signal=series.signals[0],
-                           system=sats[0][0], receiver_xyz_m=pos, alpha=options.alpha,
-                           weight=weight)  # fmt: skip
+        return SiteReflection(
+            options.alpha, None, False, note=f"alpha {options.alpha:g} assumed (configuration)"
+        )
+    weight = removed_weight(
+        series.elevation_deg, series.t_gps_s, series.arc_id, wavelength_m=lam_m, cutoff_hz=cutoff_hz
+    )
+    return site_reflection(
+        inputs.observations[0],
+        inputs.orbit,
+        phase_signal=series.signals[0],
+        system=sats[0][0],
+        receiver_xyz_m=pos,
+        alpha=options.alpha,
+        weight=weight,
+    )
 
 
 def _removed_rms(report: Any, lams: Sequence[float], alpha: float) -> list[dict]:
@@ -503,14 +584,26 @@ def _removed_rms(report: Any, lams: Sequence[float], alpha: float) -> list[dict]
     var_m2 = float(np.mean([(lam / (2 * np.pi)) ** 2 * alpha**2 / 2 for lam in lams]))
     rows = []
     for geom in dict.fromkeys(c.geometry.label for c in report.expansion):
-        direct = [d.fraction_below_cutoff for d in report.direct
-                  if d.geometry.label == geom and d.convention == "physical"]  # fmt: skip
-        exp = [c.fraction_below_cutoff for c in report.expansion
-               if c.geometry.label == geom and c.convention == "physical"]  # fmt: skip
+        direct = [
+            d.fraction_below_cutoff
+            for d in report.direct
+            if d.geometry.label == geom and d.convention == "physical"
+        ]
+        exp = [
+            c.fraction_below_cutoff
+            for c in report.expansion
+            if c.geometry.label == geom and c.convention == "physical"
+        ]
         frac = float(np.median(direct)) if direct else float(max(exp))
-        rows.append({"geometry": geom, "fraction_below_fc": frac,
-                     "fraction_source": "passes of the data" if direct else "orbit-rate expansion",
-                     "n_passes": len(direct), "removed_rms_m": float(np.sqrt(frac * var_m2))})
+        rows.append(
+            {
+                "geometry": geom,
+                "fraction_below_fc": frac,
+                "fraction_source": "passes of the data" if direct else "orbit-rate expansion",
+                "n_passes": len(direct),
+                "removed_rms_m": float(np.sqrt(frac * var_m2)),
+            }
+        )
     return rows
 
 
@@ -554,8 +647,11 @@ def validate(
     Validated
     """
     if cutoff is None:
-        summary = {"applicable": False, "verdict": "not applicable",
-                   "reason": "dual-antenna isolation applies no high-pass filter"}  # fmt: skip
+        summary = {
+            "applicable": False,
+            "verdict": "not applicable",
+            "reason": "dual-antenna isolation applies no high-pass filter",
+        }
         return Validated(None, summary)
     from psdbound.validation import validate_cutoff
 
@@ -569,32 +665,39 @@ def validate(
     site = _site(inputs, series, sats, pos, options, cutoff.f_c_hz, lams[0])
     geoms, note = _resolve_geometries(inputs, options, site.ground_height_m)
     report = validate_cutoff(
-        geoms, cutoff_hz=cutoff.f_c_hz, rate=options.rate, alpha=site.alpha,
-        threshold=options.threshold, orbit=inputs.orbit if pos is not None else None,
-        receiver_xyz_m=pos, sats=sats, system=sats[0][0] if sats else "G",
+        geoms,
+        cutoff_hz=cutoff.f_c_hz,
+        rate=options.rate,
+        alpha=site.alpha,
+        threshold=options.threshold,
+        orbit=inputs.orbit if pos is not None else None,
+        receiver_xyz_m=pos,
+        sats=sats,
+        system=sats[0][0] if sats else "G",
         elevation_mask_deg=arcs.elevation_mask_deg,
-    )  # fmt: skip
+    )
     removed = _removed_rms(report, lams, site.alpha)
-    slow = _slow_component(series, geoms, site, lams, highpass or HighPass(),
-                           cutoff.f_c_hz)  # fmt: skip
+    slow = _slow_component(series, geoms, site, lams, highpass or HighPass(), cutoff.f_c_hz)
     summary = report.to_dict()
-    summary.update({
-        "applicable": True,
-        "geometries_used": geoms,
-        "geometry_note": note,
-        "site_reflection": site.as_dict(),
-        "removed": removed,
-        "max_removed_rms_m": max(r["removed_rms_m"] for r in removed),
-        "slow": slow[0] if slow else None,
-        "slow_by_geometry": slow,
-        "summary": (
-            f"{'pass' if report.passed else 'fail'} (thesis criterion): largest fraction of "
-            f"multipath power below f_c over {', '.join(geoms)} vs threshold "
-            f"{100 * options.threshold:g} %; the filter removes up to "
-            f"{1000 * max(r['removed_rms_m'] for r in removed):.2f} mm RMS "
-            f"(alpha {site.alpha:.3g}, {'measured' if site.measured else 'assumed'})"
-        ),
-    })  # fmt: skip
+    summary.update(
+        {
+            "applicable": True,
+            "geometries_used": geoms,
+            "geometry_note": note,
+            "site_reflection": site.as_dict(),
+            "removed": removed,
+            "max_removed_rms_m": max(r["removed_rms_m"] for r in removed),
+            "slow": slow[0] if slow else None,
+            "slow_by_geometry": slow,
+            "summary": (
+                f"{'pass' if report.passed else 'fail'} (thesis criterion): largest fraction of "
+                f"multipath power below f_c over {', '.join(geoms)} vs threshold "
+                f"{100 * options.threshold:g} %; the filter removes up to "
+                f"{1000 * max(r['removed_rms_m'] for r in removed):.2f} mm RMS "
+                f"(alpha {site.alpha:.3g}, {'measured' if site.measured else 'assumed'})"
+            ),
+        }
+    )
     warnings = ()
     if not report.passed:
         worst = max(removed, key=lambda r: r["fraction_below_fc"])

@@ -108,8 +108,17 @@ if TYPE_CHECKING:  # the products, for type checkers: this module stays light to
     from psdbound.pipeline.products import Isolated, Screened, Windowed
     from psdbound.spectra import BoundResults
 
-__all__ = ["VerdictCheck", "VerdictFacts", "VerdictOptions", "judge", "judge_pooled",
-           "pooled_checks", "verdict_checks", "verdict_facts", "verdict_of"]
+__all__ = [
+    "VerdictCheck",
+    "VerdictFacts",
+    "VerdictOptions",
+    "judge",
+    "judge_pooled",
+    "pooled_checks",
+    "verdict_checks",
+    "verdict_facts",
+    "verdict_of",
+]
 
 
 @dataclass(frozen=True)
@@ -230,23 +239,32 @@ class VerdictFacts:
         spans = [(x["arc"], x["t_start_gps_s"], x["t_stop_gps_s"]) for x in w["per_window"]]
         covered = d.get("covered_s")
         return cls(
-            sigma_gm_m=b["sigma_gm_m"], tau_s=b["tau_s"], sigma_wn_m=b["sigma_wn_m"],
+            sigma_gm_m=b["sigma_gm_m"],
+            tau_s=b["tau_s"],
+            sigma_wn_m=b["sigma_wn_m"],
             tau_grid_s=tuple(b.get("tau_grid_s") or ()),
-            covered_s=float(covered) if covered is not None else _covered_s(
-                spans, s["interval_s"]),
+            covered_s=float(covered) if covered is not None else _covered_s(spans, s["interval_s"]),
             low_frequency=b.get("low_frequency"),
             filter_loss=(iso.get("safety") or {}).get("removed_above_fc_median"),
-            f_c_hz=d["cutoff"].get("f_c_hz"), nyquist_hz=s["nyquist_hz"],
-            rejected_s=w.get("rejected_s"), data_s=w.get("data_s"),
+            f_c_hz=d["cutoff"].get("f_c_hz"),
+            nyquist_hz=s["nyquist_hz"],
+            rejected_s=w.get("rejected_s"),
+            data_s=w.get("data_s"),
             excluded_fraction=scr.get("excluded_fraction"),
             offered_s=(iso.get("offered") or {}).get("offered_s"),
             multipath_limit_m=scr.get("multipath_limit_m"),
-        )  # fmt: skip
+        )
 
 
-def verdict_facts(*, bounded: BoundResults, windowed: Windowed, screened: Screened,
-                  isolated: Isolated, cutoff: CutoffChoice | None,
-                  interval_s: float) -> VerdictFacts:  # fmt: skip
+def verdict_facts(
+    *,
+    bounded: BoundResults,
+    windowed: Windowed,
+    screened: Screened,
+    isolated: Isolated,
+    cutoff: CutoffChoice | None,
+    interval_s: float,
+) -> VerdictFacts:
     """Return the verdict's facts from a fit's stage products.
 
     Parameters
@@ -269,17 +287,21 @@ def verdict_facts(*, bounded: BoundResults, windowed: Windowed, screened: Screen
     low = bounded.low_frequency
     spans = [(x.arc_id, x.t_start_gps_s, x.t_stop_gps_s) for x in w.windows]
     return VerdictFacts(
-        sigma_gm_m=b.sigma_gm_m, tau_s=b.tau_s, sigma_wn_m=b.sigma_wn_m,
+        sigma_gm_m=b.sigma_gm_m,
+        tau_s=b.tau_s,
+        sigma_wn_m=b.sigma_wn_m,
         tau_grid_s=tuple(float(t) for t in b.tau_grid_s),
         covered_s=_covered_s(spans, interval_s),
         low_frequency=None if low is None else to_jsonable(low.as_dict()),
         filter_loss=(details.get("safety") or {}).get("removed_above_fc_median"),
-        f_c_hz=None if cutoff is None else cutoff.f_c_hz, nyquist_hz=0.5 / interval_s,
-        rejected_s=w.rejected_s, data_s=screened.series.data_s,
+        f_c_hz=None if cutoff is None else cutoff.f_c_hz,
+        nyquist_hz=0.5 / interval_s,
+        rejected_s=w.rejected_s,
+        data_s=screened.series.data_s,
         excluded_fraction=sc.excluded_fraction,
         offered_s=(details.get("offered") or {}).get("offered_s"),
         multipath_limit_m=sc.limit_m,
-    )  # fmt: skip
+    )
 
 
 @dataclass(frozen=True)
@@ -312,8 +334,13 @@ class VerdictCheck:
 
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready form (an entry of ``verdict_checks`` in result.json)."""
-        return {"rule": self.rule, "passed": self.passed, "measured": self.measured,
-                "limit": self.limit, "reason": self.reason}  # fmt: skip
+        return {
+            "rule": self.rule,
+            "passed": self.passed,
+            "measured": self.measured,
+            "limit": self.limit,
+            "reason": self.reason,
+        }
 
 
 def _check(rule: str, passed: bool, measured: str, limit: str, reason: str) -> VerdictCheck:
@@ -325,43 +352,70 @@ def _degenerate(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
     lo, hi = min(grid), max(grid)
     inside = lo * (1 + 1e-6) < f.tau_s < hi * (1 - 1e-6)
     return [
-        _check("time correlation", f.sigma_gm_m > 0.0,
-               f"sigma_GM {100 * f.sigma_gm_m:.3f} cm", "> 0",
-               "degenerate bound: sigma_GM = 0, only white noise; no time correlation is "
-               "resolved in the band fitted"),
-        _check("tau inside its search", inside, f"tau {f.tau_s:.3g} s",
-               f"inside [{lo:.3g}, {hi:.3g}] s", f"degenerate bound: tau = {f.tau_s:.3g} s "
-               f"sits at the end of its search grid [{lo:.3g}, {hi:.3g}] s"),
-    ]  # fmt: skip
+        _check(
+            "time correlation",
+            f.sigma_gm_m > 0.0,
+            f"sigma_GM {100 * f.sigma_gm_m:.3f} cm",
+            "> 0",
+            "degenerate bound: sigma_GM = 0, only white noise; no time correlation is "
+            "resolved in the band fitted",
+        ),
+        _check(
+            "tau inside its search",
+            inside,
+            f"tau {f.tau_s:.3g} s",
+            f"inside [{lo:.3g}, {hi:.3g}] s",
+            f"degenerate bound: tau = {f.tau_s:.3g} s "
+            f"sits at the end of its search grid [{lo:.3g}, {hi:.3g}] s",
+        ),
+    ]
 
 
 def _data_for_tau(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
     covered = f.covered_s
     need = opt.min_tau_multiple * f.tau_s
     ok = f.sigma_gm_m <= 0 or covered >= need
-    return [_check("data for tau", ok, f"{covered / 3600:.2f} h in windows",
-                   f">= {opt.min_tau_multiple:g} tau = {need / 3600:.2f} h",
-                   f"too little stationary data: {covered / 60:.1f} min covered by windows < "
-                   f"{opt.min_tau_multiple:g} tau = {need / 60:.1f} min (variance uncertainty "
-                   "above 20 %)")]  # fmt: skip
+    return [
+        _check(
+            "data for tau",
+            ok,
+            f"{covered / 3600:.2f} h in windows",
+            f">= {opt.min_tau_multiple:g} tau = {need / 3600:.2f} h",
+            f"too little stationary data: {covered / 60:.1f} min covered by windows < "
+            f"{opt.min_tau_multiple:g} tau = {need / 60:.1f} min (variance uncertainty "
+            "above 20 %)",
+        )
+    ]
 
 
 def _filter(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
     out = []
     if f.filter_loss is not None:
         loss = f.filter_loss
-        out.append(_check("filter loss", loss <= opt.max_filter_loss, f"{100 * loss:.1f} %",
-                          f"<= {100 * opt.max_filter_loss:g} %",
-                          f"filter loss: the high-pass removed a median {100 * loss:.1f} % of "
-                          f"the power above f_c (limit {100 * opt.max_filter_loss:g} %); arcs "
-                          "are too short for the cutoff"))  # fmt: skip
+        out.append(
+            _check(
+                "filter loss",
+                loss <= opt.max_filter_loss,
+                f"{100 * loss:.1f} %",
+                f"<= {100 * opt.max_filter_loss:g} %",
+                f"filter loss: the high-pass removed a median {100 * loss:.1f} % of "
+                f"the power above f_c (limit {100 * opt.max_filter_loss:g} %); arcs "
+                "are too short for the cutoff",
+            )
+        )
     if f.f_c_hz and f.nyquist_hz is not None:
         ratio = f.nyquist_hz / f.f_c_hz
-        out.append(_check("band", ratio >= opt.min_band_ratio, f"Nyquist / f_c {ratio:.3g}",
-                          f">= {opt.min_band_ratio:g}",
-                          f"band: cutoff {f.f_c_hz:.3g} Hz leaves only a factor {ratio:.2f} "
-                          f"below the Nyquist frequency {f.nyquist_hz:.3g} Hz (need "
-                          f"{opt.min_band_ratio:g})"))  # fmt: skip
+        out.append(
+            _check(
+                "band",
+                ratio >= opt.min_band_ratio,
+                f"Nyquist / f_c {ratio:.3g}",
+                f">= {opt.min_band_ratio:g}",
+                f"band: cutoff {f.f_c_hz:.3g} Hz leaves only a factor {ratio:.2f} "
+                f"below the Nyquist frequency {f.nyquist_hz:.3g} Hz (need "
+                f"{opt.min_band_ratio:g})",
+            )
+        )
     return out
 
 
@@ -370,17 +424,29 @@ def _data_use(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
     if f.rejected_s is not None and f.data_s:
         frac = f.rejected_s / f.data_s
         lim = opt.max_never_stationary_fraction
-        out.append(_check("data outside the bound", frac <= lim, f"{100 * frac:.1f} %",
-                          f"<= {100 * lim:g} %",
-                          f"data outside the bound: {100 * frac:.1f} % of the screened data "
-                          f"({f.rejected_s / 3600:.2f} h) failed every stationarity test "
-                          f"(limit {100 * lim:g} %)"))  # fmt: skip
+        out.append(
+            _check(
+                "data outside the bound",
+                frac <= lim,
+                f"{100 * frac:.1f} %",
+                f"<= {100 * lim:g} %",
+                f"data outside the bound: {100 * frac:.1f} % of the screened data "
+                f"({f.rejected_s / 3600:.2f} h) failed every stationarity test "
+                f"(limit {100 * lim:g} %)",
+            )
+        )
     if f.excluded_fraction is not None:
         frac, lim = f.excluded_fraction, opt.max_excluded_fraction
-        out.append(_check("data excluded", frac <= lim, f"{100 * frac:.1f} %",
-                          f"<= {100 * lim:g} %",
-                          f"most data excluded: screening removed {100 * frac:.1f} % of the "
-                          f"data (limit {100 * lim:g} %)"))  # fmt: skip
+        out.append(
+            _check(
+                "data excluded",
+                frac <= lim,
+                f"{100 * frac:.1f} %",
+                f"<= {100 * lim:g} %",
+                f"most data excluded: screening removed {100 * frac:.1f} % of the "
+                f"data (limit {100 * lim:g} %)",
+            )
+        )
     return out
 
 
@@ -390,12 +456,18 @@ def _data_used(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
         return []
     used = f.covered_s / offered
     lim = opt.min_used_fraction
-    return [_check("data used", used >= lim, f"{100 * used:.1f} % of {offered / 3600:.1f} h",
-                   f">= {100 * lim:g} %",
-                   f"data used: only {100 * used:.1f} % of the {offered / 3600:.1f} h of data the "
-                   f"file offered above the elevation mask lie in the bound's windows (limit "
-                   f"{100 * lim:g} %; every loss counted: no orbit, short arcs, filter edges, "
-                   "screening, stationarity)")]  # fmt: skip
+    return [
+        _check(
+            "data used",
+            used >= lim,
+            f"{100 * used:.1f} % of {offered / 3600:.1f} h",
+            f">= {100 * lim:g} %",
+            f"data used: only {100 * used:.1f} % of the {offered / 3600:.1f} h of data the "
+            f"file offered above the elevation mask lie in the bound's windows (limit "
+            f"{100 * lim:g} %; every loss counted: no orbit, short arcs, filter edges, "
+            "screening, stationarity)",
+        )
+    ]
 
 
 def _low_frequency(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
@@ -403,8 +475,15 @@ def _low_frequency(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
 
     reasons = low_frequency_reasons(f.low_frequency, opt.low_frequency)
     status = (f.low_frequency or {}).get("status", "unchecked")
-    return [VerdictCheck("low frequencies", not reasons, f"status {status}",
-                         f"policy {opt.low_frequency}", "; ".join(reasons))]  # fmt: skip
+    return [
+        VerdictCheck(
+            "low frequencies",
+            not reasons,
+            f"status {status}",
+            f"policy {opt.low_frequency}",
+            "; ".join(reasons),
+        )
+    ]
 
 
 def _physical(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
@@ -412,22 +491,35 @@ def _physical(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
     if not lim:
         return []
     sigma = math.hypot(f.sigma_gm_m, f.sigma_wn_m)
-    return [_check("physical limit", sigma <= lim, f"sigma {100 * sigma:.2f} cm at zenith",
-                   f"<= {100 * lim:.2f} cm carrier-multipath limit",
-                   f"physical limit: the bound's standard deviation {100 * sigma:.2f} cm exceeds "
-                   f"the {100 * lim:.2f} cm that carrier multipath of this series can reach at "
-                   "all (a quarter wavelength per carrier): what it bounds is not multipath "
-                   "(residual ionosphere, cycle slips, a wrong baseline)")]  # fmt: skip
+    return [
+        _check(
+            "physical limit",
+            sigma <= lim,
+            f"sigma {100 * sigma:.2f} cm at zenith",
+            f"<= {100 * lim:.2f} cm carrier-multipath limit",
+            f"physical limit: the bound's standard deviation {100 * sigma:.2f} cm exceeds "
+            f"the {100 * lim:.2f} cm that carrier multipath of this series can reach at "
+            "all (a quarter wavelength per carrier): what it bounds is not multipath "
+            "(residual ionosphere, cycle slips, a wrong baseline)",
+        )
+    ]
 
 
 #: The rules in the order every output lists them.
 RULES: tuple[Callable[[VerdictFacts, VerdictOptions], list[VerdictCheck]], ...] = (
-    _degenerate, _data_for_tau, _filter, _data_use, _data_used, _low_frequency, _physical,
-)  # fmt: skip
+    _degenerate,
+    _data_for_tau,
+    _filter,
+    _data_use,
+    _data_used,
+    _low_frequency,
+    _physical,
+)
 
 
-def verdict_checks(facts: VerdictFacts | dict[str, Any],
-                   options: VerdictOptions | None = None) -> list[VerdictCheck]:  # fmt: skip
+def verdict_checks(
+    facts: VerdictFacts | dict[str, Any], options: VerdictOptions | None = None
+) -> list[VerdictCheck]:
     """Apply every verdict rule to a fit's facts.
 
     Parameters
@@ -483,8 +575,13 @@ def judge(document: dict[str, Any], options: VerdictOptions | None = None) -> tu
     return verdict_of(verdict_checks(document, options))
 
 
-def pooled_checks(bound: dict[str, Any] | None, *, covered_s: float, n_days: int,
-                  options: VerdictOptions | None = None) -> list[VerdictCheck]:  # fmt: skip
+def pooled_checks(
+    bound: dict[str, Any] | None,
+    *,
+    covered_s: float,
+    n_days: int,
+    options: VerdictOptions | None = None,
+) -> list[VerdictCheck]:
     """Apply the verdict rules that make sense for a campaign station's pooled bound.
 
     The pool holds only the station's bounded days (each judged by
@@ -510,19 +607,33 @@ def pooled_checks(bound: dict[str, Any] | None, *, covered_s: float, n_days: int
     list of VerdictCheck
     """
     opt = options or VerdictOptions()
-    days = _check("bounded days", bool(n_days and bound is not None), f"{n_days} day(s)", ">= 1",
-                  "no bounded day left: every day of the station is not-bounded or failed, so "
-                  "there is nothing to pool")  # fmt: skip
+    days = _check(
+        "bounded days",
+        bool(n_days and bound is not None),
+        f"{n_days} day(s)",
+        ">= 1",
+        "no bounded day left: every day of the station is not-bounded or failed, so "
+        "there is nothing to pool",
+    )
     if not days.passed:
         return [days]
-    f = VerdictFacts(sigma_gm_m=bound["sigma_gm_m"], tau_s=bound["tau_s"],
-                     tau_grid_s=tuple(bound.get("tau_grid_s") or ()), covered_s=covered_s,
-                     low_frequency=bound.get("low_frequency"))  # fmt: skip
+    f = VerdictFacts(
+        sigma_gm_m=bound["sigma_gm_m"],
+        tau_s=bound["tau_s"],
+        tau_grid_s=tuple(bound.get("tau_grid_s") or ()),
+        covered_s=covered_s,
+        low_frequency=bound.get("low_frequency"),
+    )
     return [days, *_degenerate(f, opt), *_data_for_tau(f, opt), *_low_frequency(f, opt)]
 
 
-def judge_pooled(bound: dict[str, Any] | None, *, covered_s: float, n_days: int,
-                 options: VerdictOptions | None = None) -> tuple[str, list[str]]:  # fmt: skip
+def judge_pooled(
+    bound: dict[str, Any] | None,
+    *,
+    covered_s: float,
+    n_days: int,
+    options: VerdictOptions | None = None,
+) -> tuple[str, list[str]]:
     """Return the verdict of a campaign station's pooled bound (:func:`pooled_checks`).
 
     Parameters

@@ -6,5 +6,11 @@ from psdbound.reports.figure_data import figure_data, psd_outline
 from psdbound.reports.figures import FIGURES
 from psdbound.reports.render import render_html, render_pdf, write_report_folder
 
-__all__ = ["FIGURES", "figure_data", "psd_outline", "render_html", "render_pdf",
-           "write_report_folder"]
+__all__ = [
+    "FIGURES",
+    "figure_data",
+    "psd_outline",
+    "render_html",
+    "render_pdf",
+    "write_report_folder",
+]

@@ -14,8 +14,15 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["MAX_POINTS", "MAX_PSD_POINTS", "SKY_CELL_DEG", "cutoff_figure", "figure_data",
-           "psd_outline", "sky_cells"]
+__all__ = [
+    "MAX_POINTS",
+    "MAX_PSD_POINTS",
+    "SKY_CELL_DEG",
+    "cutoff_figure",
+    "figure_data",
+    "psd_outline",
+    "sky_cells",
+]
 
 MAX_POINTS = 1500
 #: Points of all arcs of the mapped-series figure together, and the least per arc.
@@ -67,15 +74,25 @@ def psd_outline(
 def _arcs(series: Any, arcs: Any) -> list[dict[str, Any]]:
     if arcs is not None:
         return [
-            {"sat": a.sat, "t0": float(a.t_gps_s[0]), "t1": float(a.t_gps_s[-1]),
-             "kept": True, "start_reason": a.start_reason}
+            {
+                "sat": a.sat,
+                "t0": float(a.t_gps_s[0]),
+                "t1": float(a.t_gps_s[-1]),
+                "kept": True,
+                "start_reason": a.start_reason,
+            }
             for a in arcs
-        ]  # fmt: skip
+        ]
     return [
-        {"sat": a.sats, "t0": float(a.t_gps_s[0]), "t1": float(a.t_gps_s[-1]),
-         "kept": True, "start_reason": ""}
+        {
+            "sat": a.sats,
+            "t0": float(a.t_gps_s[0]),
+            "t1": float(a.t_gps_s[-1]),
+            "kept": True,
+            "start_reason": "",
+        }
         for a in series.arcs()
-    ]  # fmt: skip
+    ]
 
 
 def _df_filter(series: Any) -> dict[str, Any] | None:
@@ -106,11 +123,14 @@ def _mapped(series: Any, windows: Any) -> list[dict[str, Any]]:
         limit = min(MAX_POINTS, max(MIN_ARC_POINTS, int(MAX_TOTAL_POINTS * (hi - lo) / total)))
         sl = _decimate(hi - lo, limit)
         out.append(
-            {"arc": k, "sats": series.arc_sats[k],
-             "t_gps_s": np.round(series.t_gps_s[lo:hi][sl], 1),
-             "mapped_m": np.round(windows.mapped_m[lo:hi][sl], 5),
-             "elevation_deg": np.round(series.elevation_deg[lo:hi][sl], 2)}
-        )  # fmt: skip
+            {
+                "arc": k,
+                "sats": series.arc_sats[k],
+                "t_gps_s": np.round(series.t_gps_s[lo:hi][sl], 1),
+                "mapped_m": np.round(windows.mapped_m[lo:hi][sl], 5),
+                "elevation_deg": np.round(series.elevation_deg[lo:hi][sl], 2),
+            }
+        )
     return out
 
 
@@ -161,16 +181,21 @@ def cutoff_figure(d: dict[str, Any]) -> dict[str, Any]:
         if "envelope_m2_hz" in d:
             pairs.append(("f_hz", "envelope_m2_hz"))
     else:
-        raise ValueError("cutoff figure data needs residual_m (residual criterion) or "
-                         "psd_m2_hz (Lomb-Scargle)")  # fmt: skip
+        raise ValueError(
+            "cutoff figure data needs residual_m (residual criterion) or psd_m2_hz (Lomb-Scargle)"
+        )
     for fk, vk in pairs:
         if len(d[fk]) != len(d[vk]):
             raise ValueError(f"cutoff figure: {fk} and {vk} differ in length")
     curves = []
     for c in list(d.get("curves") or [])[:MAX_CUTOFF_CURVES]:
         sl = _decimate(len(c["f_hz"]), MAX_CUTOFF_POINTS)
-        curves.append({"f_hz": np.asarray(c["f_hz"], dtype=float)[sl],
-                       "residual_m": np.asarray(c["residual_m"], dtype=float)[sl]})  # fmt: skip
+        curves.append(
+            {
+                "f_hz": np.asarray(c["f_hz"], dtype=float)[sl],
+                "residual_m": np.asarray(c["residual_m"], dtype=float)[sl],
+            }
+        )
     if curves:
         out["curves"] = curves
     return out
@@ -184,9 +209,11 @@ def _jacobi_anger(expansion: Iterable[Any]) -> dict[str, Any]:
         keep = slice(0, 2000)
         case = cases.setdefault(
             chk.geometry.label,
-            {"label": f"{chk.geometry.label}, rate {chk.rate.name} "
-                      f"({chk.rate.frequency_hz:.3g} Hz), alpha {chk.alpha:g}"},
-        )  # fmt: skip
+            {
+                "label": f"{chk.geometry.label}, rate {chk.rate.name} "
+                f"({chk.rate.frequency_hz:.3g} Hz), alpha {chk.alpha:g}"
+            },
+        )
         case[chk.convention] = {
             "f_hz": f_hz[keep],
             "power": np.asarray(h.power_rad2)[keep],
@@ -196,8 +223,9 @@ def _jacobi_anger(expansion: Iterable[Any]) -> dict[str, Any]:
     return {"cases": list(cases.values())}
 
 
-def sky_cells(series: Any, arcs: Any,
-              cell_deg: tuple[float, float] = SKY_CELL_DEG) -> dict[str, Any] | None:  # fmt: skip
+def sky_cells(
+    series: Any, arcs: Any, cell_deg: tuple[float, float] = SKY_CELL_DEG
+) -> dict[str, Any] | None:
     """RMS of the isolated multipath in azimuth-elevation cells (the sky view).
 
     Parameters
@@ -234,10 +262,16 @@ def sky_cells(series: Any, arcs: Any,
         return None
     with np.errstate(invalid="ignore", divide="ignore"):
         rms = np.sqrt(ss / n)
-    return {"az_edges_deg": az_e, "el_edges_deg": el_e,
-            "rms_m": [[None if c == 0 else float(x) for x, c in zip(r, cr, strict=True)]
-                      for r, cr in zip(rms, n, strict=True)],
-            "count": n.astype(int), "n_samples": int(n.sum())}  # fmt: skip
+    return {
+        "az_edges_deg": az_e,
+        "el_edges_deg": el_e,
+        "rms_m": [
+            [None if c == 0 else float(x) for x, c in zip(r, cr, strict=True)]
+            for r, cr in zip(rms, n, strict=True)
+        ],
+        "count": n.astype(int),
+        "n_samples": int(n.sum()),
+    }
 
 
 def figure_data(

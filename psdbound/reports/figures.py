@@ -46,18 +46,27 @@ __all__ = [
 
 #: (key, caption, function) of every report figure, in report order.
 FIGURES = (
-    ("windows", "Arcs, spans screened out (by reason) and stationary windows per satellite",
-     fig_windows),
+    (
+        "windows",
+        "Arcs, spans screened out (by reason) and stationary windows per satellite",
+        fig_windows,
+    ),
     ("df_filter", "Dual-frequency difference before and after filtering", fig_df_filter),
     ("screening", "Ionosphere screening (ROTI) and excluded spans", fig_screening),
     ("sky", "Sky view: multipath RMS by azimuth and elevation", fig_sky),
     ("mapped", "Elevation-mapped residuals", fig_mapped),
-    ("psds", "Window PSD estimates, their pooled upper limits and the bound (estimates "
-     "scatter above their true PSD; the bound covers the true PSDs at the stated confidence)",
-     fig_psds_bound),
+    (
+        "psds",
+        "Window PSD estimates, their pooled upper limits and the bound (estimates "
+        "scatter above their true PSD; the bound covers the true PSDs at the stated confidence)",
+        fig_psds_bound,
+    ),
     ("tau", "Tightness search over tau", fig_tau_search),
     ("cutoff", "Cutoff criterion and f_c", fig_cutoff_envelope),
     ("jacobi_anger", "Jacobi-Anger cutoff check", fig_jacobi_anger),
-    ("code_qq", "Code multipath (carrier levelled): Q-Q per elevation bin and Gaussian "
-     "overbounds", fig_code_qq),
+    (
+        "code_qq",
+        "Code multipath (carrier levelled): Q-Q per elevation bin and Gaussian overbounds",
+        fig_code_qq,
+    ),
 )

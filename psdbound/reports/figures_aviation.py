@@ -71,22 +71,37 @@ def fig_code_qq(r: dict[str, Any]) -> Figure | None:
         neff = b.get("n_eff")
         size = f", n {b['n']}" + (f", n_eff {neff:.0f}" if neff is not None else "")
         line = ax.plot(z, x, ".", ms=2.5, label=f"{label}: x{b['inflation']:.2f}{size}")[0]
-        ax.plot(z, overbound_line(z, b["bias"], b["sigma"], ob["method"]), "-", lw=0.9,
-                color=line.get_color())  # fmt: skip
+        ax.plot(
+            z,
+            overbound_line(z, b["bias"], b["sigma"], ob["method"]),
+            "-",
+            lw=0.9,
+            color=line.get_color(),
+        )
     ax.set_xlabel("standard-normal quantile [-]")
     ax.set_ylabel("code multipath quantile [m]")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=6.5, title="bin: inflation sigma/std, samples n, effective n_eff",
-              title_fontsize=6.5, loc="upper left")  # fmt: skip
+    ax.legend(
+        fontsize=6.5,
+        title="bin: inflation sigma/std, samples n, effective n_eff",
+        title_fontsize=6.5,
+        loc="upper left",
+    )
     mid = [0.5 * sum(b["elevation_deg"]) for b in ob["bins"]]
     width = [0.8 * (b["elevation_deg"][1] - b["elevation_deg"][0]) for b in ob["bins"]]
-    ax2.bar(mid, [b["sigma"] for b in ob["bins"]], width=width, color="0.75",
-            label="overbound sigma")  # fmt: skip
+    ax2.bar(
+        mid, [b["sigma"] for b in ob["bins"]], width=width, color="0.75", label="overbound sigma"
+    )
     ax2.plot(mid, [b["std"] for b in ob["bins"]], "ko", ms=4, label="sample std")
     for m, b in zip(mid, ob["bins"], strict=True):
         neff = f"\nn_eff={b['n_eff']:.0f}" if b.get("n_eff") is not None else ""
-        ax2.annotate(f"x{b['inflation']:.2f}\nn={b['n']}{neff}", (m, b["sigma"]), fontsize=6,
-                     ha="center", va="bottom")  # fmt: skip
+        ax2.annotate(
+            f"x{b['inflation']:.2f}\nn={b['n']}{neff}",
+            (m, b["sigma"]),
+            fontsize=6,
+            ha="center",
+            va="bottom",
+        )
     ax2.set_xlabel("elevation [deg]")
     ax2.set_ylabel("sigma [m]")
     ax2.set_xlim(0, 90)
@@ -95,6 +110,9 @@ def fig_code_qq(r: dict[str, Any]) -> Figure | None:
     ax2.grid(alpha=0.3)
     codes = c.get("codes", [])
     kind = "MP combination" if len(codes) == 1 else "ionosphere-free"
-    fig.suptitle(f"Code multipath {'+'.join(codes)} ({kind}, arc means removed): "
-                 f"{ob['method']} Gaussian overbound per elevation bin", fontsize=9)  # fmt: skip
+    fig.suptitle(
+        f"Code multipath {'+'.join(codes)} ({kind}, arc means removed): "
+        f"{ob['method']} Gaussian overbound per elevation bin",
+        fontsize=9,
+    )
     return finish(fig)

@@ -16,8 +16,15 @@ matplotlib.use("Agg")
 from matplotlib.figure import Figure  # noqa: E402
 from matplotlib.ticker import LogFormatterSciNotation, LogLocator  # noqa: E402
 
-__all__ = ["FIG_W_IN", "HALF_PAGE_H_IN", "FULL_PAGE_H_IN", "PlainLogFormatter", "finish",
-           "new_figure", "t0_gps_s"]  # fmt: skip
+__all__ = [
+    "FIG_W_IN",
+    "HALF_PAGE_H_IN",
+    "FULL_PAGE_H_IN",
+    "PlainLogFormatter",
+    "finish",
+    "new_figure",
+    "t0_gps_s",
+]
 
 #: Width of every figure: A4 (8.27 in) less two 0.45 in margins, in.
 FIG_W_IN = 7.35

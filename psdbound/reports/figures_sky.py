@@ -57,6 +57,9 @@ def fig_sky(r: dict[str, Any]) -> Figure | None:
     cb.set_label("isolated multipath RMS [mm]")
     b = r["bound"]
     sigma = 1000.0 * float(np.hypot(b["sigma_gm_m"], b["sigma_wn_m"]))
-    ax.set_title(f"Screened multipath on the sky ({d['n_samples']} samples); bound sigma at "
-                 f"zenith {sigma:.2f} mm", fontsize=9)  # fmt: skip
+    ax.set_title(
+        f"Screened multipath on the sky ({d['n_samples']} samples); bound sigma at "
+        f"zenith {sigma:.2f} mm",
+        fontsize=9,
+    )
     return finish(fig)

@@ -14,8 +14,13 @@ from matplotlib.figure import Figure
 
 from psdbound.reports.figures_base import finish, new_figure
 
-__all__ = ["cutoff_curves", "fig_cutoff_envelope", "fig_jacobi_anger", "fig_psds_bound",
-           "fig_tau_search"]  # fmt: skip
+__all__ = [
+    "cutoff_curves",
+    "fig_cutoff_envelope",
+    "fig_jacobi_anger",
+    "fig_psds_bound",
+    "fig_tau_search",
+]
 
 
 def _passband_start_hz(r: dict[str, Any]) -> float | None:
@@ -45,20 +50,41 @@ def fig_psds_bound(r: dict[str, Any]) -> Figure | None:
     for p in psds:
         ax.loglog(p["f_hz"], p["psd_m2_hz"], color="0.6", lw=0.4, alpha=0.6)
     b = r["bound"]
-    ax.loglog(bc["f_hz"], bc["psd_m2_hz"], color="C3", lw=2.2,
-              label=f"bound: sigma_GM {100 * b['sigma_gm_m']:.2f} cm, tau {b['tau_s']:.0f} s, "
-              f"sigma_WN {100 * b['sigma_wn_m']:.2f} cm")  # fmt: skip
+    ax.loglog(
+        bc["f_hz"],
+        bc["psd_m2_hz"],
+        color="C3",
+        lw=2.2,
+        label=f"bound: sigma_GM {100 * b['sigma_gm_m']:.2f} cm, tau {b['tau_s']:.0f} s, "
+        f"sigma_WN {100 * b['sigma_wn_m']:.2f} cm",
+    )
     pooled = b.get("pooled")
     if pooled:
         up = np.atleast_2d(np.asarray(pooled["upper_m2_hz"], dtype=float))
         for k, row in enumerate(up):
-            ax.loglog(pooled["band_centres_hz"], row, "v", color="C1", ms=4,
-                      label=(f"pooled {100 * b['confidence_level']:g} % limits "
-                             f"({pooled['n_groups']} group(s))" if k == 0 else None))  # fmt: skip
+            ax.loglog(
+                pooled["band_centres_hz"],
+                row,
+                "v",
+                color="C1",
+                ms=4,
+                label=(
+                    f"pooled {100 * b['confidence_level']:g} % limits "
+                    f"({pooled['n_groups']} group(s))"
+                    if k == 0
+                    else None
+                ),
+            )
     truth = r.get("demo", {}).get("truth_curve")
     if truth:
-        ax.loglog(truth["f_hz"], truth["psd_m2_hz"], color="C2", lw=1.6, ls="--",
-                  label="injected truth (demo)")  # fmt: skip
+        ax.loglog(
+            truth["f_hz"],
+            truth["psd_m2_hz"],
+            color="C2",
+            lw=1.6,
+            ls="--",
+            label="injected truth (demo)",
+        )
     nyq = r["sampling"]["nyquist_hz"]
     ax.axvline(nyq, color="k", ls=":", lw=1, label=f"Nyquist {nyq:.3g} Hz")
     x0 = min(f_lo, nyq) / 1.2
@@ -67,12 +93,25 @@ def fig_psds_bound(r: dict[str, Any]) -> Figure | None:
     if fc and start:
         ax.axvline(fc, color="C0", ls="--", lw=1, label=f"f_c {fc:.3g} Hz")
         x0 = min(x0, fc / 2)
-        ax.axvspan(x0, fc, color="0.55", alpha=0.25, lw=0, gid="stopband",
-                   label="f < f_c: removed by the high-pass (not bounded)")  # fmt: skip
+        ax.axvspan(
+            x0,
+            fc,
+            color="0.55",
+            alpha=0.25,
+            lw=0,
+            gid="stopband",
+            label="f < f_c: removed by the high-pass (not bounded)",
+        )
         if start > fc * 1.0001:
-            ax.axvspan(fc, start, color="0.55", alpha=0.12, lw=0, gid="transition",
-                       label=f"f_c to {start:.3g} Hz: attenuated by the filter, "
-                       "outside the bound's band")  # fmt: skip
+            ax.axvspan(
+                fc,
+                start,
+                color="0.55",
+                alpha=0.12,
+                lw=0,
+                gid="transition",
+                label=f"f_c to {start:.3g} Hz: attenuated by the filter, outside the bound's band",
+            )
     ax.set_xlim(x0, nyq * 1.2)
     ax.set_xlabel("frequency [Hz]")
     ax.set_ylabel("one-sided PSD [m²/Hz]")
@@ -124,19 +163,27 @@ def cutoff_curves(r: dict[str, Any]) -> dict[str, Any] | None:
     d = r["figures"].get("cutoff_envelope")
     if d:
         if "residual_m" in d:
-            return {"kind": "residual", "f_hz": d["f_hz"], "residual_m": d["residual_m"],
-                    "curves": d.get("curves", []),
-                    "threshold_m": d.get("threshold_m", c.get("criterion", {}).get("threshold_m")),
-                    "label": d.get("label", "residual ionosphere (criterion)")}  # fmt: skip
+            return {
+                "kind": "residual",
+                "f_hz": d["f_hz"],
+                "residual_m": d["residual_m"],
+                "curves": d.get("curves", []),
+                "threshold_m": d.get("threshold_m", c.get("criterion", {}).get("threshold_m")),
+                "label": d.get("label", "residual ionosphere (criterion)"),
+            }
         psd = d.get("psd_m2_hz", d.get("psd"))
         if psd is not None:
-            return {"kind": "envelope", "f_hz": d["f_hz"], "psd_m2_hz": psd,
-                    "envelope_m2_hz": d.get("envelope_m2_hz", d.get("envelope")),
-                    "maxima_f_hz": d.get("maxima_f_hz"),
-                    "maxima_psd_m2_hz": d.get("maxima_psd_m2_hz", d.get("maxima_psd")),
-                    "threshold_m2_hz": d.get("threshold_m2_hz", d.get("threshold")),
-                    "reference_m2_hz": d.get("reference_m2_hz"),
-                    "drop_db": d.get("drop_db", 40.0)}  # fmt: skip
+            return {
+                "kind": "envelope",
+                "f_hz": d["f_hz"],
+                "psd_m2_hz": psd,
+                "envelope_m2_hz": d.get("envelope_m2_hz", d.get("envelope")),
+                "maxima_f_hz": d.get("maxima_f_hz"),
+                "maxima_psd_m2_hz": d.get("maxima_psd_m2_hz", d.get("maxima_psd")),
+                "threshold_m2_hz": d.get("threshold_m2_hz", d.get("threshold")),
+                "reference_m2_hz": d.get("reference_m2_hz"),
+                "drop_db": d.get("drop_db", 40.0),
+            }
     comp = c.get("computed") if isinstance(c.get("computed"), dict) else {}
     rows = c.get("by_margin") or comp.get("by_margin")
     if rows:
@@ -144,10 +191,19 @@ def cutoff_curves(r: dict[str, Any]) -> dict[str, Any] | None:
         f = [x.get("f_c_hz", x.get("max_f_c_hz")) for x in rows]
         crit = c.get("criterion") or {}
         thr = crit.get("threshold_m", comp.get("threshold_m"))
-        label = ("cutoff map at the receiver" if c.get("by_margin")
-                 else f"computed: max over {comp.get('n_series', '?')} series")  # fmt: skip
-        out = {"kind": "residual", "f_hz": f, "residual_m": [x["threshold_m"] for x in rows],
-               "threshold_m": thr, "label": label, "curves": []}  # fmt: skip
+        label = (
+            "cutoff map at the receiver"
+            if c.get("by_margin")
+            else f"computed: max over {comp.get('n_series', '?')} series"
+        )
+        out = {
+            "kind": "residual",
+            "f_hz": f,
+            "residual_m": [x["threshold_m"] for x in rows],
+            "threshold_m": thr,
+            "label": label,
+            "curves": [],
+        }
         if all("mean_f_c_hz" in x for x in rows):
             out["mean_f_hz"] = [x["mean_f_c_hz"] for x in rows]
         return out
@@ -174,26 +230,43 @@ def fig_cutoff_envelope(r: dict[str, Any]) -> Figure | None:
         for cur in d.get("curves") or []:
             rr = np.asarray(cur["residual_m"], dtype=float)
             ok = rr > 0
-            ax.loglog(np.asarray(cur["f_hz"], dtype=float)[ok], 1e3 * rr[ok], color="0.65",
-                      lw=0.5, alpha=0.5)  # fmt: skip
+            ax.loglog(
+                np.asarray(cur["f_hz"], dtype=float)[ok],
+                1e3 * rr[ok],
+                color="0.65",
+                lw=0.5,
+                alpha=0.5,
+            )
         f = np.asarray(d["f_hz"], dtype=float)
         rr = np.asarray(d["residual_m"], dtype=float)
         ok = (rr > 0) & (f > 0)
         ax.loglog(f[ok], 1e3 * rr[ok], "o-", color="C3", ms=3.5, lw=1.5, label=d["label"])
         if d.get("mean_f_hz"):
-            ax.loglog(np.asarray(d["mean_f_hz"])[ok], 1e3 * rr[ok], "s--", color="C1", ms=3,
-                      lw=1, label="mean over the series")  # fmt: skip
+            ax.loglog(
+                np.asarray(d["mean_f_hz"])[ok],
+                1e3 * rr[ok],
+                "s--",
+                color="C1",
+                ms=3,
+                lw=1,
+                label="mean over the series",
+            )
         thr = d.get("threshold_m")
         if thr:
             crit = c.get("criterion") or {}
-            what = (f"{crit['margin_db']:g} dB below {1e3 * crit['mp_sigma_m']:g} mm"
-                    if "margin_db" in crit and "mp_sigma_m" in crit else "criterion")  # fmt: skip
-            ax.axhline(1e3 * thr, color="C2", ls=":", lw=1.5,
-                       label=f"level {1e3 * thr:.3g} mm ({what})")  # fmt: skip
+            what = (
+                f"{crit['margin_db']:g} dB below {1e3 * crit['mp_sigma_m']:g} mm"
+                if "margin_db" in crit and "mp_sigma_m" in crit
+                else "criterion"
+            )
+            ax.axhline(
+                1e3 * thr, color="C2", ls=":", lw=1.5, label=f"level {1e3 * thr:.3g} mm ({what})"
+            )
         ax.set_xlabel("high-pass cutoff [Hz]")
         ax.set_ylabel("residual ionosphere RMS [mm]")
-        ax.set_title("Residual criterion: ionosphere the high-pass leaves, against the cutoff",
-                     fontsize=9)  # fmt: skip
+        ax.set_title(
+            "Residual criterion: ionosphere the high-pass leaves, against the cutoff", fontsize=9
+        )
     else:
         ax.loglog(d["f_hz"], d["psd_m2_hz"], color="0.5", lw=0.6, label="Lomb-Scargle PSD")
         if d.get("maxima_f_hz") and d.get("maxima_psd_m2_hz"):
@@ -203,14 +276,23 @@ def fig_cutoff_envelope(r: dict[str, Any]) -> Figure | None:
         if d.get("reference_m2_hz"):
             ax.axhline(d["reference_m2_hz"], color="C2", ls="--", lw=1, label="reference")
         if d.get("threshold_m2_hz"):
-            ax.axhline(d["threshold_m2_hz"], color="C2", ls=":", lw=1.5,
-                       label=f"reference - {d['drop_db']:g} dB")  # fmt: skip
+            ax.axhline(
+                d["threshold_m2_hz"],
+                color="C2",
+                ls=":",
+                lw=1.5,
+                label=f"reference - {d['drop_db']:g} dB",
+            )
         ax.set_xlabel("frequency [Hz]")
         ax.set_ylabel("one-sided PSD [m²/Hz]")
-        ax.set_title("Lomb-Scargle PSD of the ionosphere, its envelope and the cutoff",
-                     fontsize=9)  # fmt: skip
-    ax.axvline(fc, color="C0", ls="--", lw=1.2,
-               label=f"f_c {fc:.3g} Hz ({str(c['source']).split(' (')[0]})")  # fmt: skip
+        ax.set_title("Lomb-Scargle PSD of the ionosphere, its envelope and the cutoff", fontsize=9)
+    ax.axvline(
+        fc,
+        color="C0",
+        ls="--",
+        lw=1.2,
+        label=f"f_c {fc:.3g} Hz ({str(c['source']).split(' (')[0]})",
+    )
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3, which="both")
     return finish(fig)

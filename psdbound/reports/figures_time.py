@@ -28,17 +28,25 @@ _GREENS = ("#2ca02c", "#145a14")
 _SCREENED = {"ionosphere": "#ff7f0e", "implausible": "#9467bd", "short remainder": "0.45"}
 
 
-def _spans(items: list[tuple[str, float, float]], lane: dict[str, int], t0: float,
-           half: float) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+def _spans(
+    items: list[tuple[str, float, float]], lane: dict[str, int], t0: float, half: float
+) -> tuple[np.ndarray, np.ndarray]:
     """Rectangles (as polygon vertices) of time spans in their lanes, and the lane order."""
     if not items:
         return np.zeros((0, 4, 2)), np.zeros(0, dtype=int)
     y = np.array([lane[s] for s, _, _ in items], dtype=float)
     a = (np.array([x[1] for x in items], dtype=float) - t0) / 3600.0
     b = (np.array([x[2] for x in items], dtype=float) - t0) / 3600.0
-    verts = np.stack([np.column_stack([a, y - half]), np.column_stack([a, y + half]),
-                      np.column_stack([b, y + half]), np.column_stack([b, y - half])], axis=1)
-    return verts, y.astype(int)  # fmt: skip
+    verts = np.stack(
+        [
+            np.column_stack([a, y - half]),
+            np.column_stack([a, y + half]),
+            np.column_stack([b, y + half]),
+            np.column_stack([b, y - half]),
+        ],
+        axis=1,
+    )
+    return verts, y.astype(int)
 
 
 def _lane_key(s: str) -> tuple[int, int, str]:
@@ -119,18 +127,27 @@ def fig_windows(r: dict[str, Any]) -> Figure | None:
         f"stationary {w['never_stationary_s'] / 60:.1f} min",
         fontsize=9,
     )
-    fig.legend(handles=handles, fontsize=7, ncol=len(handles), loc="outside upper center",
-               frameon=False, handlelength=1.2, columnspacing=1.0)  # fmt: skip
+    fig.legend(
+        handles=handles,
+        fontsize=7,
+        ncol=len(handles),
+        loc="outside upper center",
+        frameon=False,
+        handlelength=1.2,
+        columnspacing=1.0,
+    )
     return finish(fig)
 
 
-def _screened_layers(excl: list[dict[str, Any]],
-                     false_alarm: float | None) -> list[tuple[list, float, str, str]]:  # fmt: skip
+def _screened_layers(
+    excl: list[dict[str, Any]], false_alarm: float | None
+) -> list[tuple[list, float, str, str]]:
     """One layer of screened-out spans per reason, labelled with its count."""
     out = []
     for kind in sorted({e.get("kind", "") for e in excl}):
-        items = [(e["sat"], e["start_gps_s"], e["stop_gps_s"]) for e in excl
-                 if e.get("kind", "") == kind]  # fmt: skip
+        items = [
+            (e["sat"], e["start_gps_s"], e["stop_gps_s"]) for e in excl if e.get("kind", "") == kind
+        ]
         label = f"{kind or 'screened out'} ({len(items)})"
         if kind == "ionosphere" and false_alarm:
             label = f"ionosphere ({len(items)}; p = {false_alarm:g} per block)"
@@ -202,8 +219,9 @@ def fig_screening(r: dict[str, Any]) -> Figure | None:
     t0 = t0_gps_s(r)
     t = np.concatenate([arr(a["t_gps_s"]) for a in d["roti"]])
     t = (t - t0) / 3600.0
-    ratio = np.concatenate([arr(a["roti_tecu_min"]) / arr(a["threshold_tecu_min"])
-                            for a in d["roti"]])  # fmt: skip
+    ratio = np.concatenate(
+        [arr(a["roti_tecu_min"]) / arr(a["threshold_tecu_min"]) for a in d["roti"]]
+    )
     vmax = np.concatenate([arr(a.get("value_max_m", [])) for a in d["roti"]])
     exc = np.concatenate([np.asarray(a.get("excluded", []), dtype=bool) for a in d["roti"]])
     has_roti = bool(np.any(np.isfinite(ratio)))
@@ -214,9 +232,12 @@ def fig_screening(r: dict[str, Any]) -> Figure | None:
         ax.semilogy(t[~exc], ratio[~exc], ".", ms=2.5, color="tab:blue", label="kept")
         ax.semilogy(t[exc], ratio[exc], ".", ms=2.5, color="tab:orange", label="excluded")
         scr = r.get("screening", {})
-        what = (f"max({d['threshold_tecu_min']:g} TECU/min, multipath null at p = "
-                f"{scr.get('false_alarm_per_block'):g} per block)"
-                if scr.get("multipath_null") else f"{d['threshold_tecu_min']:g} TECU/min x m(el)")
+        what = (
+            f"max({d['threshold_tecu_min']:g} TECU/min, multipath null at p = "
+            f"{scr.get('false_alarm_per_block'):g} per block)"
+            if scr.get("multipath_null")
+            else f"{d['threshold_tecu_min']:g} TECU/min x m(el)"
+        )
         ax.axhline(1.0, color="tab:red", lw=1, label=f"threshold {what}")
         ax.set_ylabel("ROTI / threshold [-]")
         ax.legend(fontsize=7, loc="upper right", ncol=3)
@@ -225,14 +246,20 @@ def fig_screening(r: dict[str, Any]) -> Figure | None:
     if vmax.size:
         ax.semilogy(t[~exc], 100 * vmax[~exc], ".", ms=2.5, color="tab:blue")
         ax.semilogy(t[exc], 100 * vmax[exc], ".", ms=2.5, color="tab:orange")
-    ax.axhline(100 * d["limit_m"], color="tab:red", lw=1,
-               label=f"carrier-multipath limit {100 * d['limit_m']:.2f} cm")  # fmt: skip
+    ax.axhline(
+        100 * d["limit_m"],
+        color="tab:red",
+        lw=1,
+        label=f"carrier-multipath limit {100 * d['limit_m']:.2f} cm",
+    )
     ax.set_ylabel("largest |isolated value| [cm]")
     ax.set_xlabel("time since data start [h]")
     ax.legend(fontsize=7, loc="lower right")
     ax.grid(alpha=0.3, which="both")
     n_exc = len(r.get("screening", {}).get("excluded", d["excluded"]))
-    axes[0].set_title(f"Screening per satellite and 5-min block: {n_exc} excluded spans "
-                      f"({r.get('screening', {}).get('excluded_s', 0.0) / 3600:.2f} h)",
-                      fontsize=9)  # fmt: skip
+    axes[0].set_title(
+        f"Screening per satellite and 5-min block: {n_exc} excluded spans "
+        f"({r.get('screening', {}).get('excluded_s', 0.0) / 3600:.2f} h)",
+        fontsize=9,
+    )
     return finish(fig)

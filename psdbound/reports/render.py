@@ -59,8 +59,16 @@ from psdbound.reports.figures import FIGURES  # noqa: E402
 from psdbound.results import write_document  # noqa: E402
 from psdbound.results.headline import DO_NOT_USE, headline  # noqa: E402
 
-__all__ = ["DPI", "RenderedFigure", "pack_pages", "rasterize", "render_html", "render_pdf",
-           "rendered_figures", "write_report_folder"]  # fmt: skip
+__all__ = [
+    "DPI",
+    "RenderedFigure",
+    "pack_pages",
+    "rasterize",
+    "render_html",
+    "render_pdf",
+    "rendered_figures",
+    "write_report_folder",
+]
 
 #: Resolution of the figures in both reports, dots per inch.
 DPI = 150.0
@@ -145,8 +153,9 @@ def rendered_figures(r: dict[str, Any]) -> list[RenderedFigure]:
     return out
 
 
-def _as_rendered(r: dict[str, Any], figures: list[tuple[str, Any]] | None,
-                 rendered: list[RenderedFigure] | None) -> list[RenderedFigure]:  # fmt: skip
+def _as_rendered(
+    r: dict[str, Any], figures: list[tuple[str, Any]] | None, rendered: list[RenderedFigure] | None
+) -> list[RenderedFigure]:
     if rendered is not None:
         return rendered
     if figures is not None:
@@ -171,8 +180,12 @@ def _title(r: dict[str, Any]) -> str:
     return ", ".join(names) or "result"
 
 
-def render_html(document: dict[str, Any], *, figures: list[tuple[str, Any]] | None = None,
-                rendered: list[RenderedFigure] | None = None) -> str:  # fmt: skip
+def render_html(
+    document: dict[str, Any],
+    *,
+    figures: list[tuple[str, Any]] | None = None,
+    rendered: list[RenderedFigure] | None = None,
+) -> str:
     """Return the self-contained HTML report (figures inline as PNG) of a result document.
 
     Parameters
@@ -190,8 +203,10 @@ def render_html(document: dict[str, Any], *, figures: list[tuple[str, Any]] | No
     str
     """
     r = document
-    figs = [{"caption": x.caption, "png": base64.b64encode(x.png).decode()}
-            for x in _as_rendered(r, figures, rendered)]  # fmt: skip
+    figs = [
+        {"caption": x.caption, "png": base64.b64encode(x.png).decode()}
+        for x in _as_rendered(r, figures, rendered)
+    ]
     env = jinja2.Environment(
         loader=jinja2.PackageLoader("psdbound.reports", "templates"),
         autoescape=jinja2.select_autoescape(["html", "j2"]),
@@ -214,9 +229,11 @@ def _error_model_text(em: dict[str, Any] | None) -> str:
     """Return the error model's components in one line."""
     if not em:
         return "n/a"
-    parts = [f"{c['name']} {1000 * c['sigma_m']:.2f} mm"
-             + (f" / {c['tau_s']:.1f} s" if c.get("tau_s") else f" ({c['kind']})")
-             for c in em["components"]]  # fmt: skip
+    parts = [
+        f"{c['name']} {1000 * c['sigma_m']:.2f} mm"
+        + (f" / {c['tau_s']:.1f} s" if c.get("tau_s") else f" ({c['kind']})")
+        for c in em["components"]
+    ]
     return "; ".join(parts) + " (result.json error_model)"
 
 
@@ -225,8 +242,10 @@ def _error_model_rows(r: dict[str, Any]) -> list[tuple[str, str]]:
     if r["verdict"] != "bounded":
         return [("error model", f"none: not bounded ({DO_NOT_USE})")]
     em = r.get("error_model")
-    return [("error model", _error_model_text(em)),
-            ("for a protection level", (em or {}).get("integrity_note", "n/a"))]  # fmt: skip
+    return [
+        ("error model", _error_model_text(em)),
+        ("for a protection level", (em or {}).get("integrity_note", "n/a")),
+    ]
 
 
 def _summary_pages(r: dict[str, Any]) -> list[Figure]:
@@ -247,11 +266,21 @@ def _summary_pages(r: dict[str, Any]) -> list[Figure]:
     doc.y -= 0.015
     doc.text(0.08, 0.026, "Inputs (SHA-256)", fontsize=12, weight="bold")
     for i in r["provenance"]["inputs"]:
-        doc.text(0.08, 0.017, f"{i['role']}: {i['name']}  {i['sha256']}", fontsize=6.5,
-                 family="monospace")  # fmt: skip
+        doc.text(
+            0.08,
+            0.017,
+            f"{i['role']}: {i['name']}  {i['sha256']}",
+            fontsize=6.5,
+            family="monospace",
+        )
     doc.y -= 0.005
-    doc.text(0.08, 0.0, f"created {r['provenance']['created_utc']}, psdbound "
-             f"{r['provenance']['versions']['psdbound']}", fontsize=8)  # fmt: skip
+    doc.text(
+        0.08,
+        0.0,
+        f"created {r['provenance']['created_utc']}, psdbound "
+        f"{r['provenance']['versions']['psdbound']}",
+        fontsize=8,
+    )
     return doc.pages
 
 
@@ -276,29 +305,45 @@ def _summary_rows(r: dict[str, Any]) -> list[tuple[str, str]]:
     b, s, c, w = r["bound"], r["sampling"], r["cutoff"], r["windows"]
     fc = "n/a" if c["f_c_hz"] is None else f"{c['f_c_hz']:.4g} Hz ({c['tau_c_min']:.1f} min)"
     rows = [
-        ("screening excluded", f"{r['screening']['excluded_s'] / 3600:.2f} h "
-                               f"({100 * r['screening']['excluded_fraction']:.1f} %)"),
+        (
+            "screening excluded",
+            f"{r['screening']['excluded_s'] / 3600:.2f} h "
+            f"({100 * r['screening']['excluded_fraction']:.1f} %)",
+        ),
         ("sigma_GM", f"{100 * b['sigma_gm_m']:.3f} cm"),
         ("tau_GM", f"{b['tau_s']:.1f} s"),
         ("sigma_WN (per sample)", f"{100 * b['sigma_wn_m']:.3f} cm at {s['interval_s']:g} s"),
         *_error_model_rows(r),
-        ("total variance", f"{b['total_variance_m2']:.4g} m^2 ({b['objective']}, "
-                           f"{b.get('rule', 'envelope')} rule, {b['estimator']} PSDs)"),
+        (
+            "total variance",
+            f"{b['total_variance_m2']:.4g} m^2 ({b['objective']}, "
+            f"{b.get('rule', 'envelope')} rule, {b['estimator']} PSDs)",
+        ),
         ("cutoff f_c", f"{fc}; source: {c['source']}"),
         ("sampling / Nyquist", f"{s['interval_s']:g} s / {s['nyquist_hz']:.4g} Hz"),
-        ("windows", f"{w['count']} ({w['total_duration_s'] / 3600:.2f} h), never stationary "
-                    f"{w['never_stationary_s'] / 60:.1f} min"),
-        ("mapping", f"{r['mapping']['source']}: a={r['mapping']['a']:.3g}, "
-                    f"b={r['mapping']['b']:.3g}, c={r['mapping']['c_deg']:.3g} deg"),
-        ("thesis cutoff criterion", f"{r['validation'].get('verdict')} (reported, not a "
-                                    "verdict rule)"),
-    ]  # fmt: skip
+        (
+            "windows",
+            f"{w['count']} ({w['total_duration_s'] / 3600:.2f} h), never stationary "
+            f"{w['never_stationary_s'] / 60:.1f} min",
+        ),
+        (
+            "mapping",
+            f"{r['mapping']['source']}: a={r['mapping']['a']:.3g}, "
+            f"b={r['mapping']['b']:.3g}, c={r['mapping']['c_deg']:.3g} deg",
+        ),
+        (
+            "thesis cutoff criterion",
+            f"{r['validation'].get('verdict')} (reported, not a verdict rule)",
+        ),
+    ]
     cm = r.get("code_multipath")
     if cm:
         ob = (cm.get("overbound") or {}).get("bins", [])
-        text_ob = "; ".join(f"{b['elevation_deg'][0]:g}-{b['elevation_deg'][1]:g} deg: "
-                            f"sigma {100 * b['sigma']:.1f} cm (x{b['inflation']:.2f})"
-                            for b in ob) or str(cm.get("status"))  # fmt: skip
+        text_ob = "; ".join(
+            f"{b['elevation_deg'][0]:g}-{b['elevation_deg'][1]:g} deg: "
+            f"sigma {100 * b['sigma']:.1f} cm (x{b['inflation']:.2f})"
+            for b in ob
+        ) or str(cm.get("status"))
         rows.append((f"code multipath {'+'.join(cm.get('codes', []))}", text_ob))
     return rows
 
@@ -309,9 +354,14 @@ def _write_headline(doc: _TextPages, r: dict[str, Any]) -> None:
         bad = line.endswith(" FAIL") or line.startswith(("VERDICT: NOT", "reason: "))
         wrapped = textwrap.wrap(line.strip(), 72 if k == 0 else 118) or [""]
         for part in wrapped:
-            doc.text(0.1 if line.startswith("  ") else 0.08, 0.018 if k == 0 else 0.0112, part,
-                     fontsize=11 if k == 0 else 7, weight="bold" if k == 0 else "normal",
-                     color="#b00020" if bad else ("#176d2a" if k == 0 else "black"))  # fmt: skip
+            doc.text(
+                0.1 if line.startswith("  ") else 0.08,
+                0.018 if k == 0 else 0.0112,
+                part,
+                fontsize=11 if k == 0 else 7,
+                weight="bold" if k == 0 else "normal",
+                color="#b00020" if bad else ("#176d2a" if k == 0 else "black"),
+            )
 
 
 def _write_rows(doc: _TextPages, rows: list[tuple[str, str]]) -> None:
@@ -370,8 +420,13 @@ def _figure_page(figs: list[tuple[int, RenderedFigure]], footer: str) -> Figure:
     y = ph - _TOP_IN
     for number, fig in figs:
         w, h = _placed_size(fig)
-        page.text(_MARGIN_X_IN / pw, (y - 0.2) / ph, f"Figure {number}. {fig.caption}",
-                  fontsize=9.5, weight="bold")  # fmt: skip
+        page.text(
+            _MARGIN_X_IN / pw,
+            (y - 0.2) / ph,
+            f"Figure {number}. {fig.caption}",
+            fontsize=9.5,
+            weight="bold",
+        )
         y -= _CAPTION_IN + h
         ax = page.add_axes((_MARGIN_X_IN / pw, y / ph, w / pw, h / ph))
         ax.imshow(fig.rgb, interpolation="none", aspect="auto")
@@ -381,9 +436,13 @@ def _figure_page(figs: list[tuple[int, RenderedFigure]], footer: str) -> Figure:
     return page
 
 
-def render_pdf(document: dict[str, Any], path: str | os.PathLike[str], *,
-               figures: list[tuple[str, Any]] | None = None,
-               rendered: list[RenderedFigure] | None = None) -> Path:  # fmt: skip
+def render_pdf(
+    document: dict[str, Any],
+    path: str | os.PathLike[str],
+    *,
+    figures: list[tuple[str, Any]] | None = None,
+    rendered: list[RenderedFigure] | None = None,
+) -> Path:
     """Write the PDF report (summary and caveats page, then the figures) of a result document.
 
     The figures go onto A4 pages in report order, at their drawn size, two
@@ -412,8 +471,7 @@ def render_pdf(document: dict[str, Any], path: str | os.PathLike[str], *,
     figs = _as_rendered(r, figures, rendered)
     pages = pack_pages([_placed_size(f)[1] for f in figs])
     title = f"psdbound report: {_title(r)}"
-    with PdfPages(p, metadata={"Title": title, "Creator": "psdbound",
-                               "CreationDate": None}) as pdf:  # fmt: skip
+    with PdfPages(p, metadata={"Title": title, "Creator": "psdbound", "CreationDate": None}) as pdf:
         summary = _summary_pages(r)
         for page in summary:
             pdf.savefig(page)

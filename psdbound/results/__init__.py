@@ -48,11 +48,22 @@ __all__ = [
 #: light verdict module uses, must not pull NumPy in through this package).
 _EXPORTS = {
     **{n: ("psdbound.results.jsonfile", n) for n in ("json_text", "to_jsonable", "write_json")},
-    **{n: ("psdbound.results.jsonschema", n)
-       for n in ("SCHEMA_FILE", "load_schema", "schema_errors", "validate")},
-    **{n: ("psdbound.results.schema", n)
-       for n in ("NUMBER_FIELDS", "REQUIRED_FIELDS", "SCHEMA_VERSION", "get_field",
-                 "number_problems", "read_document", "write_document")},
-}  # fmt: skip
+    **{
+        n: ("psdbound.results.jsonschema", n)
+        for n in ("SCHEMA_FILE", "load_schema", "schema_errors", "validate")
+    },
+    **{
+        n: ("psdbound.results.schema", n)
+        for n in (
+            "NUMBER_FIELDS",
+            "REQUIRED_FIELDS",
+            "SCHEMA_VERSION",
+            "get_field",
+            "number_problems",
+            "read_document",
+            "write_document",
+        )
+    },
+}
 
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

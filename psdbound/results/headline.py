@@ -104,6 +104,11 @@ def headline(document: dict[str, Any]) -> list[str]:
         the looseness and the statement; lines without data are left out.
     """
     d = document
-    lines = [_verdict_line(d), *_rule_lines(d), _coverage_line(d), _looseness_line(d),
-             _statement_line(d)]  # fmt: skip
+    lines = [
+        _verdict_line(d),
+        *_rule_lines(d),
+        _coverage_line(d),
+        _looseness_line(d),
+        _statement_line(d),
+    ]
     return [x for x in lines if x]

@@ -39,8 +39,10 @@ def to_jsonable(obj: Any) -> Any:
     if isinstance(obj, dict):
         return {str(k): to_jsonable(v) for k, v in obj.items()}
     if isinstance(obj, list | tuple):
-        return [v if type(v) in _PLAIN else _finite_or_none(v) if type(v) is float
-                else to_jsonable(v) for v in obj]  # fmt: skip
+        return [
+            v if type(v) in _PLAIN else _finite_or_none(v) if type(v) is float else to_jsonable(v)
+            for v in obj
+        ]
     if isinstance(obj, np.ndarray):
         if obj.dtype.kind in "biu":
             return obj.tolist()
@@ -95,8 +97,9 @@ def json_text(obj: Any, *, compact: frozenset[str] | set[str] = frozenset()) -> 
     return "{\n" + ",\n".join(parts) + "\n}\n"
 
 
-def write_json(path: str | os.PathLike[str], obj: Any, *,
-               compact: frozenset[str] | set[str] = frozenset()) -> Path:  # fmt: skip
+def write_json(
+    path: str | os.PathLike[str], obj: Any, *, compact: frozenset[str] | set[str] = frozenset()
+) -> Path:
     """Write a document as JSON (:func:`json_text`), atomically; return its path.
 
     Parameters

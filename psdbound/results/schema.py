@@ -132,8 +132,7 @@ def write_document(path: str | os.PathLike[str], document: dict[str, Any]) -> Pa
     bad = number_problems(data)
     if bad:
         raise ValueError(
-            "refusing to write a result whose documented numbers are not numbers: "
-            + ", ".join(bad)
+            "refusing to write a result whose documented numbers are not numbers: " + ", ".join(bad)
         )
     return atomic_write_text(path, json_text(data, compact=COMPACT_SECTIONS))
 

@@ -28,8 +28,17 @@ from psdbound.common.atomic import atomic_write_bytes
 from psdbound.errors import InputError
 from psdbound.results.series_table import COLUMNS, series_csv
 
-__all__ = ["COLUMN_ATTRS", "FORMATS", "TITLE", "format_of", "is_series_file", "series_attrs",
-           "series_bytes", "series_dataset", "write_series"]  # fmt: skip
+__all__ = [
+    "COLUMN_ATTRS",
+    "FORMATS",
+    "TITLE",
+    "format_of",
+    "is_series_file",
+    "series_attrs",
+    "series_bytes",
+    "series_dataset",
+    "write_series",
+]
 
 #: The ``title`` attribute of a series netCDF file.
 TITLE = "psdbound isolated carrier-phase multipath, one row per satellite and epoch"
@@ -39,24 +48,45 @@ FORMATS = ("csv", "netcdf")
 
 #: Per column: its unit (``"1"``: dimensionless, ``""``: a label), long name and description.
 COLUMN_ATTRS: dict[str, dict[str, str]] = {
-    "t_gps_s": {"units": "s", "long_name": "GPS time",
-                "description": "seconds since 1980-01-06T00:00:00 GPS time (no leap seconds)"},
-    "sat": {"units": "", "long_name": "satellite",
-            "description": "satellite (e.g. G05), or the pair of a double difference"},
-    "azimuth_deg": {"units": "degree", "long_name": "azimuth",
-                    "description": "satellite azimuth from north, clockwise; NaN without an "
-                    "orbit (or for dual-antenna pairs)"},
-    "elevation_deg": {"units": "degree", "long_name": "elevation",
-                      "description": "satellite elevation above the horizon"},
-    "value_m": {"units": "m", "long_name": "isolated carrier-phase multipath",
-                "description": "isolated multipath before the elevation mapping"},
-    "screened": {"units": "", "long_name": "screening flag",
-                 "description": "why the sample was screened out (ionosphere, implausible, "
-                 "short remainder); empty when it was kept"},
-    "window": {"units": "1", "long_name": "stationary window index",
-               "description": "index into windows.per_window of result.json; -1: in no "
-               "window (screened out, or outside the bound)"},
-}  # fmt: skip
+    "t_gps_s": {
+        "units": "s",
+        "long_name": "GPS time",
+        "description": "seconds since 1980-01-06T00:00:00 GPS time (no leap seconds)",
+    },
+    "sat": {
+        "units": "",
+        "long_name": "satellite",
+        "description": "satellite (e.g. G05), or the pair of a double difference",
+    },
+    "azimuth_deg": {
+        "units": "degree",
+        "long_name": "azimuth",
+        "description": "satellite azimuth from north, clockwise; NaN without an "
+        "orbit (or for dual-antenna pairs)",
+    },
+    "elevation_deg": {
+        "units": "degree",
+        "long_name": "elevation",
+        "description": "satellite elevation above the horizon",
+    },
+    "value_m": {
+        "units": "m",
+        "long_name": "isolated carrier-phase multipath",
+        "description": "isolated multipath before the elevation mapping",
+    },
+    "screened": {
+        "units": "",
+        "long_name": "screening flag",
+        "description": "why the sample was screened out (ionosphere, implausible, "
+        "short remainder); empty when it was kept",
+    },
+    "window": {
+        "units": "1",
+        "long_name": "stationary window index",
+        "description": "index into windows.per_window of result.json; -1: in no "
+        "window (screened out, or outside the bound)",
+    },
+}
 
 _SUFFIXES = {".nc": "netcdf", ".csv": "csv", ".gz": "csv"}
 
@@ -86,8 +116,10 @@ def format_of(path: str | os.PathLike[str], fmt: str | None = None) -> str:
         return fmt
     suffix = Path(path).suffix.lower()
     if suffix not in _SUFFIXES:
-        raise InputError(f"cannot tell the series format from the file name {Path(path).name!r}"
-                         ": name it .csv, .csv.gz or .nc, or give the format")  # fmt: skip
+        raise InputError(
+            f"cannot tell the series format from the file name {Path(path).name!r}"
+            ": name it .csv, .csv.gz or .nc, or give the format"
+        )
     return _SUFFIXES[suffix]
 
 
@@ -129,8 +161,10 @@ def series_attrs(document: dict[str, Any]) -> dict[str, str | float]:
         ``cutoff_f_c_hz`` (NaN without a cutoff).
     """
     prov, b = document.get("provenance", {}), document["bound"]
-    files = "; ".join(f"{x.get('role', '')} {x.get('name', '')} sha256:{x.get('sha256', '')}"
-                      for x in prov.get("inputs", []))  # fmt: skip
+    files = "; ".join(
+        f"{x.get('role', '')} {x.get('name', '')} sha256:{x.get('sha256', '')}"
+        for x in prov.get("inputs", [])
+    )
     f_c = document.get("cutoff", {}).get("f_c_hz")
     return {
         "title": TITLE,
@@ -178,8 +212,9 @@ def series_dataset(table: dict[str, NDArray], *, attrs: dict[str, Any] | None = 
     return xr.Dataset(data, attrs=dict(attrs or {}))
 
 
-def series_bytes(table: dict[str, NDArray], fmt: str, *, gz: bool = False,
-                 attrs: dict[str, Any] | None = None) -> bytes:  # fmt: skip
+def series_bytes(
+    table: dict[str, NDArray], fmt: str, *, gz: bool = False, attrs: dict[str, Any] | None = None
+) -> bytes:
     """Return a series table as the bytes of a file in format ``fmt``.
 
     Parameters
@@ -203,8 +238,13 @@ def series_bytes(table: dict[str, NDArray], fmt: str, *, gz: bool = False,
     return bytes(ds.to_netcdf(engine="scipy", format="NETCDF3_64BIT"))
 
 
-def write_series(table: dict[str, NDArray], path: str | os.PathLike[str], *,
-                 fmt: str | None = None, attrs: dict[str, Any] | None = None) -> Path:  # fmt: skip
+def write_series(
+    table: dict[str, NDArray],
+    path: str | os.PathLike[str],
+    *,
+    fmt: str | None = None,
+    attrs: dict[str, Any] | None = None,
+) -> Path:
     """Write a series table to ``path`` atomically (nothing half-written on failure).
 
     Parameters

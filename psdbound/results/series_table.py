@@ -40,8 +40,13 @@ __all__ = ["COLUMNS", "series_csv", "series_table", "write_series_csv"]
 COLUMNS = ("t_gps_s", "sat", "azimuth_deg", "elevation_deg", "value_m", "screened", "window")
 
 
-def _mark_spans(sat: NDArray, t: NDArray, spans: Sequence[tuple[str, float, float]],
-                out: NDArray, values: Sequence[Any]) -> None:  # fmt: skip
+def _mark_spans(
+    sat: NDArray,
+    t: NDArray,
+    spans: Sequence[tuple[str, float, float]],
+    out: NDArray,
+    values: Sequence[Any],
+) -> None:
     """Set ``out`` to ``values[k]`` on the samples of span ``k`` (first span wins)."""
     free = np.ones(t.size, dtype=bool)
     for (s, t0, t1), val in zip(spans, values, strict=True):
@@ -50,8 +55,9 @@ def _mark_spans(sat: NDArray, t: NDArray, spans: Sequence[tuple[str, float, floa
         free &= ~sel
 
 
-def series_table(series: Any, arcs: Any, excluded: Sequence[dict[str, Any]],
-                 per_window: Sequence[dict[str, Any]]) -> dict[str, NDArray]:  # fmt: skip
+def series_table(
+    series: Any, arcs: Any, excluded: Sequence[dict[str, Any]], per_window: Sequence[dict[str, Any]]
+) -> dict[str, NDArray]:
     """Return every isolated sample with its direction, screening and window.
 
     Parameters
@@ -81,16 +87,31 @@ def series_table(series: Any, arcs: Any, excluded: Sequence[dict[str, Any]],
             az[lo:hi] = arcs.azimuth_at(series.arc_sats[k], series.t_gps_s[lo:hi])
     t = np.asarray(series.t_gps_s, dtype=float)
     screened = np.full(n, "", dtype=object)
-    _mark_spans(sat, t, [(e["sat"], e["start_gps_s"], e["stop_gps_s"]) for e in excluded],
-                screened, [e["kind"] for e in excluded])  # fmt: skip
+    _mark_spans(
+        sat,
+        t,
+        [(e["sat"], e["start_gps_s"], e["stop_gps_s"]) for e in excluded],
+        screened,
+        [e["kind"] for e in excluded],
+    )
     window = np.full(n, -1, dtype=np.int64)
-    _mark_spans(sat, t, [(w["sats"], w["t_start_gps_s"], w["t_stop_gps_s"]) for w in per_window],
-                window, range(len(per_window)))  # fmt: skip
+    _mark_spans(
+        sat,
+        t,
+        [(w["sats"], w["t_start_gps_s"], w["t_stop_gps_s"]) for w in per_window],
+        window,
+        range(len(per_window)),
+    )
     window[screened != ""] = -1
-    return {"t_gps_s": t, "sat": sat, "azimuth_deg": az,
-            "elevation_deg": np.asarray(series.elevation_deg, dtype=float),
-            "value_m": np.asarray(series.value_m, dtype=float), "screened": screened,
-            "window": window}  # fmt: skip
+    return {
+        "t_gps_s": t,
+        "sat": sat,
+        "azimuth_deg": az,
+        "elevation_deg": np.asarray(series.elevation_deg, dtype=float),
+        "value_m": np.asarray(series.value_m, dtype=float),
+        "screened": screened,
+        "window": window,
+    }
 
 
 def series_csv(table: dict[str, NDArray], *, gz: bool = False) -> bytes:
@@ -110,8 +131,9 @@ def series_csv(table: dict[str, NDArray], *, gz: bool = False) -> bytes:
     buf = io.StringIO()
     buf.write(",".join(COLUMNS) + "\n")
     for t, sat, az, el, v, scr, win in zip(*(table[c] for c in COLUMNS), strict=True):
-        buf.write(f"{t:.1f},{sat},{'' if np.isnan(az) else f'{az:.2f}'},{el:.2f},{v:.6f},"
-                  f"{scr},{win}\n")  # fmt: skip
+        buf.write(
+            f"{t:.1f},{sat},{'' if np.isnan(az) else f'{az:.2f}'},{el:.2f},{v:.6f},{scr},{win}\n"
+        )
     data = buf.getvalue().encode()
     return gzip.compress(data, mtime=0) if gz else data
 

@@ -63,8 +63,15 @@ from scipy import optimize, stats
 
 from psdbound.screening.options import FALSE_ALARM
 
-__all__ = ["FALSE_ALARM", "MEMBER_TAIL", "MIN_BLOCKS", "MultipathNull", "fit_null", "local_scale",
-           "lower_dof"]
+__all__ = [
+    "FALSE_ALARM",
+    "MEMBER_TAIL",
+    "MIN_BLOCKS",
+    "MultipathNull",
+    "fit_null",
+    "local_scale",
+    "lower_dof",
+]
 
 #: Fewest blocks to fit a null; also the neighbours of each local scale.
 MIN_BLOCKS = 40
@@ -165,8 +172,9 @@ class MultipathNull:
         q = np.interp(np.asarray(elevation_deg, dtype=float), self.elevation_deg, self.q_hi)
         return q * self.dof / stats.chi2.ppf(Q_HI, self.dof)
 
-    def threshold(self, elevation_deg: ArrayLike, false_alarm: float = FALSE_ALARM
-                  ) -> NDArray[np.float64]:  # fmt: skip
+    def threshold(
+        self, elevation_deg: ArrayLike, false_alarm: float = FALSE_ALARM
+    ) -> NDArray[np.float64]:
         """Return the ROTI a block at ``elevation_deg`` exceeds with probability ``false_alarm``.
 
         Parameters
@@ -181,12 +189,19 @@ class MultipathNull:
         ndarray
             TECU/min.
         """
-        return np.sqrt(self.scale2(elevation_deg) * stats.chi2.isf(false_alarm, self.dof)
-                       / self.dof)  # fmt: skip
+        return np.sqrt(
+            self.scale2(elevation_deg) * stats.chi2.isf(false_alarm, self.dof) / self.dof
+        )
 
-    def persistent(self, roti_tecu_min: ArrayLike, elevation_deg: ArrayLike, *,
-                   blocks: int = PERSIST_BLOCKS, false_alarm: float = FALSE_ALARM,
-                   floor_tecu_min: float = 0.0) -> NDArray[np.bool_]:  # fmt: skip
+    def persistent(
+        self,
+        roti_tecu_min: ArrayLike,
+        elevation_deg: ArrayLike,
+        *,
+        blocks: int = PERSIST_BLOCKS,
+        false_alarm: float = FALSE_ALARM,
+        floor_tecu_min: float = 0.0,
+    ) -> NDArray[np.bool_]:
         """Flag runs of consecutive blocks whose ROTI together is improbable under the null.
 
         A disturbance lasts longer than one 5-min block; over ``blocks``
@@ -218,27 +233,35 @@ class MultipathNull:
             return out
         z = np.where(np.isfinite(r), r**2 / self.scale2(elevation_deg), np.nan)
         w = np.lib.stride_tricks.sliding_window_view(z, blocks).sum(axis=1)
-        rms = np.sqrt(np.lib.stride_tricks.sliding_window_view(
-            np.where(np.isfinite(r), r**2, np.nan), blocks).mean(axis=1))  # fmt: skip
+        rms = np.sqrt(
+            np.lib.stride_tricks.sliding_window_view(
+                np.where(np.isfinite(r), r**2, np.nan), blocks
+            ).mean(axis=1)
+        )
         hit = (w * self.dof > stats.chi2.isf(false_alarm, blocks * self.dof)) & (
-            rms > floor_tecu_min)  # fmt: skip
+            rms > floor_tecu_min
+        )
         # a run's blocks are flagged where they are themselves in the null's top quarter: a
         # strong block does not carry its quiet neighbours with it
         member = (z * self.dof > stats.chi2.isf(MEMBER_TAIL, self.dof)) & (r > floor_tecu_min)
         for j in np.flatnonzero(np.nan_to_num(hit, nan=False).astype(bool)):
-            out[j:j + blocks] |= member[j:j + blocks]
+            out[j : j + blocks] |= member[j : j + blocks]
         return out
 
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready form."""
-        return {"elevation_deg": self.elevation_deg.tolist(),
-                "scale_tecu_min": np.sqrt(self.scale2(self.elevation_deg)).tolist(),
-                "dof": self.dof, "n_blocks": self.n_blocks,
-                "trusted": self.trusted}  # fmt: skip
+        return {
+            "elevation_deg": self.elevation_deg.tolist(),
+            "scale_tecu_min": np.sqrt(self.scale2(self.elevation_deg)).tolist(),
+            "dof": self.dof,
+            "n_blocks": self.n_blocks,
+            "trusted": self.trusted,
+        }
 
 
-def fit_null(roti_tecu_min: ArrayLike, elevation_deg: ArrayLike, *,
-             min_blocks: int = MIN_BLOCKS) -> MultipathNull | None:  # fmt: skip
+def fit_null(
+    roti_tecu_min: ArrayLike, elevation_deg: ArrayLike, *, min_blocks: int = MIN_BLOCKS
+) -> MultipathNull | None:
     """Fit the multipath null of ROTI: a local scale in elevation and one chi-square shape.
 
     Parameters
@@ -264,8 +287,9 @@ def fit_null(roti_tecu_min: ArrayLike, elevation_deg: ArrayLike, *,
     return MultipathNull(grid, q, lower_dof(u), u.size)
 
 
-def local_scale(values: ArrayLike, elevation_deg: ArrayLike, *, min_blocks: int = MIN_BLOCKS
-                ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]] | None:
+def local_scale(
+    values: ArrayLike, elevation_deg: ArrayLike, *, min_blocks: int = MIN_BLOCKS
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]] | None:
     """Return the local ``Q_HI`` quantile of ``values`` in elevation, and the scaled values.
 
     Parameters
@@ -296,7 +320,7 @@ def local_scale(values: ArrayLike, elevation_deg: ArrayLike, *, min_blocks: int 
     e_s, x_s = el[ok][order], x[ok][order]
     half = max(min_blocks, n // 12) // 2  # a local quantile of >= 40 blocks, 1/12 of them
     centres = np.unique(np.linspace(0, n - 1, min(_N_GRID, n)).astype(int))
-    q = np.array([np.quantile(x_s[max(0, c - half):min(n, c + half + 1)], Q_HI) for c in centres])
+    q = np.array([np.quantile(x_s[max(0, c - half) : min(n, c + half + 1)], Q_HI) for c in centres])
     grid = e_s[centres]
     grid, first = np.unique(grid, return_index=True)
     q = q[first]

@@ -76,7 +76,8 @@ class ScreeningOptions:
         cap = self.roti_cap_tecu_min
         if cap is not None and cap < self.roti_threshold_tecu_min:
             raise OptionError(
-                "roti_cap_tecu_min", cap,
+                "roti_cap_tecu_min",
+                cap,
                 f"a number >= roti_threshold_tecu_min = {self.roti_threshold_tecu_min:g} "
                 "TECU/min (or unset)",
-            )  # fmt: skip
+            )

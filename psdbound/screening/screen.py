@@ -200,10 +200,15 @@ def _limit(series: MultipathSeries, channels: Mapping[str, int] | None = None) -
     return multipath_limit_m(lams, series.scaling)
 
 
-def _arc_blocks(t: NDArray[np.float64], v: NDArray[np.float64], el: NDArray[np.float64],
-                gf: NDArray[np.float64] | None, m_per_tecu: float | None,
-                third: NDArray[np.float64] | None = None,
-                comb: TripleCombination | None = None) -> dict[str, Any]:  # fmt: skip
+def _arc_blocks(
+    t: NDArray[np.float64],
+    v: NDArray[np.float64],
+    el: NDArray[np.float64],
+    gf: NDArray[np.float64] | None,
+    m_per_tecu: float | None,
+    third: NDArray[np.float64] | None = None,
+    comb: TripleCombination | None = None,
+) -> dict[str, Any]:
     """Per 5-min block of one arc: limits, ROTI, mean elevation, largest |value|, 3F ratio."""
     t0, t1 = float(t[0]), float(t[-1])
     n_blocks = max(1, int(np.ceil((t1 - t0) / ROTI_BLOCK_S - 1e-9)))
@@ -212,7 +217,8 @@ def _arc_blocks(t: NDArray[np.float64], v: NDArray[np.float64], el: NDArray[np.f
     vmax = np.zeros(n_blocks)
     np.maximum.at(vmax, bi, np.abs(v))
     el_mean = np.bincount(bi, weights=el, minlength=n_blocks) / np.maximum(
-        np.bincount(bi, minlength=n_blocks), 1)  # fmt: skip
+        np.bincount(bi, minlength=n_blocks), 1
+    )
     roti = np.full(n_blocks, np.nan)
     if gf is not None and m_per_tecu is not None:
         tm, rot = rate_of_tec(t, gf, m_per_tecu)
@@ -222,27 +228,42 @@ def _arc_blocks(t: NDArray[np.float64], v: NDArray[np.float64], el: NDArray[np.f
     if gf is not None and third is not None and comb is not None and np.isfinite(third).any():
         roti_i, roti_d = block_rates(t, gf, third, comb, n_blocks=n_blocks)
         ratio = pooled_ratio(roti_i, roti_d, blocks=POOL_BLOCKS)
-    return {"start": start, "stop": start + ROTI_BLOCK_S, "roti": roti, "el": el_mean,
-            "vmax": vmax, "ratio": ratio, "roti_d": roti_d,
-            "named": empty_names(n_blocks)}  # fmt: skip
+    return {
+        "start": start,
+        "stop": start + ROTI_BLOCK_S,
+        "roti": roti,
+        "el": el_mean,
+        "vmax": vmax,
+        "ratio": ratio,
+        "roti_d": roti_d,
+        "named": empty_names(n_blocks),
+    }
 
 
-def _combination(series: MultipathSeries, sats: str,
-                 channels: Mapping[str, int] | None) -> TripleCombination | None:  # fmt: skip
+def _combination(
+    series: MultipathSeries, sats: str, channels: Mapping[str, int] | None
+) -> TripleCombination | None:
     """Return the three-frequency combinations of an arc's satellite (None: no third carrier)."""
     if series.method != "DF" or series.third_m is None or series.third_signal is None:
         return None
     sat = sats.split("-")[0]
     try:
-        fa, fb, fc = (carrier_frequency_hz(sat, c, channels)
-                      for c in (*series.signals[:2], series.third_signal))  # fmt: skip
+        fa, fb, fc = (
+            carrier_frequency_hz(sat, c, channels)
+            for c in (*series.signals[:2], series.third_signal)
+        )
     except InputError:
         return None
     return triple_combination(fa, fb, fc)
 
 
-def _threshold(el_mean: NDArray[np.float64], opt: ScreeningOptions, mapping: Any,
-               null: MultipathNull | None, share: float) -> NDArray[np.float64]:  # fmt: skip
+def _threshold(
+    el_mean: NDArray[np.float64],
+    opt: ScreeningOptions,
+    mapping: Any,
+    null: MultipathNull | None,
+    share: float,
+) -> NDArray[np.float64]:
     """ROTI threshold per block, TECU/min: the null's quantile and the base, or the scaled base."""
     base = np.full(el_mean.size, opt.roti_threshold_tecu_min)
     scaled = base
@@ -260,17 +281,20 @@ def _series_null(blocks: list[dict[str, Any]], opt: ScreeningOptions) -> Multipa
     """Return the multipath null of the series' ROTI (None: not asked for, or too few blocks)."""
     if not (opt.multipath_null and opt.ionosphere) or not blocks:
         return None
-    return fit_null(np.concatenate([b["roti"] for b in blocks]),
-                    np.concatenate([b["el"] for b in blocks]))  # fmt: skip
+    return fit_null(
+        np.concatenate([b["roti"] for b in blocks]), np.concatenate([b["el"] for b in blocks])
+    )
 
 
-def _ratio_null(blocks: list[dict[str, Any]], opt: ScreeningOptions,
-                null: MultipathNull | None) -> RatioNull | None:  # fmt: skip
+def _ratio_null(
+    blocks: list[dict[str, Any]], opt: ScreeningOptions, null: MultipathNull | None
+) -> RatioNull | None:
     """Return the null of the three-frequency ratio (None: no third carrier or not asked for)."""
     if null is None or not opt.three_frequency or not blocks:
         return None
-    return fit_ratio_null(np.concatenate([b["ratio"] for b in blocks]),
-                          np.concatenate([b["el"] for b in blocks]))  # fmt: skip
+    return fit_ratio_null(
+        np.concatenate([b["ratio"] for b in blocks]), np.concatenate([b["el"] for b in blocks])
+    )
 
 
 def _share(opt: ScreeningOptions, null: MultipathNull, three: bool = False) -> float:
@@ -282,19 +306,25 @@ def _share(opt: ScreeningOptions, null: MultipathNull, three: bool = False) -> f
     return opt.false_alarm / ((N_TESTS if null.trusted else 1) + int(three))
 
 
-def _coherent(blocks: list[dict[str, Any]], opt: ScreeningOptions,
-              null: MultipathNull | None, share: float) -> list[NDArray[np.bool_]]:  # fmt: skip
+def _coherent(
+    blocks: list[dict[str, Any]], opt: ScreeningOptions, null: MultipathNull | None, share: float
+) -> list[NDArray[np.bool_]]:
     """Blocks flagged by the coherence test across satellites (none without a trusted null)."""
     if not opt.ionosphere or null is None or not null.trusted:
         return [np.zeros(b["roti"].size, bool) for b in blocks]
-    return coherent_blocks([0.5 * (b["start"] + b["stop"]) for b in blocks],
-                           [b["roti"] for b in blocks], [b["el"] for b in blocks], null,
-                           false_alarm=share,
-                           floor_tecu_min=opt.roti_threshold_tecu_min)  # fmt: skip
+    return coherent_blocks(
+        [0.5 * (b["start"] + b["stop"]) for b in blocks],
+        [b["roti"] for b in blocks],
+        [b["el"] for b in blocks],
+        null,
+        false_alarm=share,
+        floor_tecu_min=opt.roti_threshold_tecu_min,
+    )
 
 
-def _arc_flags(bk: dict[str, Any], coherent: NDArray[np.bool_], ctx: dict[str, Any]
-               ) -> tuple[NDArray, NDArray, NDArray, NDArray]:  # fmt: skip
+def _arc_flags(
+    bk: dict[str, Any], coherent: NDArray[np.bool_], ctx: dict[str, Any]
+) -> tuple[NDArray, NDArray, NDArray, NDArray]:
     """One arc's ionosphere flags: threshold, ROTI tests' flags, persistence, final flags."""
     opt, null, tf = ctx["opt"], ctx["null"], ctx["tf"]
     roti = bk["roti"]
@@ -302,8 +332,9 @@ def _arc_flags(bk: dict[str, Any], coherent: NDArray[np.bool_], ctx: dict[str, A
     iono = (roti > thr) & ~np.isnan(roti) if opt.ionosphere else np.zeros(roti.size, bool)
     persist = np.zeros(roti.size, bool)
     if opt.ionosphere and null is not None and null.trusted:
-        persist = null.persistent(roti, bk["el"], false_alarm=ctx["share"],
-                                  floor_tecu_min=opt.roti_threshold_tecu_min)  # fmt: skip
+        persist = null.persistent(
+            roti, bk["el"], false_alarm=ctx["share"], floor_tecu_min=opt.roti_threshold_tecu_min
+        )
     flagged = iono | persist | coherent
     if tf is None or not opt.ionosphere:
         return thr, flagged, persist, flagged
@@ -311,12 +342,23 @@ def _arc_flags(bk: dict[str, Any], coherent: NDArray[np.bool_], ctx: dict[str, A
     return thr, flagged, persist, tf.decide(flagged, bk["named"])
 
 
-def _screen_arc(series: MultipathSeries, lo: int, hi: int, k: int, bk: dict[str, Any],
-                coherent: NDArray[np.bool_], ctx: dict[str, Any]) -> dict[str, Any]:  # fmt: skip
+def _screen_arc(
+    series: MultipathSeries,
+    lo: int,
+    hi: int,
+    k: int,
+    bk: dict[str, Any],
+    coherent: NDArray[np.bool_],
+    ctx: dict[str, Any],
+) -> dict[str, Any]:
     """Screen one arc: its flags, excluded spans, kept pieces and figure entry."""
     sats, t = series.arc_sats[k], series.t_gps_s[lo:hi]
-    arc = {"sats": sats, "t_gps_s": t, "value_m": series.value_m[lo:hi],
-           "elevation_deg": series.elevation_deg[lo:hi]}  # fmt: skip
+    arc = {
+        "sats": sats,
+        "t_gps_s": t,
+        "value_m": series.value_m[lo:hi],
+        "elevation_deg": series.elevation_deg[lo:hi],
+    }
     for key in ("unfiltered_m", "third_m"):
         if getattr(series, key) is not None:
             arc[key] = getattr(series, key)[lo:hi]
@@ -333,13 +375,23 @@ def _screen_arc(series: MultipathSeries, lo: int, hi: int, k: int, bk: dict[str,
         excluded.append(excluded_span(t, sats, sel, bk, flags, b0, b1, ctx))
     kept, short, used = kept_pieces(t, keep, arc, ctx)
     blk = np.clip(((t - t[0]) // ROTI_BLOCK_S).astype(int), 0, start.size - 1)
-    fig = {"sats": sats, "t_gps_s": 0.5 * (start + stop), "roti_tecu_min": bk["roti"],
-           "threshold_tecu_min": thr, "value_max_m": bk["vmax"],
-           "excluded": np.bincount(blk, weights=~used, minlength=start.size) > 0}  # fmt: skip
+    fig = {
+        "sats": sats,
+        "t_gps_s": 0.5 * (start + stop),
+        "roti_tecu_min": bk["roti"],
+        "threshold_tecu_min": thr,
+        "value_max_m": bk["vmax"],
+        "excluded": np.bincount(blk, weights=~used, minlength=start.size) > 0,
+    }
     if ctx["tf"] is not None:
         fig.update(ratio_3f=bk["ratio"], named_3f=bk["named"], roti_d_tecu_min=bk["roti_d"])
-    return {"kept": kept, "excluded": excluded + short, "fig": fig, "flagged": flagged,
-            "input_s": t.size * ctx["dt"]}  # fmt: skip
+    return {
+        "kept": kept,
+        "excluded": excluded + short,
+        "fig": fig,
+        "flagged": flagged,
+        "input_s": t.size * ctx["dt"],
+    }
 
 
 def _m_per_tecu(series: MultipathSeries, channels: Mapping[str, int] | None) -> float | None:
@@ -351,25 +403,41 @@ def _m_per_tecu(series: MultipathSeries, channels: Mapping[str, int] | None) -> 
     return geometry_free_m_per_tecu(fa, fb)
 
 
-def _notes(m_per_tecu: float | None, null: MultipathNull | None,
-           rnull: RatioNull | None, tf: ThreeFrequencyTest | None) -> tuple[str, ...]:  # fmt: skip
+def _notes(
+    m_per_tecu: float | None,
+    null: MultipathNull | None,
+    rnull: RatioNull | None,
+    tf: ThreeFrequencyTest | None,
+) -> tuple[str, ...]:
     """Return the notes: no ionosphere test, a disturbed null, no three-frequency test."""
-    notes = () if m_per_tecu is not None else (
-        "no ionosphere test: dual-antenna differences cancel the ionosphere of a short baseline",
-    )  # fmt: skip
+    notes = (
+        ()
+        if m_per_tecu is not None
+        else (
+            "no ionosphere test: dual-antenna differences cancel the ionosphere of a short "
+            "baseline",
+        )
+    )
     if null is not None and not null.trusted:
-        notes += (f"the ROTI of multipath alone could not be told from the data: its fitted "
-                  f"shape is heavy-tailed (dof {null.dof:.2g} < {NU_DISTURBED:g}), so much of "
-                  f"the day is disturbed; the elevation-scaled threshold applies as well",)
+        notes += (
+            f"the ROTI of multipath alone could not be told from the data: its fitted "
+            f"shape is heavy-tailed (dof {null.dof:.2g} < {NU_DISTURBED:g}), so much of "
+            f"the day is disturbed; the elevation-scaled threshold applies as well",
+        )
     if rnull is not None and tf is None:
         med = rnull.median()
-        notes += (f"no three-frequency test: the rate of the ionosphere combination over that of "
-                  f"the ionosphere-free one is {med.min():.2g}-{med.max():.2g} in the median "
-                  f"block (multipath alone: about 1 or less, at most {RATIO_MAX:g}), its shape's "
-                  f"dof {rnull.dof:.2g} (heavy-tailed below {NU_DISTURBED:g}): "
-                  + ("the typical block holds ionosphere, so the three carriers name the day "
-                     "disturbed" if med.max() > RATIO_MAX else "the null is heavy-tailed")
-                  + "; no block is kept or flagged by it",)  # fmt: skip
+        notes += (
+            f"no three-frequency test: the rate of the ionosphere combination over that of "
+            f"the ionosphere-free one is {med.min():.2g}-{med.max():.2g} in the median "
+            f"block (multipath alone: about 1 or less, at most {RATIO_MAX:g}), its shape's "
+            f"dof {rnull.dof:.2g} (heavy-tailed below {NU_DISTURBED:g}): "
+            + (
+                "the typical block holds ionosphere, so the three carriers name the day disturbed"
+                if med.max() > RATIO_MAX
+                else "the null is heavy-tailed"
+            )
+            + "; no block is kept or flagged by it",
+        )
     return notes
 
 
@@ -412,48 +480,91 @@ def screen_series(
         guard_s = 0.5 / series.cutoff_hz if series.cutoff_hz else 0.0
     m_per_tecu = _m_per_tecu(series, glonass_channels)
     bounds = series.arc_bounds()
-    blocks = [_arc_blocks(series.t_gps_s[lo:hi], series.value_m[lo:hi],
-                          series.elevation_deg[lo:hi], _part(series.unfiltered_m, lo, hi),
-                          m_per_tecu, _part(series.third_m, lo, hi),
-                          _combination(series, series.arc_sats[k], glonass_channels))
-              for k, (lo, hi) in enumerate(bounds)]  # fmt: skip
+    blocks = [
+        _arc_blocks(
+            series.t_gps_s[lo:hi],
+            series.value_m[lo:hi],
+            series.elevation_deg[lo:hi],
+            _part(series.unfiltered_m, lo, hi),
+            m_per_tecu,
+            _part(series.third_m, lo, hi),
+            _combination(series, series.arc_sats[k], glonass_channels),
+        )
+        for k, (lo, hi) in enumerate(bounds)
+    ]
     null = _series_null(blocks, opt) if m_per_tecu is not None else None
     rnull = _ratio_null(blocks, opt, null)
     three = rnull is not None and rnull.trusted
     share = _share(opt, null, three) if null is not None else opt.false_alarm
     tf = ThreeFrequencyTest(rnull, share, opt.roti_threshold_tecu_min) if three else None
-    ctx = {"opt": opt, "null": null, "tf": tf, "share": share, "mapping": mapping,
-           "limit": _limit(series, glonass_channels), "guard_s": guard_s,
-           "dt": series.interval_s, "min_length_s": min_length_s}  # fmt: skip
+    ctx = {
+        "opt": opt,
+        "null": null,
+        "tf": tf,
+        "share": share,
+        "mapping": mapping,
+        "limit": _limit(series, glonass_channels),
+        "guard_s": guard_s,
+        "dt": series.interval_s,
+        "min_length_s": min_length_s,
+    }
     coherent = _coherent(blocks, opt, null, share)
-    arcs = [_screen_arc(series, lo, hi, k, blocks[k], coherent[k], ctx)
-            for k, (lo, hi) in enumerate(bounds)]  # fmt: skip
+    arcs = [
+        _screen_arc(series, lo, hi, k, blocks[k], coherent[k], ctx)
+        for k, (lo, hi) in enumerate(bounds)
+    ]
     kept = [p for a in arcs for p in a["kept"]]
     input_s = float(sum(a["input_s"] for a in arcs))
     excluded_s = input_s - sum(p["t_gps_s"].size for p in kept) * series.interval_s
     meta = dict(series.meta)
-    meta["screening"] = {"limit_m": ctx["limit"], "guard_s": guard_s,
-                         "roti_threshold_tecu_min": opt.roti_threshold_tecu_min}  # fmt: skip
+    meta["screening"] = {
+        "limit_m": ctx["limit"],
+        "guard_s": guard_s,
+        "roti_threshold_tecu_min": opt.roti_threshold_tecu_min,
+    }
     out = MultipathSeries.from_arcs(
-        series.method, kept, signals=series.signals, scaling=series.scaling,
-        interval_s=series.interval_s, cutoff_hz=series.cutoff_hz, meta=meta,
+        series.method,
+        kept,
+        signals=series.signals,
+        scaling=series.scaling,
+        interval_s=series.interval_s,
+        cutoff_hz=series.cutoff_hz,
+        meta=meta,
         third_signal=series.third_signal,
-    )  # fmt: skip
+    )
     three_freq = None
     if rnull is not None or (null is not None and series.third_m is not None):
-        three_freq = summary(tf, rnull, series.third_signal, len(bounds),
-                             sum(bool(np.isfinite(b["ratio"]).any()) for b in blocks), blocks,
-                             [a["flagged"] for a in arcs])  # fmt: skip
+        three_freq = summary(
+            tf,
+            rnull,
+            series.third_signal,
+            len(bounds),
+            sum(bool(np.isfinite(b["ratio"]).any()) for b in blocks),
+            blocks,
+            [a["flagged"] for a in arcs],
+        )
     notes = _notes(m_per_tecu, null, rnull, tf)
     if tf is not None and three_freq is not None:
         f = three_freq
-        notes += (f"three-frequency test ({f['signal']} on {f['arcs_with_third']} of "
-                  f"{f['arcs']} arcs): {f['kept_as_multipath']} blocks flagged by ROTI kept as "
-                  f"multipath, {f['confirmed']} confirmed and {f['added']} added as ionosphere "
-                  "(screening.three_frequency)",)  # fmt: skip
-    return Screening(out, tuple(e for a in arcs for e in a["excluded"]), ctx["limit"], input_s,
-                     excluded_s, [a["fig"] for a in arcs], opt, notes, guard_s, null,
-                     three_freq)  # fmt: skip
+        notes += (
+            f"three-frequency test ({f['signal']} on {f['arcs_with_third']} of "
+            f"{f['arcs']} arcs): {f['kept_as_multipath']} blocks flagged by ROTI kept as "
+            f"multipath, {f['confirmed']} confirmed and {f['added']} added as ionosphere "
+            "(screening.three_frequency)",
+        )
+    return Screening(
+        out,
+        tuple(e for a in arcs for e in a["excluded"]),
+        ctx["limit"],
+        input_s,
+        excluded_s,
+        [a["fig"] for a in arcs],
+        opt,
+        notes,
+        guard_s,
+        null,
+        three_freq,
+    )
 
 
 def _part(a: NDArray[np.float64] | None, lo: int, hi: int) -> NDArray[np.float64] | None:

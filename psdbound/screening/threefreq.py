@@ -167,8 +167,9 @@ class TripleCombination:
     ratio: float
     m_per_tecu: float
 
-    def apply(self, gf_ab_m: NDArray[np.float64], gf_ac_m: NDArray[np.float64]
-              ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:  # fmt: skip
+    def apply(
+        self, gf_ab_m: NDArray[np.float64], gf_ac_m: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Return ``I`` and ``D`` (metres) from ``L_a - L_b`` and ``L_a - L_c`` (metres)."""
         (xi, yi), (xd, yd) = self.iono, self.free
         return xi * gf_ab_m + yi * gf_ac_m, xd * gf_ab_m + yd * gf_ac_m
@@ -203,9 +204,14 @@ def triple_combination(f_a_hz: float, f_b_hz: float, f_c_hz: float) -> TripleCom
     return TripleCombination((xi, yi), _unit(-r, 1.0), float(r), float(m_per_tecu))
 
 
-def block_rates(t_gps_s: NDArray[np.float64], gf_ab_m: NDArray[np.float64],
-                gf_ac_m: NDArray[np.float64], comb: TripleCombination, *,
-                n_blocks: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:  # fmt: skip
+def block_rates(
+    t_gps_s: NDArray[np.float64],
+    gf_ab_m: NDArray[np.float64],
+    gf_ac_m: NDArray[np.float64],
+    comb: TripleCombination,
+    *,
+    n_blocks: int,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Per 5-min block of one arc: the ROTI of ``I`` and of ``D``, TECU/min.
 
     Parameters
@@ -237,8 +243,9 @@ def block_rates(t_gps_s: NDArray[np.float64], gf_ab_m: NDArray[np.float64],
     return out[0], out[1]
 
 
-def pooled_ratio(roti_i: NDArray[np.float64], roti_d: NDArray[np.float64], *,
-                 blocks: int = POOL_BLOCKS) -> NDArray[np.float64]:
+def pooled_ratio(
+    roti_i: NDArray[np.float64], roti_d: NDArray[np.float64], *, blocks: int = POOL_BLOCKS
+) -> NDArray[np.float64]:
     """Return ``T`` of each block of one arc over the ``blocks`` consecutive blocks centred on it.
 
     ``T = sum ROTI_I^2 / sum ROTI_D^2`` over the blocks of the window that have
@@ -329,9 +336,13 @@ class RatioNull:
 
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready form."""
-        return {"elevation_deg": self.elevation_deg.tolist(),
-                "median_ratio": self.median().tolist(),
-                "dof": self.dof, "n_blocks": self.n_blocks, "trusted": self.trusted}  # fmt: skip
+        return {
+            "elevation_deg": self.elevation_deg.tolist(),
+            "median_ratio": self.median().tolist(),
+            "dof": self.dof,
+            "n_blocks": self.n_blocks,
+            "trusted": self.trusted,
+        }
 
 
 def fit_ratio_null(ratio: ArrayLike, elevation_deg: ArrayLike) -> RatioNull | None:
@@ -374,8 +385,12 @@ class ThreeFrequencyTest:
     false_alarm: float
     floor_tecu_min: float
 
-    def name(self, ratio: NDArray[np.float64], elevation_deg: NDArray[np.float64],
-             roti_tecu_min: NDArray[np.float64]) -> NDArray[np.str_]:  # fmt: skip
+    def name(
+        self,
+        ratio: NDArray[np.float64],
+        elevation_deg: NDArray[np.float64],
+        roti_tecu_min: NDArray[np.float64],
+    ) -> NDArray[np.str_]:
         """Name each block: "ionosphere", "multipath" or "" (neither, or no third carrier).
 
         "ionosphere": ``T`` above the null's ``1 - false_alarm`` quantile and
@@ -399,9 +414,15 @@ class ThreeFrequencyTest:
         return (flagged & (named != "multipath")) | (named == "ionosphere")
 
 
-def summary(test: ThreeFrequencyTest | None, rnull: RatioNull | None, signal: str | None,
-            n_arcs: int, arcs_with: int, blocks: list[dict[str, Any]],
-            flagged: list[NDArray[np.bool_]]) -> dict[str, Any]:  # fmt: skip
+def summary(
+    test: ThreeFrequencyTest | None,
+    rnull: RatioNull | None,
+    signal: str | None,
+    n_arcs: int,
+    arcs_with: int,
+    blocks: list[dict[str, Any]],
+    flagged: list[NDArray[np.bool_]],
+) -> dict[str, Any]:
     """Return the ``screening.three_frequency`` section: the signal, the arcs, what was named.
 
     Parameters
@@ -423,7 +444,9 @@ def summary(test: ThreeFrequencyTest | None, rnull: RatioNull | None, signal: st
     roti_flag = np.concatenate(flagged) if flagged else np.zeros(0, bool)
     ratio = np.concatenate([b["ratio"] for b in blocks]) if blocks else np.zeros(0)
     return {
-        "signal": signal, "arcs": n_arcs, "arcs_with_third": arcs_with,
+        "signal": signal,
+        "arcs": n_arcs,
+        "arcs_with_third": arcs_with,
         "blocks_with_third": int(np.isfinite(ratio).sum()),
         "blocks_above_multipath_ratio": int((ratio > RATIO_MAX).sum()),
         "applied": test is not None,
@@ -434,10 +457,9 @@ def summary(test: ThreeFrequencyTest | None, rnull: RatioNull | None, signal: st
         "added": int(((named == "ionosphere") & ~roti_flag).sum()),
         "confirmed": int(((named == "ionosphere") & roti_flag).sum()),
         "kept_as_multipath": int(((named == "multipath") & roti_flag).sum()),
-    }  # fmt: skip
+    }
 
 
 def empty_names(n: int) -> NDArray[np.str_]:
     """Return ``n`` empty block names (no three-frequency test)."""
     return np.full(n, "", dtype="<U10")
-

@@ -41,8 +41,16 @@ from psdbound.common.options import (
 from psdbound.common.tomlfile import read_toml
 from psdbound.errors import InputError
 
-__all__ = ["MAX_MULTIPATH_M", "MULTIPATH_SPEC_EXAMPLE", "IonoDisturbance", "Reflection",
-           "MultipathModel", "Scenario", "PRESETS", "preset"]  # fmt: skip
+__all__ = [
+    "MAX_MULTIPATH_M",
+    "MULTIPATH_SPEC_EXAMPLE",
+    "IonoDisturbance",
+    "Reflection",
+    "MultipathModel",
+    "Scenario",
+    "PRESETS",
+    "preset",
+]
 
 #: Largest standard deviation of injected carrier error, m: about a quarter wavelength.
 MAX_MULTIPATH_M = 0.05
@@ -228,12 +236,17 @@ class MultipathModel:
                 )
             names = ("a", "b", "c_deg") if key == "mapping" else (key,)
             if key == "mapping" and len(values) != 3:
-                raise OptionError("mapping", ",".join(values), "three numbers a,b,c (c in "
-                                  "degrees)", label=f"{label} mapping")  # fmt: skip
+                raise OptionError(
+                    "mapping",
+                    ",".join(values),
+                    "three numbers a,b,c (c in degrees)",
+                    label=f"{label} mapping",
+                )
             for name, raw in zip(names, values, strict=True):
                 if name in changes:
-                    raise InputError(f"{label}: {name} given twice (mapping=a,b,c sets a, b, "
-                                     "c_deg)")  # fmt: skip
+                    raise InputError(
+                        f"{label}: {name} given twice (mapping=a,b,c sets a, b, c_deg)"
+                    )
                 what = f"{label} {key}" + (f" {name}" if key == "mapping" else "")
                 changes[name] = _check(name, _number(raw), spec_of(cls, name), what)
         return replace(base, **changes)
@@ -256,8 +269,9 @@ def _check(name: str, value: Any, spec: Spec | None, label: str, path: str | Non
     except OptionError as exc:
         big = isinstance(value, float) and value > MAX_MULTIPATH_M and name in _SIGMAS
         detail = _QUARTER_WAVE if big else exc.detail
-        raise OptionError(name, value, exc.expected, detail=detail, item=exc.item,
-                          label=label, path=path) from None  # fmt: skip
+        raise OptionError(
+            name, value, exc.expected, detail=detail, item=exc.item, label=label, path=path
+        ) from None
 
 
 _NAME = r"[A-Za-z0-9][A-Za-z0-9._-]*"
@@ -270,8 +284,14 @@ def _check_start(text: str) -> None:
     _dt.datetime.fromisoformat(text)  # a ValueError names the bad field (month, day, ...)
 
 
-def _num(default: float, lo: float | None = None, hi: float | None = None, unit: str = "",
-         lo_open: bool = False, hi_open: bool = False) -> Any:  # fmt: skip
+def _num(
+    default: float,
+    lo: float | None = None,
+    hi: float | None = None,
+    unit: str = "",
+    lo_open: bool = False,
+    hi_open: bool = False,
+) -> Any:
     return option(default, Number(lo=lo, hi=hi, unit=unit, lo_open=lo_open, hi_open=hi_open))
 
 
@@ -341,8 +361,9 @@ class Scenario:
         A value of the wrong type or outside its range, more than 2e6 epochs.
     """
 
-    name: str = option("sim", Text(pattern=_NAME, what="a file-name stem (letters, digits, "
-                                   "'.', '_', '-')"))  # fmt: skip
+    name: str = option(
+        "sim", Text(pattern=_NAME, what="a file-name stem (letters, digits, '.', '_', '-')")
+    )
     lat_deg: float = option(41.84, Number(unit="deg"))  # range checked with its own message
     lon_deg: float = _num(-87.63, -180.0, 360.0, "deg")
     height_m: float = _num(180.0, -1e3, 1e5, "m")
@@ -370,15 +391,18 @@ class Scenario:
     gap_max_s: float = _num(120.0, 0.0, 86400.0, "s", lo_open=True)
     dual_antenna: bool = option(True, Boolean())
     baseline_enu_m: tuple[float, float, float] = option(
-        (5.0, 0.0, 0.0), Tuple(Number(lo=-1e4, hi=1e4), lengths=(3,),
-                               what="three numbers: east, north, up in m"))  # fmt: skip
+        (5.0, 0.0, 0.0),
+        Tuple(Number(lo=-1e4, hi=1e4), lengths=(3,), what="three numbers: east, north, up in m"),
+    )
     header_error_enu_m: tuple[float, float, float] = option(
-        (0.0, 0.0, 0.0), Tuple(Number(lo=-1e3, hi=1e3), lengths=(3,),
-                               what="three numbers: east, north, up in m"))  # fmt: skip
+        (0.0, 0.0, 0.0),
+        Tuple(Number(lo=-1e3, hi=1e3), lengths=(3,), what="three numbers: east, north, up in m"),
+    )
     common_fraction: float = _num(0.3, 0.0, 1.0)
     receiver_clock_s: tuple[float, float] = option(
-        (2.5e-4, -4.0e-4), Tuple(Number(lo=-1.0, hi=1.0), lengths=(2,),
-                                 what="two clock offsets (A, B) in s"))  # fmt: skip
+        (2.5e-4, -4.0e-4),
+        Tuple(Number(lo=-1.0, hi=1.0), lengths=(2,), what="two clock offsets (A, B) in s"),
+    )
     seed: int = option(1, Number(lo=0, hi=2**63 - 1, integer=True))
 
     def __post_init__(self) -> None:
@@ -452,8 +476,9 @@ class Scenario:
         changes: dict[str, Any] = {}
         for key, value in data.items():
             if key not in names:
-                raise InputError(f"unknown key {key!r}; expected one of {', '.join(names)}",
-                                 path=source)  # fmt: skip
+                raise InputError(
+                    f"unknown key {key!r}; expected one of {', '.join(names)}", path=source
+                )
             if key == "multipath":
                 changes[key] = _multipath_from_table(value, base.multipath, source)
             elif key == "disturbances":
@@ -543,8 +568,11 @@ def _tables(cls: type, value: Any, where: str, source: str | None) -> tuple[Any,
         args = {}
         for key, v in table.items():
             if key not in specs:
-                raise InputError(f"unknown key {key!r} in [[{where}]] item {i}; expected one of "
-                                 f"{', '.join(specs)}", path=source)  # fmt: skip
+                raise InputError(
+                    f"unknown key {key!r} in [[{where}]] item {i}; expected one of "
+                    f"{', '.join(specs)}",
+                    path=source,
+                )
             args[key] = _check(key, v, specs[key], f"[[{where}]] item {i} {key}", source)
         missing = [f.name for f in fields(cls) if f.name not in args and f.default is MISSING]
         if missing:
@@ -565,12 +593,18 @@ def _multipath_from_table(value: Any, base: MultipathModel, source: str | None) 
     for key, v in value.items():
         if key == "mapping":
             if not isinstance(v, list) or len(v) != 3:
-                raise OptionError("mapping", v, "three numbers [a, b, c_deg]",
-                                  label="[multipath] mapping", path=source)  # fmt: skip
+                raise OptionError(
+                    "mapping",
+                    v,
+                    "three numbers [a, b, c_deg]",
+                    label="[multipath] mapping",
+                    path=source,
+                )
             for name, x in zip(("a", "b", "c_deg"), v, strict=True):
                 if name in value:
-                    raise InputError(f"[multipath] sets {name} twice (mapping and {name})",
-                                     path=source)  # fmt: skip
+                    raise InputError(
+                        f"[multipath] sets {name} twice (mapping and {name})", path=source
+                    )
                 spec = spec_of(MultipathModel, name)
                 changes[name] = _check(name, x, spec, f"[multipath] mapping {name}", source)
         elif key == "reflections":
@@ -579,8 +613,11 @@ def _multipath_from_table(value: Any, base: MultipathModel, source: str | None) 
             spec = spec_of(MultipathModel, key)
             changes[key] = _check(key, v, spec, f"[multipath] {key}", source)
         else:
-            raise InputError(f"unknown key {key!r} in [multipath]; expected one of "
-                             f"{', '.join(names)} or mapping", path=source)  # fmt: skip
+            raise InputError(
+                f"unknown key {key!r} in [multipath]; expected one of "
+                f"{', '.join(names)} or mapping",
+                path=source,
+            )
     return replace(base, **changes)
 
 

@@ -232,8 +232,9 @@ def multipath_limit_problem(sc: Scenario, label: str = "multipath") -> str:
     sigma = mp.factor(el) * math.hypot(mp.sigma_gm_m, mp.sigma_wn_m)
     limit, system, code = min(
         (multipath_limit_m([wavelength_m(f"{s}01", c)], 1.0), s, c)
-        for s in sc.systems for c in SIGNALS[s]
-    )  # fmt: skip
+        for s in sc.systems
+        for c in SIGNALS[s]
+    )
     if not sigma > limit:
         return ""
     where = _below(mp, limit / math.hypot(mp.sigma_gm_m, mp.sigma_wn_m))
@@ -341,9 +342,7 @@ def simulate(scenario: Scenario, out_dir: str | os.PathLike[str]) -> SimulationR
     )
 
 
-def _write_navigation(
-    sc: Scenario, out: Path, t0: float, t_end: float
-) -> tuple[Path, Navigation]:
+def _write_navigation(sc: Scenario, out: Path, t0: float, t_end: float) -> tuple[Path, Navigation]:
     """Write the navigation file and read it back: the simulation uses what readers see."""
     nav_path = out / f"{sc.name}_MN.rnx.gz"
     if sc.nav_path is None:
@@ -403,9 +402,8 @@ class _Simulation:
         clock0 = np.asarray(sc.receiver_clock_s, float)
         drift = rng.uniform(-2e-10, 2e-10, 2)
         lams = np.array(
-            [[SPEED_OF_LIGHT_M_S / carrier_frequency_hz(s, c) for c in SIGNALS[s[0]]]
-             for s in sats]
-        )  # fmt: skip
+            [[SPEED_OF_LIGHT_M_S / carrier_frequency_hz(s, c) for c in SIGNALS[s[0]]] for s in sats]
+        )
         return cls(sc, t, t0, antennas, header_error, sats, clock0, drift, lams)
 
     def geometry(self, nav: Navigation) -> None:
@@ -471,9 +469,10 @@ class _Simulation:
         stec = (
             vtec[None, :, None]
             + sc.tid_amplitude_tecu
-            * np.sin(2.0 * np.pi * (t - t0)[None, :, None] / sc.tid_period_s
-                     + tid_phase[None, None, :])
-        ) * _obliquity(el)  # fmt: skip
+            * np.sin(
+                2.0 * np.pi * (t - t0)[None, :, None] / sc.tid_period_s + tid_phase[None, None, :]
+            )
+        ) * _obliquity(el)
         stec = stec + _disturbance_tecu(sc, t - t0, sats)[None, :, :]
         freqs = np.array([[carrier_frequency_hz(s, c) for c in SIGNALS[s[0]]] for s in sats])
         self.iono = 40.3e16 * stec[..., None] / freqs[None, None, :, :] ** 2
@@ -568,15 +567,25 @@ def _system_block(
     lli: NDArray[np.int8],
 ) -> SystemBlock:
     """One system's observations as written (rounded), with LLI and signal strength flags."""
-    codes = (CODES[system][0], SIGNALS[system][0], SNR[system][0],
-             CODES[system][1], SIGNALS[system][1], SNR[system][1])  # fmt: skip
+    codes = (
+        CODES[system][0],
+        SIGNALS[system][0],
+        SNR[system][0],
+        CODES[system][1],
+        SIGNALS[system][1],
+        SNR[system][1],
+    )
     v = np.stack(
-        [np.round(code_m[:, :, 0], 3), np.round(phase_cyc[:, :, 0], 3),
-         np.round(snr + snr_refl[:, :, 0], 3),
-         np.round(code_m[:, :, 1], 3), np.round(phase_cyc[:, :, 1], 3),
-         np.round(snr - 3.0 + snr_refl[:, :, 1], 3)],
+        [
+            np.round(code_m[:, :, 0], 3),
+            np.round(phase_cyc[:, :, 0], 3),
+            np.round(snr + snr_refl[:, :, 0], 3),
+            np.round(code_m[:, :, 1], 3),
+            np.round(phase_cyc[:, :, 1], 3),
+            np.round(snr - 3.0 + snr_refl[:, :, 1], 3),
+        ],
         axis=2,
-    )  # fmt: skip
+    )
     v[~keep] = np.nan
     li = np.full(v.shape, -1, dtype=np.int8)
     li[:, :, 1] = lli[:, :, 0]

@@ -19,8 +19,14 @@ from scipy import special
 from psdbound.errors import InputError
 from psdbound.spectra.estimators import PSDEstimate
 
-__all__ = ["BandSpectra", "band_spectra", "merge_bands", "over_data_db", "resolved_from_hz",
-           "smoothed_response"]
+__all__ = [
+    "BandSpectra",
+    "band_spectra",
+    "merge_bands",
+    "over_data_db",
+    "resolved_from_hz",
+    "smoothed_response",
+]
 
 
 @dataclass(frozen=True)
@@ -139,8 +145,9 @@ def band_spectra(
         inside = (idx >= 0) & (idx < n_bands)
         idx, s = idx[inside], p.psd_m2_hz[use][inside]
         if power_response is not None:
-            gain = smoothed_response(power_response, p.f_hz[use][inside],
-                                     float(p.params.get("bandwidth_hz", 0.0)))  # fmt: skip
+            gain = smoothed_response(
+                power_response, p.f_hz[use][inside], float(p.params.get("bandwidth_hz", 0.0))
+            )
             if gain.size and gain.min() < 0.5:
                 raise InputError(
                     f"the filter passes only {gain.min():.2f} of the power at "
@@ -217,8 +224,9 @@ def merge_bands(
         width = np.diff(edges)[None, :]
         by_width = np.maximum(2.0 * bands.duration_s[:, None] * width, bands.nu0[:, None])
         dof = np.where(dof > 0, np.minimum(dof, by_width), 0.0)
-    return BandSpectra(edges, np.sqrt(edges[:-1] * edges[1:]), psd, dof, bands.duration_s,
-                       bands.nu0)  # fmt: skip
+    return BandSpectra(
+        edges, np.sqrt(edges[:-1] * edges[1:]), psd, dof, bands.duration_s, bands.nu0
+    )
 
 
 def resolved_from_hz(psd: PSDEstimate) -> float:
@@ -304,14 +312,22 @@ def over_data_db(
         pooled = (np.where(ok, s, 0.0) * w).sum(axis=0) / w.sum(axis=0)
     have = np.isfinite(pooled) & (pooled > 0)
     if not have.any():
-        return {"median_db": float("nan"), "max_db": float("nan"), "f_max_hz": float("nan"),
-                "over_highest_median_db": float("nan"), "n_bands": 0}  # fmt: skip
+        return {
+            "median_db": float("nan"),
+            "max_db": float("nan"),
+            "f_max_hz": float("nan"),
+            "over_highest_median_db": float("nan"),
+            "n_bands": 0,
+        }
     lo, hi = bands.edges_hz[:-1][have], bands.edges_hz[1:][have]
     model = np.array([np.mean(psd(np.geomspace(a, b, 16))) for a, b in zip(lo, hi, strict=True)])
     db = 10.0 * np.log10(model / pooled[have])
     highest = np.nanmax(np.where(ok, s, np.nan)[:, have], axis=0)
     k = int(np.argmax(db))
-    return {"median_db": float(np.median(db)), "max_db": float(db[k]),
-            "f_max_hz": float(bands.centres_hz[have][k]),
-            "over_highest_median_db": float(np.median(10.0 * np.log10(model / highest))),
-            "n_bands": int(have.sum())}  # fmt: skip
+    return {
+        "median_db": float(np.median(db)),
+        "max_db": float(db[k]),
+        "f_max_hz": float(bands.centres_hz[have][k]),
+        "over_highest_median_db": float(np.median(10.0 * np.log10(model / highest))),
+        "n_bands": int(have.sum()),
+    }

@@ -43,7 +43,6 @@ from psdbound.spectra.names import OBJECTIVES, RULES
 __all__ = ["BoundFit", "fit_bound", "OBJECTIVES", "RULES"]
 
 
-
 class _PSDLike(Protocol):
     f_hz: NDArray[np.float64]
     psd_m2_hz: NDArray[np.float64]
@@ -277,8 +276,10 @@ def fit_bound(
     grid, vals, best_tau = _search_tau(solve, lo, hi, n_grid)
     _, x = solve(best_tau)
     if not np.all(np.isfinite(x)):
-        raise InputError(f"no bound could be fitted: the linear program failed at tau = "
-                         f"{best_tau:.4g} s (data of {s_all.size} points)")  # fmt: skip
+        raise InputError(
+            f"no bound could be fitted: the linear program failed at tau = "
+            f"{best_tau:.4g} s (data of {s_all.size} points)"
+        )
     var_gm, var_wn = _enforce_bound(x, scale, f_con, s_con, best_tau, dt_s)
     gap_db = 10.0 * np.log10(_model_psd(f_all, var_gm, var_wn, best_tau, dt_s) / s_all)
     margins = []

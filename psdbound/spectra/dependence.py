@@ -71,9 +71,12 @@ def reference_clusters(
     if all(r is None for r in refs):
         return None
     t0, t1 = np.asarray(t_start_s, dtype=float), np.asarray(t_stop_s, dtype=float)
-    pairs = [(i, j) for i in range(len(refs)) for j in range(i + 1, len(refs))
-             if refs[i] is not None and refs[i] == refs[j] and t0[i] <= t1[j]
-             and t0[j] <= t1[i]]  # fmt: skip
+    pairs = [
+        (i, j)
+        for i in range(len(refs))
+        for j in range(i + 1, len(refs))
+        if refs[i] is not None and refs[i] == refs[j] and t0[i] <= t1[j] and t0[j] <= t1[i]
+    ]
     return cluster_labels(len(refs), pairs)
 
 
@@ -153,13 +156,13 @@ def overlap_correlation(
     for c in np.unique(labels):
         idx = np.flatnonzero(labels == c)
         for a_i, i in enumerate(idx):
-            for j in idx[a_i + 1:]:
+            for j in idx[a_i + 1 :]:
                 off = int(round((t0[j] - t0[i]) / dt_s))
                 a, b = (series[i], series[j]) if off >= 0 else (series[j], series[i])
                 off = abs(off)
                 n = min(a.size - off, b.size)
                 if n >= 32:
-                    values.append(float(np.corrcoef(a[off:off + n], b[:n])[0, 1]))
+                    values.append(float(np.corrcoef(a[off : off + n], b[:n])[0, 1]))
     if not values:
         return 0.0, 0
     return float(np.clip(np.median(values), 0.0, 1.0)), len(values)

@@ -98,11 +98,16 @@ class BoundResults:
         """Return what the bound covers, in words."""
         b = self.bound
         if self.rule == "envelope":
-            what = ("every window's PSD estimate" if b.target == "point" else
-                    f"every window's {100 * (b.level or 0):g} % upper confidence limit")
-            return (f"the envelope rule (thesis): the bound lies above {what} from "
-                    f"{b.f_min_hz:.3g} Hz to Nyquist; no confidence level is stated for the "
-                    "true PSD of the data")  # fmt: skip
+            what = (
+                "every window's PSD estimate"
+                if b.target == "point"
+                else f"every window's {100 * (b.level or 0):g} % upper confidence limit"
+            )
+            return (
+                f"the envelope rule (thesis): the bound lies above {what} from "
+                f"{b.f_min_hz:.3g} Hz to Nyquist; no confidence level is stated for the "
+                "true PSD of the data"
+            )
         assert self.pooled is not None and self.bands is not None
         return statement(self.pooled, self.bands, self.low_frequency)
 
@@ -266,11 +271,16 @@ class BoundModel:
             raise InputError(f"unknown bound rule {rule!r}; choose from {', '.join(RULES)}")
         psds = self.psds()
         dt = self.windows.interval_s
-        common = dict(psds=psds, windows=self.windows, estimator=self.estimator,
-                      estimator_options=dict(self.estimator_options))  # fmt: skip
+        common = dict(
+            psds=psds,
+            windows=self.windows,
+            estimator=self.estimator,
+            estimator_options=dict(self.estimator_options),
+        )
         if rule == "envelope":
-            bound = fit_bound(psds, dt, objective=objective, target=target, level=level,
-                              n_grid=n_grid)  # fmt: skip
+            bound = fit_bound(
+                psds, dt, objective=objective, target=target, level=level, n_grid=n_grid
+            )
             return BoundResults(bound, rule="envelope", **common)
         if self.windows.params.get("overlap", False):
             raise InputError(
@@ -282,16 +292,31 @@ class BoundModel:
             f_min_hz = min(resolved_from_hz(p) for p in psds)
         dependence = self.dependence()
         sb = fit_stated_bound(
-            psds, dt, f_min_hz=f_min_hz, confidence_level=confidence_level, coverage=coverage,
-            shape_alpha=shape_alpha, bands_per_decade=bands_per_decade,
-            power_response=power_response, objective=objective, n_grid=n_grid,
-            clusters=dependence["labels"], cluster_correlation=dependence["correlation"],
+            psds,
+            dt,
+            f_min_hz=f_min_hz,
+            confidence_level=confidence_level,
+            coverage=coverage,
+            shape_alpha=shape_alpha,
+            bands_per_decade=bands_per_decade,
+            power_response=power_response,
+            objective=objective,
+            n_grid=n_grid,
+            clusters=dependence["labels"],
+            cluster_correlation=dependence["correlation"],
             tau_max_s=tau_max_s,
-        )  # fmt: skip
-        return BoundResults(sb.fit, rule="pooled", bands=sb.bands, pooled=sb.limits,
-                            model_set=sb.model_set, model_set_note=sb.model_set_note,
-                            dependence=dependence, low_frequency=sb.low_frequency,
-                            **common)  # fmt: skip
+        )
+        return BoundResults(
+            sb.fit,
+            rule="pooled",
+            bands=sb.bands,
+            pooled=sb.limits,
+            model_set=sb.model_set,
+            model_set_note=sb.model_set_note,
+            dependence=dependence,
+            low_frequency=sb.low_frequency,
+            **common,
+        )
 
     def dependence(self) -> dict[str, Any]:
         """Clusters of windows that share an error source, and their correlation.
@@ -311,16 +336,26 @@ class BoundModel:
         """
         ws = self.windows.windows
         t0 = np.array([w.t_start_gps_s for w in ws])
-        labels = reference_clusters([w.sats for w in ws], t0, np.array([w.t_stop_gps_s
-                                                                         for w in ws]))
+        labels = reference_clusters(
+            [w.sats for w in ws], t0, np.array([w.t_stop_gps_s for w in ws])
+        )
         if labels is None:
-            return {"labels": None, "correlation": 0.0, "n_clusters": len(ws), "n_pairs": 0,
-                    "method": "windows of different satellites: independent"}  # fmt: skip
+            return {
+                "labels": None,
+                "correlation": 0.0,
+                "n_clusters": len(ws),
+                "n_pairs": 0,
+                "method": "windows of different satellites: independent",
+            }
         series = [self.windows.data(k) for k in range(len(ws))]
         rho, n_pairs = overlap_correlation(series, t0, self.windows.interval_s, labels)
-        return {"labels": labels, "correlation": rho, "n_clusters": int(labels.max()) + 1,
-                "n_pairs": n_pairs,
-                "method": "double differences sharing a reference satellite in time are one "
-                          "cluster; the median correlation of their overlapping samples is the "
-                          "intra-cluster correlation (Kish design effect on the pooled degrees "
-                          "of freedom)"}  # fmt: skip
+        return {
+            "labels": labels,
+            "correlation": rho,
+            "n_clusters": int(labels.max()) + 1,
+            "n_pairs": n_pairs,
+            "method": "double differences sharing a reference satellite in time are one "
+            "cluster; the median correlation of their overlapping samples is the "
+            "intra-cluster correlation (Kish design effect on the pooled degrees "
+            "of freedom)",
+        }

@@ -33,7 +33,12 @@ def log_frequency(
 
 
 def shape_groups(
-    z: NDArray, v: NDArray, ok: NDArray, x: NDArray, dof: NDArray, shape_alpha: float,
+    z: NDArray,
+    v: NDArray,
+    ok: NDArray,
+    x: NDArray,
+    dof: NDArray,
+    shape_alpha: float,
     max_groups: int,
 ) -> NDArray[np.int64]:
     """Group the windows by spectral shape: a window that departs from its group moves on."""
@@ -44,12 +49,16 @@ def shape_groups(
     while todo.size:
         members = todo
         while g < max_groups - 1 and members.size > 1:
-            dev = window_deviations(z[members], v[members], ok[members], x, model="level",
-                                    dof=dof[members])  # fmt: skip
+            dev = window_deviations(
+                z[members], v[members], ok[members], x, model="level", dof=dof[members]
+            )
             off = dev.shape_p < shape_alpha / n_w
             # a significant tilt (family-wise) is another shape too
-            off |= tilted(window_deviations(z[members], v[members], ok[members], x,
-                                            model="tilt", dof=dof[members]))  # fmt: skip
+            off |= tilted(
+                window_deviations(
+                    z[members], v[members], ok[members], x, model="tilt", dof=dof[members]
+                )
+            )
             if not off.any() or off.all():
                 break
             members = members[~off]

@@ -123,14 +123,15 @@ class ModelSet:
     n_bands: int
     widening: float = 1.0
     includes: tuple[str, ...] = ()
-    slices: NDArray[np.float64] = field(default_factory=lambda: np.zeros((0, 5)), repr=False,
-                                        compare=False)
-    vertices: NDArray[np.float64] = field(default_factory=lambda: np.zeros((0, 3)),
-                                          repr=False, compare=False)
+    slices: NDArray[np.float64] = field(
+        default_factory=lambda: np.zeros((0, 5)), repr=False, compare=False
+    )
+    vertices: NDArray[np.float64] = field(
+        default_factory=lambda: np.zeros((0, 3)), repr=False, compare=False
+    )
     window_factor: float = 1.0
 
-    def with_model(self, name: str, sigma_gm_m: float, tau_s: float,
-                   sigma_wn_m: float) -> ModelSet:  # fmt: skip
+    def with_model(self, name: str, sigma_gm_m: float, tau_s: float, sigma_wn_m: float) -> ModelSet:
         """Return the set widened to contain one more model (e.g. the bound itself).
 
         The set describes the group's windows; the bound lies above them
@@ -140,13 +141,17 @@ class ModelSet:
         hull of the region and the models added here (named in
         ``includes``).
         """
+
         def hull(iv: tuple[float, float], v: float) -> tuple[float, float]:
             return (min(iv[0], v), max(iv[1], v))
 
-        return replace(self, tau_interval_s=hull(self.tau_interval_s, tau_s),
-                       sigma_gm_interval_m=hull(self.sigma_gm_interval_m, sigma_gm_m),
-                       sigma_wn_interval_m=hull(self.sigma_wn_interval_m, sigma_wn_m),
-                       includes=self.includes + (name,))  # fmt: skip
+        return replace(
+            self,
+            tau_interval_s=hull(self.tau_interval_s, tau_s),
+            sigma_gm_interval_m=hull(self.sigma_gm_interval_m, sigma_gm_m),
+            sigma_wn_interval_m=hull(self.sigma_wn_interval_m, sigma_wn_m),
+            includes=self.includes + (name,),
+        )
 
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready form (the ``bound.model_set`` section of result.json)."""
@@ -194,8 +199,9 @@ def _constraints(
     return (np.vstack([a, -a]), np.concatenate([upper / pooled, -lower / pooled]), sv, sw)
 
 
-def _corners(u: NDArray, e: NDArray, lower: NDArray, upper: NDArray,
-             pooled: NDArray) -> NDArray[np.float64]:  # fmt: skip
+def _corners(
+    u: NDArray, e: NDArray, lower: NDArray, upper: NDArray, pooled: NDArray
+) -> NDArray[np.float64]:
     """Return the corners ``(v, w)`` of one time constant's polygon of admitted variances.
 
     Every pair of constraint lines (the band intervals and ``v, w >= 0``) is
@@ -216,8 +222,9 @@ def _corners(u: NDArray, e: NDArray, lower: NDArray, upper: NDArray,
 
 def _feasible(u: NDArray, e: NDArray, lower: NDArray, upper: NDArray, pooled: NDArray) -> bool:
     a_ub, b_ub, _, _ = _constraints(u, e, lower, upper, pooled)
-    res = optimize.linprog([0.0, 0.0], A_ub=a_ub, b_ub=b_ub, bounds=[(0, None), (0, None)],
-                           method="highs")  # fmt: skip
+    res = optimize.linprog(
+        [0.0, 0.0], A_ub=a_ub, b_ub=b_ub, bounds=[(0, None), (0, None)], method="highs"
+    )
     return res.status == 0
 
 
@@ -257,8 +264,11 @@ def _best(
         misfit = float(np.sum(np.log(np.maximum(model, 1e-300)) ** 2 * dof / 2.0))
         if misfit < best:
             best = misfit
-            out = {"sigma_gm_m": float(np.sqrt(x[0])), "tau_s": float(taus[i]),
-                   "sigma_wn_m": float(np.sqrt(x[1]))}  # fmt: skip
+            out = {
+                "sigma_gm_m": float(np.sqrt(x[0])),
+                "tau_s": float(taus[i]),
+                "sigma_wn_m": float(np.sqrt(x[1])),
+            }
     return out, best
 
 
@@ -317,8 +327,9 @@ def model_set(
     t_s = float(np.median(test.duration_s[rows]))
     n = int(round(t_s / dt_s))
     nw = smoothing_hz * t_s
-    taus = np.geomspace(0.5 * dt_s, max(10.0 / (2.0 * np.pi * float(lo[0])), 2.0 * t_s,
-                                        2.0 * tau_max_s), N_TAU)  # fmt: skip
+    taus = np.geomspace(
+        0.5 * dt_s, max(10.0 / (2.0 * np.pi * float(lo[0])), 2.0 * t_s, 2.0 * tau_max_s), N_TAU
+    )
     low = lo < EXACT_BELOW * smoothing_hz
     unit = np.zeros((taus.size, n_b))  # expected band averages per unit GM variance
     white_unit = np.full(n_b, 2.0 * dt_s)  # white noise: unbiased away from zero frequency
@@ -333,9 +344,11 @@ def model_set(
         unit[:, ~low] = gm_band_expectation(kernels, taus, dt_s)
     widening = _min_widening(unit, white_unit, lower, upper, pooled)
     if not np.isfinite(widening):
-        return None, (f"no Gauss-Markov + white-noise model lies inside every band's "
-                      f"{100 * confidence_level:g} % interval, even widened "
-                      f"{MAX_WIDENING:g} times")
+        return None, (
+            f"no Gauss-Markov + white-noise model lies inside every band's "
+            f"{100 * confidence_level:g} % interval, even widened "
+            f"{MAX_WIDENING:g} times"
+        )
     lower, upper = lower / widening, upper * widening
     # per tau, the corners of the polygon of admitted (v, w): its extents, and the largest of
     # any linear function of the PSD over it, lie there
@@ -344,11 +357,18 @@ def model_set(
     idx = np.flatnonzero(ok)
     if idx.size == 0:  # the widening's feasibility is a linear program, to its tolerance
         return None, "no Gauss-Markov + white-noise model lies inside every band's interval"
-    ext = np.array([[c[:, 0].min(), c[:, 0].max(), c[:, 1].min(), c[:, 1].max()]
-                    for c in (corners[i] for i in idx)])  # fmt: skip
+    ext = np.array(
+        [
+            [c[:, 0].min(), c[:, 0].max(), c[:, 1].min(), c[:, 1].max()]
+            for c in (corners[i] for i in idx)
+        ]
+    )
     best, misfit = _best(unit, white_unit, pooled, dof, taus, ok)
-    widen = float(np.nanmax(limits.window_term_log[0])) / 2.0 if (
-        limits.window_term_log is not None) else 0.0  # fmt: skip
+    widen = (
+        float(np.nanmax(limits.window_term_log[0])) / 2.0
+        if (limits.window_term_log is not None)
+        else 0.0
+    )
     gm = np.sqrt(np.maximum(ext[:, :2], 0.0))
     wn = np.sqrt(np.maximum(ext[:, 2:], 0.0))
     out = ModelSet(
@@ -356,16 +376,19 @@ def model_set(
         tau_interval_s=(float(taus[idx].min()), float(taus[idx].max())),
         sigma_gm_interval_m=(float(gm.min() * np.exp(-widen)), float(gm.max() * np.exp(widen))),
         sigma_wn_interval_m=(float(wn.min() * np.exp(-widen)), float(wn.max() * np.exp(widen))),
-        open_ends={"tau_s": (bool(idx.min() == 0), bool(idx.max() == N_TAU - 1)),
-                   "sigma_gm_m": (False, bool(idx.max() == N_TAU - 1)),
-                   "sigma_wn_m": (False, False)},  # fmt: skip
+        open_ends={
+            "tau_s": (bool(idx.min() == 0), bool(idx.max() == N_TAU - 1)),
+            "sigma_gm_m": (False, bool(idx.max() == N_TAU - 1)),
+            "sigma_wn_m": (False, False),
+        },
         confidence_level=float(confidence_level),
         chi2_min=misfit,
         n_bands=n_b,
         widening=widening,
         slices=np.column_stack([taus[idx], ext]),
-        vertices=np.vstack([np.column_stack([np.full(len(corners[i]), taus[i]), corners[i]])
-                            for i in idx]),  # fmt: skip
+        vertices=np.vstack(
+            [np.column_stack([np.full(len(corners[i]), taus[i]), corners[i]]) for i in idx]
+        ),
         window_factor=float(np.exp(2.0 * widen)),
     )
     return out, ""

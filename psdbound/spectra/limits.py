@@ -90,7 +90,10 @@ _BACKFIT_ITER = 50
 
 
 def mean_upper_limit(
-    psd_m2_hz: NDArray[np.float64], dof: NDArray[np.float64], a: float, *,
+    psd_m2_hz: NDArray[np.float64],
+    dof: NDArray[np.float64],
+    a: float,
+    *,
     effective_dof: float | None = None,
 ) -> float:
     """Exact one-sided upper confidence limit of a common PSD from chi-square estimates.
@@ -309,10 +312,13 @@ def window_deviations(
             std = (np.cbrt(np.exp(log_ratio)) - (1.0 - 2.0 / (9.0 * nu))) / spread
     # one-sided: only a window above its group's shape can be left uncovered by the group
     above = np.where(ok, np.maximum(std, 0.0) ** 2, 0.0).sum(axis=1)
-    p_spread = np.array([chi_bar_squared_sf(t, int(k)) if k > n else 1.0
-                         for t, k, n in zip(above, n_ok, n_par, strict=True)])  # fmt: skip
-    p_end = np.array([end_excess_p(std[i, ok[i]]) if n_ok[i] > n_par[i] else 1.0
-                      for i in range(m)])  # fmt: skip
+    p_spread = np.array(
+        [
+            chi_bar_squared_sf(t, int(k)) if k > n else 1.0
+            for t, k, n in zip(above, n_ok, n_par, strict=True)
+        ]
+    )
+    p_end = np.array([end_excess_p(std[i, ok[i]]) if n_ok[i] > n_par[i] else 1.0 for i in range(m)])
     shape_p = np.minimum(1.0, 2.0 * np.minimum(p_spread, p_end))  # Bonferroni over the two
     return WindowDeviations(mu, dev, se, n_par, shape_p, coef, cov)
 

@@ -250,8 +250,7 @@ class GaussMarkovWhiteNoise:
         """
         return self.dt_s if dt_s is None else _check_dt(dt_s)
 
-    def filter_dt_s(self, dt_s: float | None = None, *, white_noise: str = "conservative"
-                    ) -> float:  # fmt: skip
+    def filter_dt_s(self, dt_s: float | None = None, *, white_noise: str = "conservative") -> float:
         """Return a checked filter interval, seconds, warning when it is shorter than the data's.
 
         Below the data interval the data say nothing above their Nyquist
@@ -280,7 +279,9 @@ class GaussMarkovWhiteNoise:
                 f"filter step {dt:g} s is shorter than the data interval {self.dt_s:g} s the "
                 f"bound was fitted at: the data say nothing above their Nyquist frequency "
                 f"{self.nyquist_hz:g} Hz, so R ({white_noise!r} white-noise mode) is an "
-                "extrapolation there", stacklevel=3)  # fmt: skip
+                "extrapolation there",
+                stacklevel=3,
+            )
         return dt
 
     # ---------------------------------------------------------------- models

@@ -88,8 +88,11 @@ def check_estimator_options(estimator: str | None, options: dict[str, Any]) -> d
         if spec is None and estimator is None:
             spec = next((t[key] for t in ESTIMATOR_OPTIONS.values() if key in t), None)
         if spec is None:
-            valid = sorted(table) if estimator else sorted({k for t in ESTIMATOR_OPTIONS.values()
-                                                            for k in t})  # fmt: skip
+            valid = (
+                sorted(table)
+                if estimator
+                else sorted({k for t in ESTIMATOR_OPTIONS.values() for k in t})
+            )
             whose = f"{estimator} options" if estimator else "estimator options"
             raise OptionError("options", key, f"names of {whose} ({', '.join(valid)})")
         try:

@@ -66,8 +66,14 @@ from psdbound.spectra.limits import (
     window_deviations,
 )
 
-__all__ = ["PooledLimits", "excess_statistic", "fit_limits", "fit_pooled_bound", "pool_bands",
-           "random_effects_mean"]
+__all__ = [
+    "PooledLimits",
+    "excess_statistic",
+    "fit_limits",
+    "fit_pooled_bound",
+    "pool_bands",
+    "random_effects_mean",
+]
 
 #: Share of ``1 - confidence_level`` spent on the group levels (the rest on the windows).
 MEAN_SHARE = 0.5
@@ -252,9 +258,14 @@ class _GroupLimits:
 
 
 def _group_limits(
-    bands: BandSpectra, test_bands: BandSpectra, rows: NDArray[np.intp],
-    levels: tuple[float, float], coverage: float, clusters: NDArray[np.int64] | None,
-    rho: float, model: str,
+    bands: BandSpectra,
+    test_bands: BandSpectra,
+    rows: NDArray[np.intp],
+    levels: tuple[float, float],
+    coverage: float,
+    clusters: NDArray[np.int64] | None,
+    rho: float,
+    model: str,
 ) -> _GroupLimits:
     """Exact group levels per band, the windows' spread limit and its quantile factor.
 
@@ -267,14 +278,16 @@ def _group_limits(
     okt = np.isfinite(zt[rows])
     x_test = log_frequency(test_bands.centres_hz)
     x_fine = log_frequency(bands.centres_hz, test_bands.centres_hz)
-    dev = window_deviations(zt[rows], vt[rows], okt, x_test, model="level",
-                            dof=test_bands.dof[rows])  # fmt: skip
+    dev = window_deviations(
+        zt[rows], vt[rows], okt, x_test, model="level", dof=test_bands.dof[rows]
+    )
     d_fine, se_fine = dev.at(x_fine)
     m = rows.size
     k = np.full(m, simultaneous_factor(a_window, m))
     if model != "level":
-        tilt = window_deviations(zt[rows], vt[rows], okt, x_test, model="tilt",
-                                 dof=test_bands.dof[rows])  # fmt: skip
+        tilt = window_deviations(
+            zt[rows], vt[rows], okt, x_test, model="tilt", dof=test_bands.dof[rows]
+        )
         use = np.ones(m, dtype=bool) if model == "tilt" else tilted(tilt)
         if use.any():
             d_t, se_t = tilt.at(x_fine)
@@ -292,8 +305,9 @@ def _group_limits(
             continue
         cl = clusters[rows][use] if clusters is not None else None
         eff[b] = design_effect_dof(nu[use, b], cl, rho)
-        mean_up[b] = mean_upper_limit(s[use, b] * np.exp(-d_fine[use, b]), nu[use, b], a_mean,
-                                      effective_dof=eff[b])  # fmt: skip
+        mean_up[b] = mean_upper_limit(
+            s[use, b] * np.exp(-d_fine[use, b]), nu[use, b], a_mean, effective_dof=eff[b]
+        )
     level, level_se = dev.coef[:, 0], np.sqrt(dev.cov[:, 0, 0])
     spread = spread_upper_limit(level, level_se, a_spread)
     tau2[np.isfinite(mean_up)] = max(0.0, float(np.var(level)) - float(np.mean(level_se**2)))
@@ -307,8 +321,9 @@ def _group_limits(
     return _GroupLimits(mean_up, tau2, _cochran_p(z, v, ok), eff, dev, spread, z_star, term)
 
 
-def _loose_notes(pl_upper: NDArray, win_max: NDArray, f_hz: NDArray, sizes: NDArray,
-                 eff: NDArray) -> tuple[str, ...]:  # fmt: skip
+def _loose_notes(
+    pl_upper: NDArray, win_max: NDArray, f_hz: NDArray, sizes: NDArray, eff: NDArray
+) -> tuple[str, ...]:
     notes = []
     with np.errstate(invalid="ignore", divide="ignore"):
         db = 10.0 * np.log10(pl_upper / win_max)
@@ -394,8 +409,9 @@ def pool_bands(
     """
     _check_levels(confidence_level, coverage, shape_alpha)
     if deviation_model not in (*SHAPE_MODELS, "auto"):
-        raise InputError(f"unknown deviation model {deviation_model!r}; choose from "
-                         f"{', '.join(SHAPE_MODELS)}")  # fmt: skip
+        raise InputError(
+            f"unknown deviation model {deviation_model!r}; choose from {', '.join(SHAPE_MODELS)}"
+        )
     if not 0.0 <= cluster_correlation <= 1.0:
         raise InputError(f"cluster correlation must lie in [0, 1], got {cluster_correlation!r}")
     z, var = bands.log_unbiased()
@@ -404,13 +420,24 @@ def pool_bands(
     if not ok.any():
         raise InputError("no window has a positive PSD in any band")
     if clusters is not None and np.shape(clusters) != (n_w,):
-        raise InputError(f"clusters must give one label per window ({n_w}), got "
-                         f"{np.shape(clusters)}")  # fmt: skip
-    test_bands = (merge_bands(bands, min_window_dof=0.0, min_width_hz=2.0 * smoothing_hz)
-                  if smoothing_hz > 0 else bands)  # fmt: skip
+        raise InputError(
+            f"clusters must give one label per window ({n_w}), got {np.shape(clusters)}"
+        )
+    test_bands = (
+        merge_bands(bands, min_window_dof=0.0, min_width_hz=2.0 * smoothing_hz)
+        if smoothing_hz > 0
+        else bands
+    )
     zt, vt = test_bands.log_unbiased()
-    labels = shape_groups(zt, vt, np.isfinite(zt), log_frequency(test_bands.centres_hz),
-                           test_bands.dof, shape_alpha, max_groups)  # fmt: skip
+    labels = shape_groups(
+        zt,
+        vt,
+        np.isfinite(zt),
+        log_frequency(test_bands.centres_hz),
+        test_bands.dof,
+        shape_alpha,
+        max_groups,
+    )
     n_g = int(labels.max()) + 1
     alpha = 1.0 - confidence_level
     a_win = (1.0 - MEAN_SHARE) * alpha / n_g  # per group: the windows' own upper levels
@@ -420,10 +447,22 @@ def pool_bands(
     spread, z_star, window_term = np.zeros(n_g), np.zeros(n_g), np.zeros((n_g, n_b))
     for g in range(n_g):
         rows = np.flatnonzero(labels == g)
-        gl = _group_limits(bands, test_bands, rows, levels, coverage, clusters,
-                           cluster_correlation, deviation_model)  # fmt: skip
+        gl = _group_limits(
+            bands,
+            test_bands,
+            rows,
+            levels,
+            coverage,
+            clusters,
+            cluster_correlation,
+            deviation_model,
+        )
         out["mean"][g], out["tau2"][g], out["p"][g], out["eff"][g] = (
-            gl.mean_upper, gl.tau2, gl.p_hom, gl.eff_dof)
+            gl.mean_upper,
+            gl.tau2,
+            gl.p_hom,
+            gl.eff_dof,
+        )
         spread[g], z_star[g] = np.sqrt(gl.spread_upper), gl.z_star
         window_term[g] = gl.max_term
         out["up"][g] = gl.mean_upper * np.exp(window_term[g])
@@ -433,11 +472,22 @@ def pool_bands(
         shape_p[rows] = gl.dev.shape_p
     sizes = np.bincount(labels[labels >= 0], minlength=n_g)
     return PooledLimits(
-        f_hz=bands.centres_hz, groups=labels, upper_m2_hz=out["up"], tau2=out["tau2"],
-        p_homogeneous=out["p"], confidence_level=confidence_level, coverage=coverage,
-        mean_upper_m2_hz=out["mean"], window_psd_max_m2_hz=out["max"], shape_p=shape_p,
-        level_log=level, level_se_log=level_se, spread_upper_log_sd=spread,
-        tolerance_factor=z_star, window_term_log=window_term, effective_dof=out["eff"],
+        f_hz=bands.centres_hz,
+        groups=labels,
+        upper_m2_hz=out["up"],
+        tau2=out["tau2"],
+        p_homogeneous=out["p"],
+        confidence_level=confidence_level,
+        coverage=coverage,
+        mean_upper_m2_hz=out["mean"],
+        window_psd_max_m2_hz=out["max"],
+        shape_p=shape_p,
+        level_log=level,
+        level_se_log=level_se,
+        spread_upper_log_sd=spread,
+        tolerance_factor=z_star,
+        window_term_log=window_term,
+        effective_dof=out["eff"],
         notes=_loose_notes(out["up"], out["max"], bands.centres_hz, sizes, out["eff"]),
         shape_alpha=shape_alpha,
     )
@@ -520,13 +570,25 @@ def fit_pooled_bound(
     limits : PooledLimits
         The pooled band limits.
     """
-    bands = merge_bands(band_spectra(psds, f_min_hz=f_min_hz, bands_per_decade=bands_per_decade,
-                                     power_response=power_response),
-                        min_window_dof=min_window_dof)  # fmt: skip
-    limits = pool_bands(bands, confidence_level=confidence_level, coverage=coverage,
-                        shape_alpha=shape_alpha, smoothing_hz=smoothing_hz(psds),
-                        deviation_model=deviation_model,
-                        clusters=clusters, cluster_correlation=cluster_correlation)  # fmt: skip
+    bands = merge_bands(
+        band_spectra(
+            psds,
+            f_min_hz=f_min_hz,
+            bands_per_decade=bands_per_decade,
+            power_response=power_response,
+        ),
+        min_window_dof=min_window_dof,
+    )
+    limits = pool_bands(
+        bands,
+        confidence_level=confidence_level,
+        coverage=coverage,
+        shape_alpha=shape_alpha,
+        smoothing_hz=smoothing_hz(psds),
+        deviation_model=deviation_model,
+        clusters=clusters,
+        cluster_correlation=cluster_correlation,
+    )
     fit = fit_limits(limits, bands, dt_s, objective=objective, n_grid=n_grid)
     return fit, bands, limits
 
@@ -577,11 +639,26 @@ def fit_limits(
         f = np.concatenate([lo[have], limits.f_hz[have], hi[have]])
         u = np.concatenate([row[have] * np.sqrt(hi[have] / lo[have]), row[have], row[have]])
         target.append(_BandLimits(f, u))
-    fit = fit_bound(target, dt_s, objective=objective, target="point", n_grid=n_grid,
-                    tau_range_s=(0.5 * dt_s, 20.0 / float(bands.edges_hz[0])), floor=floor)
+    fit = fit_bound(
+        target,
+        dt_s,
+        objective=objective,
+        target="point",
+        n_grid=n_grid,
+        tau_range_s=(0.5 * dt_s, 20.0 / float(bands.edges_hz[0])),
+        floor=floor,
+    )
     # the bound is stated over the bands' full span, lowest edge to Nyquist
-    return replace(fit, target="pooled", level=limits.confidence_level,
-                   f_min_hz=float(bands.edges_hz[0]), f_max_hz=0.5 / dt_s,
-                   meta={"n_bands": int(limits.f_hz.size), "coverage": limits.coverage,
-                         "n_groups": limits.n_groups,
-                         "shape_alpha": limits.shape_alpha})  # fmt: skip
+    return replace(
+        fit,
+        target="pooled",
+        level=limits.confidence_level,
+        f_min_hz=float(bands.edges_hz[0]),
+        f_max_hz=0.5 / dt_s,
+        meta={
+            "n_bands": int(limits.f_hz.size),
+            "coverage": limits.coverage,
+            "n_groups": limits.n_groups,
+            "shape_alpha": limits.shape_alpha,
+        },
+    )

@@ -161,13 +161,17 @@ def split_stretches(
                 out.append(x[a:b])
             else:
                 short, short_n = short + 1, short_n + int(b - a)
-    notes = ((f"{short} stretch(es) shorter than {min_samples} samples left out "
-              f"({short_n} samples)"),) if short else ()  # fmt: skip
+    notes = (
+        ((f"{short} stretch(es) shorter than {min_samples} samples left out ({short_n} samples)"),)
+        if short
+        else ()
+    )
     return out, notes
 
 
-def _verdict(fit: BoundFit, limits: PooledLimits, low: LowFrequency,
-             policy: str) -> tuple[str, ...]:  # fmt: skip
+def _verdict(
+    fit: BoundFit, limits: PooledLimits, low: LowFrequency, policy: str
+) -> tuple[str, ...]:
     reasons = []
     if not np.isfinite(fit.objective_value) or fit.total_variance_m2 <= 0.0:
         reasons.append("no positive bound could be fitted")
@@ -269,32 +273,52 @@ def bound_series(
     if not (np.isfinite(dt_s) and dt_s > 0):
         raise InputError(f"sampling interval must be positive and finite, got {dt_s!r} s")
     if low_frequency_policy not in POLICIES:
-        raise InputError(f"low_frequency_policy must be one of {POLICIES}, got "
-                         f"{low_frequency_policy!r}")  # fmt: skip
+        raise InputError(
+            f"low_frequency_policy must be one of {POLICIES}, got {low_frequency_policy!r}"
+        )
     if not (np.isfinite(tau_max_s) and tau_max_s > 0):
         raise InputError(f"tau_max_s must be positive and finite, got {tau_max_s!r} s")
     if min_samples < MIN_SAMPLES:
         raise InputError(f"min_samples must be at least {MIN_SAMPLES}, got {min_samples}")
     stretches, notes = split_stretches(series, min_samples=min_samples)
     if not stretches:
-        raise InputError(f"no stretch of at least {min_samples} finite samples to bound"
-                         + (f" ({notes[0]})" if notes else ""))  # fmt: skip
+        raise InputError(
+            f"no stretch of at least {min_samples} finite samples to bound"
+            + (f" ({notes[0]})" if notes else "")
+        )
     opts = dict(estimator_options or {})
     psds = tuple(estimate_psd(x, dt_s, method=estimator, **opts) for x in stretches)
     if f_min_hz is None:
         f_min_hz = min(resolved_from_hz(p) for p in psds)
     cl = None if clusters is None else np.asarray(clusters, dtype=np.int64)
     sb = fit_stated_bound(
-        psds, dt_s, f_min_hz=f_min_hz, confidence_level=confidence_level, coverage=coverage,
-        shape_alpha=shape_alpha, bands_per_decade=bands_per_decade, clusters=cl,
-        cluster_correlation=cluster_correlation, deviation_model=deviation_model,
-        objective=objective, tau_max_s=tau_max_s)  # fmt: skip
+        psds,
+        dt_s,
+        f_min_hz=f_min_hz,
+        confidence_level=confidence_level,
+        coverage=coverage,
+        shape_alpha=shape_alpha,
+        bands_per_decade=bands_per_decade,
+        clusters=cl,
+        cluster_correlation=cluster_correlation,
+        deviation_model=deviation_model,
+        objective=objective,
+        tau_max_s=tau_max_s,
+    )
     fit, bands, limits, ms, low = sb.fit, sb.bands, sb.limits, sb.model_set, sb.low_frequency
     reasons = _verdict(fit, limits, low, low_frequency_policy)
 
     return SeriesBound(
-        bound=fit.model, verdict=NOT_BOUNDED if reasons else BOUNDED, verdict_reasons=reasons,
-        f_min_hz=float(fit.f_min_hz), covers=statement(limits, bands, low),
-        fit=fit, psds=psds, bands=bands, limits=limits, notes=notes, model_set=ms,
-        low_frequency=low)  # fmt: skip
-
+        bound=fit.model,
+        verdict=NOT_BOUNDED if reasons else BOUNDED,
+        verdict_reasons=reasons,
+        f_min_hz=float(fit.f_min_hz),
+        covers=statement(limits, bands, low),
+        fit=fit,
+        psds=psds,
+        bands=bands,
+        limits=limits,
+        notes=notes,
+        model_set=ms,
+        low_frequency=low,
+    )

@@ -119,17 +119,40 @@ def fit_stated_bound(
     StatedBound
     """
     fit, bands, limits = fit_pooled_bound(
-        psds, dt_s, f_min_hz=f_min_hz, confidence_level=confidence_level,
-        power_response=power_response, objective=objective, n_grid=n_grid, **pool_options,
-    )  # fmt: skip
+        psds,
+        dt_s,
+        f_min_hz=f_min_hz,
+        confidence_level=confidence_level,
+        power_response=power_response,
+        objective=objective,
+        n_grid=n_grid,
+        **pool_options,
+    )
     id_bands = identification_bands(
-        psds, bands, filtered=power_response is not None if filtered is None else filtered,
+        psds,
+        bands,
+        filtered=power_response is not None if filtered is None else filtered,
         bands_per_decade=pool_options.get("bands_per_decade", 10),
-    )  # fmt: skip
-    ms, why = model_set(id_bands, limits, dt_s, confidence_level=confidence_level,
-                        smoothing_hz=smoothing_hz(psds), tau_max_s=tau_max_s)  # fmt: skip
-    fit, low = bound_below(fit, bands, limits, ms, dt_s, tau_max_s=tau_max_s,
-                           objective=objective, n_grid=n_grid, reason=why)  # fmt: skip
+    )
+    ms, why = model_set(
+        id_bands,
+        limits,
+        dt_s,
+        confidence_level=confidence_level,
+        smoothing_hz=smoothing_hz(psds),
+        tau_max_s=tau_max_s,
+    )
+    fit, low = bound_below(
+        fit,
+        bands,
+        limits,
+        ms,
+        dt_s,
+        tau_max_s=tau_max_s,
+        objective=objective,
+        n_grid=n_grid,
+        reason=why,
+    )
     if ms is not None:  # the reported set contains the bound it accompanies
         ms = ms.with_model("bound", fit.sigma_gm_m, fit.tau_s, fit.sigma_wn_m)
     return StatedBound(fit, bands, limits, ms, why, low)
@@ -169,8 +192,9 @@ def identification_bands(
     f_low = 1.0 / float(np.max(bands.duration_s))
     if f_low >= bands.edges_hz[0]:
         return bands
-    return band_spectra(psds, f_min_hz=f_low * (1.0 - 1e-9), bands_per_decade=bands_per_decade,
-                        below_resolved=True)
+    return band_spectra(
+        psds, f_min_hz=f_low * (1.0 - 1e-9), bands_per_decade=bands_per_decade, below_resolved=True
+    )
 
 
 def statement(limits: PooledLimits, bands: BandSpectra, low: LowFrequency | None = None) -> str:

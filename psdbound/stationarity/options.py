@@ -16,8 +16,13 @@ if TYPE_CHECKING:
 #: Stationarity tests: the thesis's (Levene then K-S) or spectral homogeneity of the halves.
 STATIONARITY_TESTS = ("thesis", "spectral")
 
-__all__ = ["MAPPING_KINDS", "STATIONARITY_TESTS", "MappingOptions", "StationarityOptions",
-           "choose_mapping"]
+__all__ = [
+    "MAPPING_KINDS",
+    "STATIONARITY_TESTS",
+    "MappingOptions",
+    "StationarityOptions",
+    "choose_mapping",
+]
 
 MAPPING_KINDS = ("thesis", "fixed", "fit")
 
@@ -128,6 +133,4 @@ def choose_mapping(
             return fit_mapping(value_m, elevation_deg)
         except InputError as exc:  # too few elevations: say so and use the thesis mapping
             return replace(THESIS_MAPPING, source=f"thesis (fit impossible: {exc})")
-    raise InputError(
-        f"unknown mapping kind {options.kind!r}; use {', '.join(MAPPING_KINDS)}"
-    )
+    raise InputError(f"unknown mapping kind {options.kind!r}; use {', '.join(MAPPING_KINDS)}")

@@ -381,8 +381,16 @@ def find_stationary_windows(
             long_enough += 1
         elif x.size >= 2:
             short_s += float(t[-1] - t[0])
-        found, nt = window_arc(x, L, alpha=alpha, p_slide=p_slide, p_trim=p_trim, center=center,
-                               test=test, overlap=overlap)  # fmt: skip
+        found, nt = window_arc(
+            x,
+            L,
+            alpha=alpha,
+            p_slide=p_slide,
+            p_trim=p_trim,
+            center=center,
+            test=test,
+            overlap=overlap,
+        )
         n_tests += nt
         covered = np.zeros(x.size, dtype=bool)
         for s, e, lp, kp in found:
@@ -398,9 +406,11 @@ def find_stationary_windows(
     if long_enough == 0:
         why = ""
         if (L - 1) * series.interval_s > min_length_s:
-            why = (f" (the spectral stationarity test needs {min_samples()} samples: "
-                   f"{(L - 1) * series.interval_s / 60:.0f} min at {series.interval_s:g} s; use "
-                   "longer data, a higher sampling rate or the thesis test)")  # fmt: skip
+            why = (
+                f" (the spectral stationarity test needs {min_samples()} samples: "
+                f"{(L - 1) * series.interval_s / 60:.0f} min at {series.interval_s:g} s; use "
+                "longer data, a higher sampling rate or the thesis test)"
+            )
         longest = max((hi - lo for lo, hi in series.arc_bounds()), default=0)
         raise NoDataError(
             f"no arc is as long as the minimum window length {(L - 1) * series.interval_s:g} s"

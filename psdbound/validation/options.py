@@ -51,10 +51,11 @@ class ValidationOptions:
         ("wall:d=25", "ground:h=header"),
         Tuple(
             Text(what="a geometry such as 'wall:d=25'", validate=_check_geometry),
-            min_len=1, max_len=50,
+            min_len=1,
+            max_len=50,
             what="a list of geometries such as ['wall:d=25', 'ground:h=header']",
         ),
-    )  # fmt: skip
+    )
     alpha: float = option(0.1, Number(lo=0.0, hi=1.0, lo_open=True))
     threshold: float = option(0.10, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True))
     rate: str = option(

@@ -503,11 +503,17 @@ def analyse_arc(
     reasons += _peak_reasons(pk, h_m, h_top, qc)
     alpha = amplitude_ratio(e, s, f_m, poly_order=qc.poly_order)
     return ArcHeight(
-        height_m=h_m, peak_amplitude=pk.amplitude, peak_to_noise=pk.amplitude / pk.noise,
-        alpha=alpha, n_points=int(keep.size), n_outliers=int(keep.size - e.size),
-        elevation_min_deg=e_lo, elevation_max_deg=e_hi, accepted=not reasons,
+        height_m=h_m,
+        peak_amplitude=pk.amplitude,
+        peak_to_noise=pk.amplitude / pk.noise,
+        alpha=alpha,
+        n_points=int(keep.size),
+        n_outliers=int(keep.size - e.size),
+        elevation_min_deg=e_lo,
+        elevation_max_deg=e_hi,
+        accepted=not reasons,
         reason="; ".join(reasons),
-    )  # fmt: skip
+    )
 
 
 def arc_height(

@@ -43,5 +43,6 @@ def test_numpy_path_is_the_one_compared_and_long_arcs_agree():
 
     assert max(LENGTHS) < _SCIPY_MEDIAN_FROM  # the cross-check above runs the numpy code
     x = np.random.default_rng(7).normal(size=_SCIPY_MEDIAN_FROM + 1)
-    np.testing.assert_array_equal(_running_median(x, _SLIP_WINDOW),
-                                  median_filter(x, size=_SLIP_WINDOW, mode="mirror"))
+    np.testing.assert_array_equal(
+        _running_median(x, _SLIP_WINDOW), median_filter(x, size=_SLIP_WINDOW, mode="mirror")
+    )

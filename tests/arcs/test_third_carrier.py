@@ -32,10 +32,18 @@ def _obs(n=400, seed=0, lli5=None, l5=None):
     lli = np.where(np.isfinite(v), 0, -1).astype(np.int8)
     if lli5 is not None:
         lli[:, 0, 2] = lli5
-    header = ObsHeader(version=3.04, file_system="G", marker_name="T", receiver_type="X",
-                       antenna_type="X", approx_position_m=None,
-                       antenna_delta_hen_m=np.zeros(3), interval_s=30.0, time_system="GPS",
-                       obs_types={"G": CODES})
+    header = ObsHeader(
+        version=3.04,
+        file_system="G",
+        marker_name="T",
+        receiver_type="X",
+        antenna_type="X",
+        approx_position_m=None,
+        antenna_delta_hen_m=np.zeros(3),
+        interval_s=30.0,
+        time_system="GPS",
+        obs_types={"G": CODES},
+    )
     block = SystemBlock("G", ("G07",), CODES, v, lli, np.full(v.shape, -1, np.int8))
     t = 1.277e9 + 30.0 * k
     return Observations("synthetic", header, t, np.zeros(n, np.int8), {"G": block})
@@ -81,18 +89,25 @@ def test_isolated_series_keeps_the_third_geometry_free_phase():
     assert series.third_signal == "L5Q" and series.meta["arcs_with_third"] == 1
     assert series.third_m.shape == series.unfiltered_m.shape
     assert abs(np.nanmean(series.arc(0).third_m)) < 0.5
-    np.testing.assert_array_equal(series.value_m, isolate_dual_frequency(
-        find_arcs(obs, ("L1C", "L2W"), min_length_s=600), 2e-3).value_m)
+    np.testing.assert_array_equal(
+        series.value_m,
+        isolate_dual_frequency(find_arcs(obs, ("L1C", "L2W"), min_length_s=600), 2e-3).value_m,
+    )
 
 
 @pytest.mark.realdata
 @pytest.mark.filterwarnings("ignore:.*navigation file gives positions")
 def test_zimm_rinex2_l5_is_the_third_carrier():
     path, nav = shared_file(ZIMM_OBS), shared_file(ZIMM_NAV)
-    obs = read_obs(path, systems="G", codes=("L1C", "L2W"),
-                   optional_codes=third_candidates("G", ("L1C", "L2W")))
-    arcs = add_third_carrier(find_arcs(obs, ("L1C", "L2W"), orbit=read_orbit(nav),
-                                       elevation_mask_deg=10.0), obs)
+    obs = read_obs(
+        path,
+        systems="G",
+        codes=("L1C", "L2W"),
+        optional_codes=third_candidates("G", ("L1C", "L2W")),
+    )
+    arcs = add_third_carrier(
+        find_arcs(obs, ("L1C", "L2W"), orbit=read_orbit(nav), elevation_mask_deg=10.0), obs
+    )
     with_l5 = [a for a in arcs if np.isfinite(a.third_m).any()]
     assert arcs.third_signal == "L5"
     assert 15 <= len(with_l5) < len(arcs)  # the Block IIF/III satellites only

@@ -56,7 +56,8 @@ def test_seed004_table1_xi_enters_the_air_term():
     seed15 = error_budget(EL, tau_air_s=15.0, tau_gnd_s=15.0, xi_formula="seed").air
     ref_exact = error_budget(EL, tau_air_s=100.0).air
     assert (exact / ref_exact)[0] == pytest.approx(
-        smoothing_time_ratio(15.0, tau_corr_s=30.0, formula="exact"), rel=1e-12)
+        smoothing_time_ratio(15.0, tau_corr_s=30.0, formula="exact"), rel=1e-12
+    )
     assert not np.allclose(exact / ref_exact, seed15 / ref, atol=5e-5)
 
 
@@ -115,8 +116,10 @@ def test_vpl_closed_form_equal_sigmas():
 
 def test_vpl_budget_end_to_end_decreases_with_smoothing():
     u = los_from_az_el(AZ, EL)
-    v = [vpl(u, error_budget(EL, tau_gnd_s=t, tau_air_s=t).total, k_md_e=K_MD_E)[0]
-         for t in (15, 30, 60)]  # fmt: skip
+    v = [
+        vpl(u, error_budget(EL, tau_gnd_s=t, tau_air_s=t).total, k_md_e=K_MD_E)[0]
+        for t in (15, 30, 60)
+    ]
     assert v[0] > v[1] > v[2] > 0
     assert smoothing_time_ratio(60.0, tau_corr_s=30.0, formula="seed") > 1
 
@@ -159,6 +162,7 @@ def test_multipliers_name_their_sources():
     assert k["k_md_e"]["value"] == 5.0 and "user-supplied" in k["k_md_e"]["source"]
     assert k["k_md_e"]["p_md_e_two_sided_gaussian"] == pytest.approx(5.733e-7, rel=1e-3)
     assert multipliers(n_receivers=7, k_ffmd=6.0, k_md_e=5.0)["k_ffmd"]["source"] == (
-        "user-supplied")
+        "user-supplied"
+    )
     with pytest.raises(InputError, match="no tabulated K_ffmd"):
         multipliers(n_receivers=7, k_md_e=5.0)

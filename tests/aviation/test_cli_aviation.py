@@ -28,8 +28,9 @@ def test_overbound_writes_json_and_qq_figure(tmp_path, capsys):
     rng = np.random.default_rng(2)
     el = rng.uniform(5, 90, 3000)
     f = _csv(tmp_path / "e.csv", rng.standard_normal(el.size), el)
-    args = _parse(overbound, ["overbound", str(f), "--edges", "5", "30", "90",
-                              "--out", str(tmp_path / "out")])  # fmt: skip
+    args = _parse(
+        overbound, ["overbound", str(f), "--edges", "5", "30", "90", "--out", str(tmp_path / "out")]
+    )
     assert overbound.run(args) == 0
     doc = json.loads((tmp_path / "out" / "result.json").read_text())
     bins = doc["overbound"]["bins"]

@@ -14,8 +14,7 @@ def test_overbound_writes_inflation_per_bin_and_qq_figure(tmp_path, capsys):
     el = rng.uniform(5, 90, 20000)
     err = rng.standard_t(5, el.size) * 0.01 * (1 + 2 * np.exp(-el / 15))
     f = tmp_path / "mp.csv"
-    np.savetxt(f, np.column_stack([err, el]), delimiter=",", header="error,elevation",
-               comments="")  # fmt: skip
+    np.savetxt(f, np.column_stack([err, el]), delimiter=",", header="error,elevation", comments="")
     out = tmp_path / "ob"
     assert main(["overbound", str(f), "--out", str(out)]) == 0
     d = json.loads((out / "result.json").read_text())
@@ -29,8 +28,13 @@ def test_overbound_too_few_samples_in_a_bin_exits_2_naming_it(tmp_path, capsys):
     rng = np.random.default_rng(4)
     el = np.concatenate([rng.uniform(5, 60, 3000), rng.uniform(60, 90, 20)])
     f = tmp_path / "few.csv"
-    np.savetxt(f, np.column_stack([rng.normal(size=el.size), el]), delimiter=",",
-               header="error,elevation", comments="")  # fmt: skip
+    np.savetxt(
+        f,
+        np.column_stack([rng.normal(size=el.size), el]),
+        delimiter=",",
+        header="error,elevation",
+        comments="",
+    )
     code = main(["overbound", str(f), "--out", str(tmp_path / "o")])
     err = capsys.readouterr().err
     assert code == 2

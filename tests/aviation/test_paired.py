@@ -65,9 +65,8 @@ def _mixture_draw(rng, n, shift=0.0):
 
 CASES = {
     "student_t3": (lambda rng, n: 0.4 * rng.standard_t(3, n), lambda x: stats.t.cdf(x / 0.4, 3)),
-    "mixture_biased": (lambda rng, n: _mixture_draw(rng, n, 0.3),
-                       lambda x: _mixture_cdf(x, 0.3)),
-}  # fmt: skip
+    "mixture_biased": (lambda rng, n: _mixture_draw(rng, n, 0.3), lambda x: _mixture_cdf(x, 0.3)),
+}
 
 
 def _holds(cdf, x, b, s):
@@ -148,8 +147,9 @@ def test_bias_bound_through_the_filter_equals_least_squares_at_first_epoch():
     g = np.column_stack([-u, np.ones(el.size)])
     sig = np.array([0.9, 0.7, 0.5, 0.4, 0.3])
     bound = np.array([0.3, 0.0, 0.2, 0.1, 0.25])
-    w = bias_bound_response(np.eye(4), np.zeros((4, 4)), g, np.diag(sig**2), bound,
-                            n_steps=3, p0=1e10 * np.eye(4))  # fmt: skip
+    w = bias_bound_response(
+        np.eye(4), np.zeros((4, 4)), g, np.diag(sig**2), bound, n_steps=3, p0=1e10 * np.eye(4)
+    )
     s = projection_matrix(u, sig)
     assert w[0] == pytest.approx(np.abs(s) @ bound, rel=1e-6)
     assert w[-1] == pytest.approx(np.abs(s) @ bound, rel=1e-6)  # constant bias: stays

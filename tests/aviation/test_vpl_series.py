@@ -36,6 +36,7 @@ def vpl_series(sky, **options):
     """The library's vpl_series with the test K_md_e unless given."""
     return _vpl_series(sky, **{"k_md_e": K_MD_E, **options})
 
+
 #: ESBC (Esbjerg) from its RINEX header's APPROX POSITION XYZ: 55.4936 N, 8.4568 E, 59.5 m
 ESBC_XYZ_M = np.array([3582105.2910, 532589.7313, 5232754.8054])
 DAEJEON_XYZ_M = geodetic_to_ecef(36.37, 127.36, 100.0)  # KAIST, the seed's authors
@@ -63,9 +64,12 @@ def test_seed_start_epoch():
 
 @pytest.mark.parametrize(
     "options",
-    [{}, {"process": "IF", "tau_gnd_s": 30.0, "tau_air_s": 30.0, "x_air_m": 20e3},
-     {"process": "DF", "base_frequency": "L5", "gad": "A", "rho": 0.6, "n_receivers": 4}],
-)  # fmt: skip
+    [
+        {},
+        {"process": "IF", "tau_gnd_s": 30.0, "tau_air_s": 30.0, "x_air_m": 20e3},
+        {"process": "DF", "base_frequency": "L5", "gad": "A", "rho": 0.6, "n_receivers": 4},
+    ],
+)
 def test_series_equals_direct_budget_and_vpl(nominal_ge, options):
     sky = sky_over(nominal_ge, ESBC_XYZ_M, DAY[::40], elevation_mask_deg=5.0)
     series = vpl_series(sky, **options)
@@ -110,8 +114,10 @@ def test_if_gives_the_largest_vpl_at_every_epoch(day_sky_10):
     """
     assert day_sky_10.n_sats.min() >= 10  # measured 11 at both sites
     for tg, ta in TABLE3:
-        v = {p: vpl_series(day_sky_10, process=p, tau_gnd_s=tg, tau_air_s=ta).vpl_m
-             for p in ("SF", "DF", "IF")}  # fmt: skip
+        v = {
+            p: vpl_series(day_sky_10, process=p, tau_gnd_s=tg, tau_air_s=ta).vpl_m
+            for p in ("SF", "DF", "IF")
+        }
         assert np.isfinite(v["IF"]).all()
         assert (v["IF"] > v["SF"]).all() and (v["IF"] > v["DF"]).all(), (tg, ta)
 
@@ -218,8 +224,16 @@ def test_unavailable_epochs_are_nan_and_counted():
     assert d["n_sats"] == [6, 6, 3] and d["singular"] == [False, True, False]
     assert d["availability"] == pytest.approx(1 / 3) and d["val_m"] == 50.0
     assert d["time_gps"][0] == "2009-01-01T00:00:00" and d["elevation_mask_deg"] == 5.0
-    unitless = ("orbit", "options", "n_epochs", "n_unavailable", "time_gps", "n_sats",
-                "singular", "availability")  # fmt: skip
+    unitless = (
+        "orbit",
+        "options",
+        "n_epochs",
+        "n_unavailable",
+        "time_gps",
+        "n_sats",
+        "singular",
+        "availability",
+    )
     assert all(k.endswith(("_m", "_deg", "_s")) or k in unitless for k in d)
 
 

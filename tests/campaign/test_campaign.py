@@ -19,8 +19,14 @@ from psdbound.simulate import preset, simulate
 
 def _simulated_day(root, k: int, start: str):
     """One simulated day of station DEMO (30 s, 12 h), as `simulate` names its files."""
-    sc = preset("demo").replace(name="DEMO", start_gps=start, duration_s=12 * 3600.0,
-                                interval_s=30.0, dual_antenna=False, seed=11 + k)  # fmt: skip
+    sc = preset("demo").replace(
+        name="DEMO",
+        start_gps=start,
+        duration_s=12 * 3600.0,
+        interval_s=30.0,
+        dual_antenna=False,
+        seed=11 + k,
+    )
     return simulate(sc, root / f"sim{k}")
 
 
@@ -118,9 +124,12 @@ def test_held_out_rows_and_cache(two_days, two_day_run, tmp_path):
 def day_results(two_days):
     """The two station-day results with their window spectra (as the Dask tasks return them)."""
     _, obs, nav = two_days
-    return [station_day_task({"station": p.station, "day": p.day, "obs": list(p.obs),
-                              "nav": p.nav, "options": {}})
-            for p in plan_campaign(obs, nav)]  # fmt: skip
+    return [
+        station_day_task(
+            {"station": p.station, "day": p.day, "obs": list(p.obs), "nav": p.nav, "options": {}}
+        )
+        for p in plan_campaign(obs, nav)
+    ]
 
 
 def test_not_bounded_day_left_out_of_the_pool(day_results):
@@ -128,8 +137,9 @@ def test_not_bounded_day_left_out_of_the_pool(day_results):
     days[0].update(verdict="not-bounded", verdict_reasons=["data outside the bound: test"])
     row, pooled = pool_station(days)
     assert pooled == [days[1]] and row["pooled_days"] == ["2020-11-25"]
-    assert row["excluded_days"] == [{"day": "2020-11-24", "verdict": "not-bounded",
-                                     "reasons": ["data outside the bound: test"]}]  # fmt: skip
+    assert row["excluded_days"] == [
+        {"day": "2020-11-24", "verdict": "not-bounded", "reasons": ["data outside the bound: test"]}
+    ]
     assert row["comparison_note"].startswith("one day: no day-to-day comparison")
     alone, _ = pool_station([days[1]])
     assert row["sigma_gm_m"] == alone["sigma_gm_m"] and row["verdict"] == alone["verdict"]
@@ -142,12 +152,32 @@ def test_not_bounded_day_left_out_of_the_pool(day_results):
 def test_cli_campaign_system_and_bad_output_folder(two_days, tmp_path, capsys):
     _, obs, nav = two_days
     out = tmp_path / "c"
-    code = main(["campaign", *map(str, obs), "--nav", *map(str, nav), "--out", str(out),
-                 "--workers", "0", "--cache-dir", str(tmp_path / "cache"), "--no-pdf",
-                 "--system", "G", "--elevation-mask-deg", "12"])  # fmt: skip
+    code = main(
+        [
+            "campaign",
+            *map(str, obs),
+            "--nav",
+            *map(str, nav),
+            "--out",
+            str(out),
+            "--workers",
+            "0",
+            "--cache-dir",
+            str(tmp_path / "cache"),
+            "--no-pdf",
+            "--system",
+            "G",
+            "--elevation-mask-deg",
+            "12",
+        ]
+    )
     assert code == 0, capsys.readouterr().err
-    assert sorted(p.name for p in out.iterdir()) == ["campaign.html", "campaign.json", "days",
-                                                      "network.html"]  # fmt: skip
+    assert sorted(p.name for p in out.iterdir()) == [
+        "campaign.html",
+        "campaign.json",
+        "days",
+        "network.html",
+    ]
     text = capsys.readouterr().out
     assert "campaign verdict: BOUNDED" in text and "held out" in text
     doc = json.loads((out / "campaign.json").read_text())
@@ -155,8 +185,20 @@ def test_cli_campaign_system_and_bad_output_folder(two_days, tmp_path, capsys):
     other = tmp_path / "other"
     other.mkdir()
     (other / "mine.txt").write_text("keep")
-    code = main(["campaign", *map(str, obs), "--nav", *map(str, nav), "--out", str(other),
-                 "--workers", "0", "--cache-dir", str(tmp_path / "cache")])  # fmt: skip
+    code = main(
+        [
+            "campaign",
+            *map(str, obs),
+            "--nav",
+            *map(str, nav),
+            "--out",
+            str(other),
+            "--workers",
+            "0",
+            "--cache-dir",
+            str(tmp_path / "cache"),
+        ]
+    )
     assert code == 2 and (other / "mine.txt").read_text() == "keep"
 
 
@@ -172,8 +214,21 @@ def test_cli_campaign_bad_day_options(two_days, tmp_path, capsys, extra, message
     _, obs, nav = two_days
     out = tmp_path / "c"
     try:
-        code = main(["campaign", *map(str, obs), "--nav", *map(str, nav), "--out", str(out),
-                     "--workers", "0", "--cache-dir", str(tmp_path / "cache"), *extra])
+        code = main(
+            [
+                "campaign",
+                *map(str, obs),
+                "--nav",
+                *map(str, nav),
+                "--out",
+                str(out),
+                "--workers",
+                "0",
+                "--cache-dir",
+                str(tmp_path / "cache"),
+                *extra,
+            ]
+        )
     except SystemExit as exc:  # a choice the parser itself refuses
         code = exc.code
     err = capsys.readouterr().err
@@ -186,15 +241,30 @@ def test_cli_campaign_exits_3_when_a_pool_is_not_bounded(two_days, tmp_path, cap
     cfg = tmp_path / "strict.toml"
     cfg.write_text("[verdict]\nmin_tau_multiple = 100000.0\n")
     out = tmp_path / "c"
-    code = main(["campaign", *map(str, obs), "--nav", *map(str, nav), "--out", str(out),
-                 "--workers", "0", "--cache-dir", str(tmp_path / "cache"), "--config", str(cfg),
-                 "--no-pdf"])  # fmt: skip
+    code = main(
+        [
+            "campaign",
+            *map(str, obs),
+            "--nav",
+            *map(str, nav),
+            "--out",
+            str(out),
+            "--workers",
+            "0",
+            "--cache-dir",
+            str(tmp_path / "cache"),
+            "--config",
+            str(cfg),
+            "--no-pdf",
+        ]
+    )
     assert code == 3, capsys.readouterr().err
     doc = json.loads((out / "campaign.json").read_text())
     assert doc["verdict"] == "not-bounded"
     assert {d["verdict"] for d in doc["days"]} == {"not-bounded"}
-    assert all(d["verdict_reasons"][0].startswith("too little stationary data")
-               for d in doc["days"])  # fmt: skip
+    assert all(
+        d["verdict_reasons"][0].startswith("too little stationary data") for d in doc["days"]
+    )
     st = doc["stations"][0]
     assert st["verdict"] == "not-bounded" and st["n_pooled"] == 0
     assert [d["day"] for d in st["excluded_days"]] == ["2020-11-24", "2020-11-25"]

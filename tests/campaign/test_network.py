@@ -27,9 +27,16 @@ def network(tmp_path_factory):
     obs, nav = [], []
     for s, (name, (lat, lon)) in enumerate(STATIONS.items()):
         for k, start in enumerate(("2020-11-24T06:00:00", "2020-11-25T06:00:00")):
-            sc = preset("demo").replace(name=name, start_gps=start, duration_s=12 * 3600.0,
-                                        interval_s=30.0, dual_antenna=False, lat_deg=lat,
-                                        lon_deg=lon, seed=31 + 2 * s + k)  # fmt: skip
+            sc = preset("demo").replace(
+                name=name,
+                start_gps=start,
+                duration_s=12 * 3600.0,
+                interval_s=30.0,
+                dual_antenna=False,
+                lat_deg=lat,
+                lon_deg=lon,
+                seed=31 + 2 * s + k,
+            )
             res = simulate(sc, root / f"{name}{k}")
             obs.append(res.obs_paths[0])
             if s == 0:  # one broadcast file per day serves every station
@@ -70,8 +77,9 @@ def test_network_page_has_every_station_the_map_the_table_and_working_links(netw
         assert np.allclose(pos[name], (lat, lon), atol=1e-6)
         assert f"<td data-sort='{name}'>{name}</td>" in text
     assert {i["alt"] for i in page.images} == {"station map", "bound over time"}
-    assert all(i["src"].startswith("data:image/png;base64,") and len(i["src"]) > 5000
-               for i in page.images)  # fmt: skip
+    assert all(
+        i["src"].startswith("data:image/png;base64,") and len(i["src"]) > 5000 for i in page.images
+    )
     assert {"class": "sortable", "id": "stations"} in page.tables and page.scripts == 1
     assert "addEventListener('click'" in text and "http" not in text  # no CDN, nothing fetched
     # one link per station-day report, every relative link resolves to a file
@@ -92,8 +100,12 @@ def test_network_page_has_every_station_the_map_the_table_and_working_links(netw
 def test_rewriting_the_campaign_replaces_the_day_reports(network, tmp_path):
     result, out, _ = network
     files = write_campaign(result, out, pdf=False)  # an earlier campaign folder: replaced
-    assert sorted(p.name for p in out.iterdir()) == ["campaign.html", "campaign.json", "days",
-                                                      "network.html"]  # fmt: skip
+    assert sorted(p.name for p in out.iterdir()) == [
+        "campaign.html",
+        "campaign.json",
+        "days",
+        "network.html",
+    ]
     assert len(list((out / "days").iterdir())) == 4 and files["network"].is_file()
 
 
@@ -113,17 +125,43 @@ def test_network_page_as_a_person_sees_it(network, tmp_path):
     _, out, _ = network
     shot = tmp_path / "network.png"
     subprocess.run(
-        ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
-         "--no-first-run", "--disable-background-networking", "--disable-component-update",
-         "--disable-sync", f"--user-data-dir={tmp_path / 'ud'}", "--window-size=1200,1800",
-         f"--screenshot={shot}", (out / "network.html").as_uri()],
-        capture_output=True, timeout=120, check=True,
-    )  # fmt: skip
+        [
+            "chromium",
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            f"--user-data-dir={tmp_path / 'ud'}",
+            "--window-size=1200,1800",
+            f"--screenshot={shot}",
+            (out / "network.html").as_uri(),
+        ],
+        capture_output=True,
+        timeout=120,
+        check=True,
+    )
     assert shot.stat().st_size > 20_000 and _not_blank(shot) > 0.05
     dom = subprocess.run(
-        ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
-         "--disable-background-networking", "--disable-component-update", "--disable-sync",
-         f"--user-data-dir={tmp_path / 'ud2'}", "--dump-dom", (out / "network.html").as_uri()],
-        capture_output=True, timeout=120, check=True, text=True,
-    ).stdout  # fmt: skip
+        [
+            "chromium",
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            f"--user-data-dir={tmp_path / 'ud2'}",
+            "--dump-dom",
+            (out / "network.html").as_uri(),
+        ],
+        capture_output=True,
+        timeout=120,
+        check=True,
+        text=True,
+    ).stdout
     assert all(name in dom for name in STATIONS) and "station-map" in dom

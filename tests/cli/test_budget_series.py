@@ -23,8 +23,20 @@ def _err_line(capsys) -> str:
 
 def test_nominal_ge_writes_json_and_figure(tmp_path, capsys):
     out = tmp_path / "vpl"
-    argv = ["budget", *KMDE, "--nominal", "GE", "--position", ESBC_POSITION, "--hours", "6",
-            "--val-m", "10", "--out", str(out)]  # fmt: skip
+    argv = [
+        "budget",
+        *KMDE,
+        "--nominal",
+        "GE",
+        "--position",
+        ESBC_POSITION,
+        "--hours",
+        "6",
+        "--val-m",
+        "10",
+        "--out",
+        str(out),
+    ]
     assert main(argv) == 0
     text = capsys.readouterr().out
     assert "VPL over 72 epochs, 2009-01-01 00:00:00 to 2009-01-01 05:55:00 GPS time" in text
@@ -41,9 +53,30 @@ def test_nominal_ge_writes_json_and_figure(tmp_path, capsys):
 
 
 def test_nominal_options_reach_the_budget(capsys):
-    argv = ["budget", *KMDE, "--nominal", "G", "--position", "36.37,127.36,100", "--hours", "1",
-            "--step-s", "600", "--mask-deg", "10", "--process", "IF", "--tau-gnd", "30",
-            "--tau-air", "30", "--x-air-km", "20", "--start", "2020-06-25T12:00"]  # fmt: skip
+    argv = [
+        "budget",
+        *KMDE,
+        "--nominal",
+        "G",
+        "--position",
+        "36.37,127.36,100",
+        "--hours",
+        "1",
+        "--step-s",
+        "600",
+        "--mask-deg",
+        "10",
+        "--process",
+        "IF",
+        "--tau-gnd",
+        "30",
+        "--tau-air",
+        "30",
+        "--x-air-km",
+        "20",
+        "--start",
+        "2020-06-25T12:00",
+    ]
     assert main(argv) == 0
     text = capsys.readouterr().out
     assert "IF L1, tau 30/30 s" in text and "x_air = 20 km" in text
@@ -92,13 +125,33 @@ def test_modes_are_exclusive_and_series_options_need_a_series(capsys):
 
 def test_sat_mode_output_is_the_budget_report(capsys):
     pairs = [(10, 12), (80, 25), (150, 38), (200, 47), (260, 60), (320, 75)]
-    argv = ["budget", *KMDE, *[a for az, el in pairs for a in ("--sat", f"{az},{el}")],
-            "--tau-gnd", "30", "--tau-air", "30", "--x-air-km", "12"]  # fmt: skip
+    argv = [
+        "budget",
+        *KMDE,
+        *[a for az, el in pairs for a in ("--sat", f"{az},{el}")],
+        "--tau-gnd",
+        "30",
+        "--tau-air",
+        "30",
+        "--x-air-km",
+        "12",
+    ]
     assert main(argv) == 0
     az, el = zip(*pairs, strict=True)
-    expected = budget_report(az, el, k_md_e=5.0, n_receivers=3, process="SF", base_frequency="L1",
-                             tau_gnd_s=30.0, tau_air_s=30.0, gad="B", rho=0.1,
-                             x_air_m=12000.0, xi_formula="exact")  # fmt: skip
+    expected = budget_report(
+        az,
+        el,
+        k_md_e=5.0,
+        n_receivers=3,
+        process="SF",
+        base_frequency="L1",
+        tau_gnd_s=30.0,
+        tau_air_s=30.0,
+        gad="B",
+        rho=0.1,
+        x_air_m=12000.0,
+        xi_formula="exact",
+    )
     assert capsys.readouterr().out == expected + "\n"
 
 
@@ -119,8 +172,16 @@ def test_nav_file_day_at_esbc(tmp_path, capsys):
 @pytest.mark.realdata
 def test_nav_start_outside_the_file_span_exits_2_with_the_span(capsys):
     nav = shared_file(ESBC_NAV)
-    argv = ["budget", *KMDE, "--nav", str(nav), "--position", ESBC_POSITION,
-            "--start", "2020-06-27"]  # fmt: skip
+    argv = [
+        "budget",
+        *KMDE,
+        "--nav",
+        str(nav),
+        "--position",
+        ESBC_POSITION,
+        "--start",
+        "2020-06-27",
+    ]
     assert main(argv) == 2
     err = _err_line(capsys)
     assert "--start 2020-06-27 00:00:00 is outside the span of the file for systems GE" in err
@@ -133,9 +194,23 @@ def test_nav_without_the_requested_system_exits_2(capsys):
     assert main(["budget", *KMDE, "--nav", str(nav), "--position", "78.93,11.87,80"]) == 2
     err = _err_line(capsys)
     assert "no Galileo (E) orbits for --systems GE; the file has G (use --systems)" in err
-    assert main(["budget", *KMDE, "--nav", str(nav), "--position", "78.93,11.87,80",
-                 "--systems", "G",
-                 "--hours", "1"]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                "budget",
+                *KMDE,
+                "--nav",
+                str(nav),
+                "--position",
+                "78.93,11.87,80",
+                "--systems",
+                "G",
+                "--hours",
+                "1",
+            ]
+        )
+        == 0
+    )
     assert "VPL over 12 epochs" in capsys.readouterr().out
 
 
@@ -164,8 +239,25 @@ def test_k_md_e_is_required_and_named_with_its_source(tmp_path, capsys):
     assert main(["budget", *sats, *KMDE, "--xi-formula", "seed"]) == 0
     assert "xi formula: seed" in capsys.readouterr().out
     out = tmp_path / "series"
-    assert main(["budget", "--nominal", "G", "--position", ESBC_POSITION, "--hours", "1",
-                 *KMDE, "--k-ffmd", "6", "--out", str(out)]) == 0  # fmt: skip
+    assert (
+        main(
+            [
+                "budget",
+                "--nominal",
+                "G",
+                "--position",
+                ESBC_POSITION,
+                "--hours",
+                "1",
+                *KMDE,
+                "--k-ffmd",
+                "6",
+                "--out",
+                str(out),
+            ]
+        )
+        == 0
+    )
     k = json.loads((out / "vpl.json").read_text())["vpl"]["options"]["multipliers"]
     assert k["k_ffmd"] == {"value": 6.0, "source": "user-supplied"}
     assert k["k_md_e"]["value"] == 5.0

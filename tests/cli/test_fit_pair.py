@@ -59,8 +59,9 @@ def test_bad_pair(pair, tmp_path, capsys, extra, message):
     ],
 )
 def test_dual_antenna_options_on_one_station(pair, tmp_path, capsys, extra, message):
-    code, _, err = fit(capsys, pair.obs_paths[0], "--nav", pair.nav_path, "--out",
-                       tmp_path / "o", *extra)  # fmt: skip
+    code, _, err = fit(
+        capsys, pair.obs_paths[0], "--nav", pair.nav_path, "--out", tmp_path / "o", *extra
+    )
     assert code == 2, err
     assert message in err and "dual-antenna option" in err
 
@@ -72,8 +73,19 @@ def test_pair_of_files_with_a_wrong_position(pair, tmp_path, capsys):
     lat, lon, _ = ecef_to_geodetic(p_b)
     wrong = p_b + enu_rotation(lat, lon).T @ np.array([0.9, 1.1, -0.4])
     out = tmp_path / "o"
-    code, stdout, err = fit(capsys, "--pair", a, b, "--nav", pair.nav_path, "--position-b",
-                            *wrong, "--out", out, "--no-pdf")  # fmt: skip
+    code, stdout, err = fit(
+        capsys,
+        "--pair",
+        a,
+        b,
+        "--nav",
+        pair.nav_path,
+        "--position-b",
+        *wrong,
+        "--out",
+        out,
+        "--no-pdf",
+    )
     assert code == 0, err
     assert "antenna position corrected: the carrier phases put DUO-B 1.50" in stdout
     d = json.loads((out / "result.json").read_text())
@@ -85,7 +97,9 @@ def test_pair_of_files_with_a_wrong_position(pair, tmp_path, capsys):
     # the console shows every warning of the run, grouped by stage in pipeline order
     assert d["warnings"] and all(w in " ".join(stdout.split()) for w in d["warnings"])
     stages = [g["stage"] for g in d["warnings_by_stage"]]
-    assert stages == sorted(stages, key=["reading", "cutoff", "isolation", "screening",
-                                         "windows", "bound", "validation"].index)  # fmt: skip
+    assert stages == sorted(
+        stages,
+        key=["reading", "cutoff", "isolation", "screening", "windows", "bound", "validation"].index,
+    )
     assert [w for g in d["warnings_by_stage"] for w in g["warnings"]] == d["warnings"]
     assert f"{stages[0]}:" in stdout

@@ -12,8 +12,10 @@ from psdbound.cli.main import build_parser
 from psdbound.pipeline import FitConfig
 
 #: what counts as a unit (or an explicit statement that there is none)
-UNITS = re.compile(r"\b(s|m|Hz|deg|degrees|min|minutes|h|hours|seconds|metres|TECU/min|sfu|dB|"
-                   r"m\^2|MHz|km|count|dimensionless|probability|fraction|percent)\b")  # fmt: skip
+UNITS = re.compile(
+    r"\b(s|m|Hz|deg|degrees|min|minutes|h|hours|seconds|metres|TECU/min|sfu|dB|"
+    r"m\^2|MHz|km|count|dimensionless|probability|fraction|percent)\b"
+)
 
 
 def _actions():
@@ -26,9 +28,11 @@ def _actions():
             yield name, a
 
 
-@pytest.mark.parametrize(("command", "action"), list(_actions()),
-                         ids=lambda x: x if isinstance(x, str) else "/".join(
-                             x.option_strings) or x.dest)  # fmt: skip
+@pytest.mark.parametrize(
+    ("command", "action"),
+    list(_actions()),
+    ids=lambda x: x if isinstance(x, str) else "/".join(x.option_strings) or x.dest,
+)
 def test_help_states_default_and_unit(command, action):
     shared = command in ("fit", "campaign", "export")  # fit's day options and formatter
     h = " ".join((help_text(action) if shared else action.help or "").split())

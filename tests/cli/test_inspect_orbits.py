@@ -22,8 +22,9 @@ _spec.loader.exec_module(samples)
 def files(tmp_path_factory):
     d = tmp_path_factory.mktemp("orbits")
     obs = samples.geometric_observations(samples.nominal("GE"))
-    obs22 = samples.geometric_observations(samples.nominal("G", t0=samples.T2022), systems="G",
-                                           t0=samples.T2022)  # fmt: skip
+    obs22 = samples.geometric_observations(
+        samples.nominal("G", t0=samples.T2022), systems="G", t0=samples.T2022
+    )
     return {
         "obs": write_obs_v3(d / "SYNT00XXX_R_20201770600_02H_30S_MO.rnx", obs),
         "obs2022": write_obs_v3(d / "SYNT00XXX_R_20223151700_02H_30S_MO.rnx", obs22),
@@ -68,8 +69,9 @@ def test_navigation_file_of_another_day(files, capsys):
 
 
 def test_reason_when_no_arc(files, capsys):
-    code, out, _ = inspect(capsys, files["obs"], "--nav", files["gps_nav"],
-                           "--elevation-mask-deg", "89.9")  # fmt: skip
+    code, out, _ = inspect(
+        capsys, files["obs"], "--nav", files["gps_nav"], "--elevation-mask-deg", "89.9"
+    )
     assert code == 0
     assert "G L1C-L2W: 0 arcs" in out
     reason = "no satellite tracked on both L1C and L2W (G) is above the elevation mask of 89.9"

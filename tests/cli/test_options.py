@@ -40,15 +40,19 @@ def _run(capsys, *args):
 @pytest.mark.parametrize(
     ("args", "message"),
     [
-        (["--cutoff-source", "map", "--cutoff-hz", "1e-3"],
-         "--cutoff-source map and --cutoff-hz 0.001 conflict"),
+        (
+            ["--cutoff-source", "map", "--cutoff-hz", "1e-3"],
+            "--cutoff-source map and --cutoff-hz 0.001 conflict",
+        ),
         (["--cutoff-source", "given"], "--cutoff-source given needs --cutoff-hz"),
         (["--alpha", "1.5"], "--alpha must be a number > 0 and < 1, got 1.5"),
         (["--mapping", "nan,nan,nan"], "--mapping a must be a number > 0 and <= 1000, got nan"),
         (["--mapping", "1,2"], "--mapping must be thesis, fit or three numbers a,b,c"),
         (["--min-arc-min", "-5"], "--min-arc-min must be a number > 0 and <= 1440 min, got -5"),
-        (["--elevation-mask-deg", "95"],
-         "--elevation-mask-deg must be a number >= 0 and < 90 deg, got 95"),
+        (
+            ["--elevation-mask-deg", "95"],
+            "--elevation-mask-deg must be a number >= 0 and < 90 deg, got 95",
+        ),
         (["--filter-order", "200"], "--filter-order must be an integer from 1 to 20, got 200"),
         (["--filter-order", "4.5"], "--filter-order must be an integer from 1 to 20, got 4.5"),
         (["--cutoff-hz", "1e-30"], "--cutoff-hz must be a number from 1e-06 to 10 Hz, got 1e-30"),
@@ -57,15 +61,17 @@ def _run(capsys, *args):
         (["--signals", "L1C,C1C"], "--signals item 2 must be a phase code"),
         (["--system", "X"], "argument --system: invalid choice: 'X' (choose from 'G', 'E'"),
         (["--level", "0.9"], "--level 0.9 is only used with --target upper"),
-        (["--filter", "fir", "--filter-order", "6"],
-         "--filter-order 6 is not used by --filter fir"),
+        (
+            ["--filter", "fir", "--filter-order", "6"],
+            "--filter-order 6 is not used by --filter fir",
+        ),
         (["--geometry", "wall:x=3"], "--geometry item 1 must be a geometry"),
         (["--da-signal", "L2W"], "--da-signal L2W is a dual-antenna option"),
         (["--name", "../x"], "--name must be a run name"),
         (["--p-trim", "1.2"], "--p-trim must be a number > 0 and < 1, got 1.2"),
         (["--validation-threshold", "0"], "--validation-threshold must be a number > 0 and < 1"),
     ],
-)  # fmt: skip
+)
 def test_bad_fit_options_exit_2_before_reading(files, capsys, args, message):
     code, err = _run(capsys, "fit", "a.rnx", "--nav", "nav.rnx", *args)
     assert code == 2, err
@@ -77,8 +83,9 @@ def test_bad_fit_options_exit_2_before_reading(files, capsys, args, message):
 def test_method_options_are_checked_before_reading(files, capsys):
     # several files: one station (merged, DF) or two antennas (DA) is known only once read;
     # an explicit --method da still refuses dual-frequency options up front
-    code, err = _run(capsys, "fit", "a.rnx", "b.rnx", "--nav", "nav.rnx", "--method", "da",
-                     "--cutoff-hz", "1e-3")  # fmt: skip
+    code, err = _run(
+        capsys, "fit", "a.rnx", "b.rnx", "--nav", "nav.rnx", "--method", "da", "--cutoff-hz", "1e-3"
+    )
     assert code == 2 and "--cutoff-hz 0.001 is a dual-frequency option" in err
     code, err = _run(capsys, "fit", "--nav", "nav.rnx")
     assert code == 2 and "--nav nav.rnx given without observation files" in err
@@ -90,20 +97,26 @@ def test_method_options_are_checked_before_reading(files, capsys):
     ("toml", "message"),
     [
         ("[filter]\norder = 4.5\n", "[filter] order must be an integer from 1 to 20, got 4.5"),
-        ('[cutoff]\nf_c_hz = "abc"\n', "[cutoff] f_c_hz must be a number from 1e-06 to 10 Hz, "
-                                      "got 'abc'"),
+        (
+            '[cutoff]\nf_c_hz = "abc"\n',
+            "[cutoff] f_c_hz must be a number from 1e-06 to 10 Hz, got 'abc'",
+        ),
         ("[stationarity]\nalpha = true\n", "[stationarity] alpha must be a number"),
         ('[mapping]\nkind = "fixed"\nc_deg = 0\n', "[mapping] c_deg must be a number > 0"),
         ("[inputs]\nreceiver_xyz_m = [[1, 2]]\n", "[inputs] receiver_xyz_m item 1 must be an ECEF"),
         ('[output]\npdf = "no"\n', "[output] pdf must be true or false"),
-        ("[spectra]\noptions = {nperseg = 256}\n", "[spectra] options (in bad.toml) must be names "
-                                                   "of multitaper options"),
+        (
+            "[spectra]\noptions = {nperseg = 256}\n",
+            "[spectra] options (in bad.toml) must be names of multitaper options",
+        ),
         ("[mapping]\na = 2.0\n", "[mapping] a (in bad.toml) = 2 is only used with --mapping"),
         ('[cutoff]\nsource = "map"\n', "[cutoff] source (in bad.toml) = 'map' and --cutoff-hz"),
-        ("[screening]\nroti_threshold_tecu_min = -1\n", "[screening] roti_threshold_tecu_min "
-                                                        "must be a number > 0"),
+        (
+            "[screening]\nroti_threshold_tecu_min = -1\n",
+            "[screening] roti_threshold_tecu_min must be a number > 0",
+        ),
     ],
-)  # fmt: skip
+)
 def test_toml_values_are_type_checked(files, capsys, toml, message):
     (files / "bad.toml").write_text(toml)
     extra = ["--cutoff-hz", "1e-3"] if "source" in toml else []
@@ -119,8 +132,11 @@ def test_toml_obs_as_a_single_name_is_one_file(files):
 
 
 def test_library_checks_options_before_reading(tmp_path):
-    with pytest.raises(OptionError, match=r"\[filter\] order must be an integer from 1 to 20, "
-                                          "got 4.5"):  # fmt: skip
+    with pytest.raises(
+        OptionError,
+        match=r"\[filter\] order must be an integer from 1 to 20, "
+        "got 4.5",
+    ):
         psdbound.fit(tmp_path / "missing.rnx", nav=tmp_path / "nav.rnx", order=4.5)
     with pytest.raises(OptionError, match=r"\[cutoff\] f_c_hz must be a number"):
         psdbound.fit(tmp_path / "missing.rnx", cutoff={"f_c_hz": float("nan")})

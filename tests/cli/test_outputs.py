@@ -52,14 +52,21 @@ def test_user_file_in_the_folder_survives(tmp_path):
     out = tmp_path / "mine"
     out.mkdir()
     (out / "notes.txt").write_text("my notes\n")
-    with pytest.raises(InputError, match=r"mine: output folder is an existing folder that is not "
-                                         r"a psdbound output \(it holds 1 entry: notes.txt\)"):
+    with pytest.raises(
+        InputError,
+        match=r"mine: output folder is an existing folder that is not "
+        r"a psdbound output \(it holds 1 entry: notes.txt\)",
+    ):
         _write_outputs(out)
     assert sorted(p.name for p in out.iterdir()) == ["notes.txt"]
     _write_outputs(out, overwrite=True)  # psdbound's files are added, nothing else touched
     assert (out / "notes.txt").read_text() == "my notes\n"
-    assert sorted(p.name for p in out.iterdir()) == ["notes.txt", "report.html", "report.pdf",
-                                                     "result.json"]  # fmt: skip
+    assert sorted(p.name for p in out.iterdir()) == [
+        "notes.txt",
+        "report.html",
+        "report.pdf",
+        "result.json",
+    ]
     assert not _hidden(out) and not _hidden(tmp_path)
 
 
@@ -77,8 +84,11 @@ def test_a_file_is_never_replaced_by_a_folder(tmp_path):
     f = tmp_path / "result"
     f.write_text("precious\n")
     for overwrite in (False, True):
-        with pytest.raises(InputError, match=r"result: output folder is an existing file, not a "
-                                             "folder"):  # fmt: skip
+        with pytest.raises(
+            InputError,
+            match=r"result: output folder is an existing file, not a "
+            "folder",
+        ):
             _write_outputs(f, overwrite=overwrite)
     assert f.read_text() == "precious\n" and not _hidden(tmp_path)
     with pytest.raises(InputError, match=r"cannot be created: .*result is a file, not a folder"):

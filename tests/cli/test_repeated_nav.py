@@ -21,8 +21,10 @@ def test_one_file_commands_refuse_a_second_nav(capsys, command):
         main([*command, "--nav", "a.rnx", "--nav", "b.rnx"])
     assert exc.value.code == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert err == [f"psdbound {command[0]}: error: --nav given twice (a.rnx and b.rnx): this "
-                   "command takes one file; give --nav once"]  # fmt: skip
+    assert err == [
+        f"psdbound {command[0]}: error: --nav given twice (a.rnx and b.rnx): this "
+        "command takes one file; give --nav once"
+    ]
 
 
 def test_cutoff_refuses_a_second_sp3(capsys):

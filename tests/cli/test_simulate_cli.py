@@ -28,8 +28,11 @@ def _truth(folder):
         (["--multipath", "tau=30"], "--multipath: unknown key 'tau'"),
         (["--multipath", "tau_s"], "--multipath: item 'tau_s' has no '='"),
         (["--multipath", "tau_s=abc"], "--multipath tau_s must be a number > 0 and <= 86400 s"),
-        (["--multipath", "sigma_gm_m=0.2"], "--multipath sigma_gm_m must be a number from 0 to "
-                                            "0.05 m, got 0.2 (carrier multipath cannot exceed"),
+        (
+            ["--multipath", "sigma_gm_m=0.2"],
+            "--multipath sigma_gm_m must be a number from 0 to "
+            "0.05 m, got 0.2 (carrier multipath cannot exceed",
+        ),
         (["--multipath", "tau_s=100000"], "--multipath tau_s must be a number > 0 and <= 86400"),
         (["--multipath", "mapping=1,2"], "--multipath mapping must be three numbers"),
         (["--multipath", ""], "--multipath is empty"),
@@ -38,7 +41,7 @@ def _truth(folder):
         (["--start", "2020-11-24"], "--start must be an ISO date-time"),
         (["--scenario", "missing.toml"], "missing.toml: scenario file not found"),
     ],
-)  # fmt: skip
+)
 def test_bad_truth_options_exit_2_and_write_nothing(tmp_path, monkeypatch, capsys, args, message):
     monkeypatch.chdir(tmp_path)
     code, out, err = _run(capsys, *SHORT, *args, "--out", "sim")
@@ -58,9 +61,18 @@ def test_bad_scenario_file_exit_2(tmp_path, capsys):
 
 def test_multipath_spec_is_simulated_and_recorded(tmp_path, capsys):
     out = tmp_path / "sim"
-    code, printed, err = _run(capsys, *SHORT, "--seed", 5, "--receiver-noise-m", "0.0008",
-                              "--multipath", "sigma_gm_m=0.004,tau_s=120,sigma_wn_m=0.002,"
-                              "mapping=1,12,10", "--out", out)  # fmt: skip
+    code, printed, err = _run(
+        capsys,
+        *SHORT,
+        "--seed",
+        5,
+        "--receiver-noise-m",
+        "0.0008",
+        "--multipath",
+        "sigma_gm_m=0.004,tau_s=120,sigma_wn_m=0.002,mapping=1,12,10",
+        "--out",
+        out,
+    )
     assert code == 0, err
     assert len(printed.split()) == 4  # antenna A, nav, truth CSV, truth JSON
     sc = _truth(out)
@@ -74,8 +86,15 @@ def test_partial_spec_keeps_the_preset_values(tmp_path, capsys):
     code, _, err = _run(capsys, *SHORT, "--multipath", "tau_s=300", "--out", tmp_path / "s")
     assert code == 0, err
     mp = _truth(tmp_path / "s")["multipath"]
-    assert mp == {"sigma_gm_m": 0.003, "tau_s": 300.0, "sigma_wn_m": 0.001, "a": 1.0, "b": 9.0,
-                  "c_deg": 15.0, "reflections": []}  # fmt: skip
+    assert mp == {
+        "sigma_gm_m": 0.003,
+        "tau_s": 300.0,
+        "sigma_wn_m": 0.001,
+        "a": 1.0,
+        "b": 9.0,
+        "c_deg": 15.0,
+        "reflections": [],
+    }
 
 
 def test_scenario_file_then_flags(tmp_path, capsys):
@@ -86,8 +105,9 @@ def test_scenario_file_then_flags(tmp_path, capsys):
         "mapping = [1, 12, 10]\n"
     )
     out = tmp_path / "sim"
-    code, _, err = _run(capsys, "simulate", "--scenario", p, "--multipath", "tau_s=240",
-                        "--seed", 8, "--out", out)  # fmt: skip
+    code, _, err = _run(
+        capsys, "simulate", "--scenario", p, "--multipath", "tau_s=240", "--seed", 8, "--out", out
+    )
     assert code == 0, err
     sc = _truth(out)
     assert sc["name"] == "fromfile" and sc["interval_s"] == 30.0 and sc["duration_s"] == 600.0

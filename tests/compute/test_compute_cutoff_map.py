@@ -43,8 +43,12 @@ def test_map_rerun_reads_the_cache(tmp_path, calls):
     map_cutoffs(["2020-01-06"], cache_dir=cache, **other)
     assert len(calls) == 4
     # a station run needs the delays the map did not keep: computed once, then cached
-    kw = {"satellites": KW["satellites"], "settings": KW["settings"], "workers": 0,
-          "keep_series": True}  # fmt: skip
+    kw = {
+        "satellites": KW["satellites"],
+        "settings": KW["settings"],
+        "workers": 0,
+        "keep_series": True,
+    }
     res = station_cutoffs(41.84, -87.63, ["2020-01-06"], name="CHI", cache_dir=cache, **kw)
     assert len(calls) == 5 and res.from_cache == [False]
     assert res.series_by_date["2020-01-06"]["sats"] == ["G01", "G02"]

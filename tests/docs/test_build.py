@@ -18,15 +18,36 @@ def test_sphinx_html_build_has_no_warnings(tmp_path):
     pytest.importorskip("pydata_sphinx_theme")
     out = tmp_path / "html"
     r = subprocess.run(
-        [sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b", "html",
-         "-d", str(tmp_path / "doctrees"), str(DOCS), str(out)],
-        capture_output=True, text=True, timeout=900,
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "sphinx",
+            "-W",
+            "--keep-going",
+            "-q",
+            "-b",
+            "html",
+            "-d",
+            str(tmp_path / "doctrees"),
+            str(DOCS),
+            str(out),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=900,
+    )
     assert r.returncode == 0, r.stdout[-4000:] + r.stderr[-8000:]
     pages = {p.relative_to(out).as_posix() for p in out.rglob("*.html")}
-    for page in ("index.html", "tutorial_kalman.html", "bibliography.html",
-                 "reference/cli.html", "reference/result_json.html", "method/bound.html",
-                 "method/cutoff.html", "user_guide/dual_antenna.html"):  # fmt: skip
+    for page in (
+        "index.html",
+        "tutorial_kalman.html",
+        "bibliography.html",
+        "reference/cli.html",
+        "reference/result_json.html",
+        "method/bound.html",
+        "method/cutoff.html",
+        "user_guide/dual_antenna.html",
+    ):
         assert page in pages, page
     cli = (out / "reference" / "cli.html").read_text()
     assert "--pair" in cli and "psdbound campaign" in cli

@@ -42,8 +42,7 @@ def test_entry_point_docstring_is_complete_and_its_examples_run(entry):
     assert doc["References"], f"{entry}: no References"
     examples = "\n".join(doc["Examples"])
     assert ">>>" in examples and "+SKIP" not in examples, f"{entry}: no runnable Examples"
-    tests = doctest.DocTestFinder(recurse=False).find(obj, obj.__name__,
-                                                      globs=dict(vars(mod)))  # fmt: skip
+    tests = doctest.DocTestFinder(recurse=False).find(obj, obj.__name__, globs=dict(vars(mod)))
     runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
     for t in tests:
         runner.run(t)

@@ -29,6 +29,7 @@ def test_code_multipath_example_runs(monkeypatch):
     folder = Path(shared_file(ESBC_OBS)).parent
     monkeypatch.chdir(folder)
     flags = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
-    result = doctest.testfile(str(EXAMPLES / "code_multipath_esbc.rst"), module_relative=False,
-                              optionflags=flags)  # fmt: skip
+    result = doctest.testfile(
+        str(EXAMPLES / "code_multipath_esbc.rst"), module_relative=False, optionflags=flags
+    )
     assert result.attempted >= 12 and result.failed == 0

@@ -105,9 +105,22 @@ def test_esbc_result_is_valid():
         (lambda d: d.__setitem__("schema_version", "2"), "schema_version"),
         (lambda d: d["windows"].__setitem__("count", 1.5), "windows.count"),
         (lambda d: d["sampling"].__setitem__("nyquist_hz", "0.5"), "sampling.nyquist_hz"),
-        (lambda d: d["screening"].__setitem__("excluded", [
-            {"sat": "G01", "start_gps_s": 0.0, "stop_gps_s": 300.0, "kind": "ionosphere",
-             "statistic": 0.3, "threshold": 0.2}]), "screening.excluded.0"),  # no reason
+        (
+            lambda d: d["screening"].__setitem__(
+                "excluded",
+                [
+                    {
+                        "sat": "G01",
+                        "start_gps_s": 0.0,
+                        "stop_gps_s": 300.0,
+                        "kind": "ionosphere",
+                        "statistic": 0.3,
+                        "threshold": 0.2,
+                    }
+                ],
+            ),
+            "screening.excluded.0",
+        ),  # no reason
         (lambda d: d.__setitem__("unexpected", 1), "(top level)"),
     ],
 )

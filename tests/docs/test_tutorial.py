@@ -11,7 +11,10 @@ DOCS = Path(__file__).resolve().parents[2] / "docs"
 def test_kalman_tutorial_runs():
     flags = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
     result = doctest.testfile(
-        str(DOCS / "tutorial_kalman.rst"), module_relative=False, optionflags=flags, report=True,
+        str(DOCS / "tutorial_kalman.rst"),
+        module_relative=False,
+        optionflags=flags,
+        report=True,
         verbose=False,
     )
     assert result.attempted >= 50, result
@@ -32,7 +35,12 @@ def test_configuration_example_is_a_valid_config(tmp_path):
 
 
 def test_docs_do_not_point_users_to_the_shared_folder():
-    bad = [str(p.relative_to(DOCS)) for p in DOCS.rglob("*")
-           if p.is_file() and p.suffix in {".rst", ".py", ".md", ".txt"}
-           and "_build" not in p.parts and "../shared" in p.read_text()]  # fmt: skip
+    bad = [
+        str(p.relative_to(DOCS))
+        for p in DOCS.rglob("*")
+        if p.is_file()
+        and p.suffix in {".rst", ".py", ".md", ".txt"}
+        and "_build" not in p.parts
+        and "../shared" in p.read_text()
+    ]
     assert not bad, f"'../shared' in {bad}"

@@ -141,24 +141,32 @@ def _corrections(header: list[str], epoch: str) -> list[list[str]]:
 
     if "GPSA" in ion and "GPSB" in ion:
         a, b = nums(ion["GPSA"]), nums(ion["GPSB"])
-        out.append([
-            "> ION G01 LNAV",
-            f"    {epoch}" + "".join(map(_d19, a[:3])),
-            "    " + "".join(map(_d19, [a[3], *b[:3]])),
-            "    " + _d19(b[3]) + _d19(0.0),
-        ])  # fmt: skip
+        out.append(
+            [
+                "> ION G01 LNAV",
+                f"    {epoch}" + "".join(map(_d19, a[:3])),
+                "    " + "".join(map(_d19, [a[3], *b[:3]])),
+                "    " + _d19(b[3]) + _d19(0.0),
+            ]
+        )
     if "GAL" in ion:
         g = nums(ion["GAL"])
-        out.append(["> ION E01 IFNV", f"    {epoch}" + "".join(map(_d19, g[:3])),
-                    "    " + _d19(0.0)])  # fmt: skip
+        out.append(
+            ["> ION E01 IFNV", f"    {epoch}" + "".join(map(_d19, g[:3])), "    " + _d19(0.0)]
+        )
     for ln in sto:
         kind = ln[:4]
         a0, a1 = float(ln[5:22].replace("D", "E")), float(ln[22:38].replace("D", "E"))
         t_ref = float(ln[38:45])
         sat = "E01 IFNV" if kind.startswith("GA") else "G01 LNAV"
         utc = {"GPUT": "UTC(USNO)", "GAUT": "UTCGAL"}.get(kind, "")
-        out.append([f"> STO {sat}", f"    {epoch} {kind:<18s} {'':18s} {utc:<18s}".rstrip(),
-                    "    " + "".join(map(_d19, (t_ref, a0, a1, 0.0)))])  # fmt: skip
+        out.append(
+            [
+                f"> STO {sat}",
+                f"    {epoch} {kind:<18s} {'':18s} {utc:<18s}".rstrip(),
+                "    " + "".join(map(_d19, (t_ref, a0, a1, 0.0))),
+            ]
+        )
     return out
 
 
@@ -186,9 +194,16 @@ def cnav_record(lnav: list[str]) -> list[str]:
     orbit1 = lnav[1][:61] + _d19(m0)
     toe = float(lnav[3][4:23].replace("D", "E")) + 1800.0
     orbit3 = "    " + _d19(toe) + lnav[3][23:]
-    return ["> EPH " + first[:3] + " CNAV", first, orbit1, lnav[2], orbit3, *lnav[4:7],
-            "    " + _d19(float(lnav[7][4:23].replace("D", "E"))) + _d19(0.0),
-            "    " + "".join(map(_d19, (0.0, 0.0, 0.0, 0.0)))]  # fmt: skip
+    return [
+        "> EPH " + first[:3] + " CNAV",
+        first,
+        orbit1,
+        lnav[2],
+        orbit3,
+        *lnav[4:7],
+        "    " + _d19(float(lnav[7][4:23].replace("D", "E"))) + _d19(0.0),
+        "    " + "".join(map(_d19, (0.0, 0.0, 0.0, 0.0))),
+    ]
 
 
 def nav_to_v4(text: str, version: str = "4.00") -> str:
@@ -201,12 +216,18 @@ def nav_to_v4(text: str, version: str = "4.00") -> str:
     end = next(i for i, ln in enumerate(lines) if ln[60:].strip() == "END OF HEADER")
     header, records = lines[: end + 1], _records(lines[end + 1 :])
     epoch = _epoch(records[0][0])
-    line1 = with_version(header_line(f"{'':9s}{'':11s}{'N: GNSS NAV DATA':<20s}M: MIXED",
-                                     "RINEX VERSION / TYPE"), version)  # fmt: skip
+    line1 = with_version(
+        header_line(f"{'':9s}{'':11s}{'N: GNSS NAV DATA':<20s}M: MIXED", "RINEX VERSION / TYPE"),
+        version,
+    )
     moved = ("IONOSPHERIC CORR", "TIME SYSTEM CORR", "RINEX VERSION / TYPE", "END OF HEADER")
     kept = [ln for ln in header if ln[60:].strip() not in moved]
-    out = [line1, *kept, header_line("10.57677/PSDBOUND-TEST", "DOI"),
-           header_line("", "END OF HEADER")]  # fmt: skip
+    out = [
+        line1,
+        *kept,
+        header_line("10.57677/PSDBOUND-TEST", "DOI"),
+        header_line("", "END OF HEADER"),
+    ]
     for rec in _corrections(header, epoch):
         out.extend(rec)
     gps = next(r for r in records if r[0][0] == "G")

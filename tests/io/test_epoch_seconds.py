@@ -83,8 +83,11 @@ def _repeat_as_29_9999999(text: str, change: bool = False) -> tuple[str, int]:
 def test_repeat_written_once_as_29_9999999_is_dropped_with_a_warning(tmp_path):
     text = _text()
     odd, k = _repeat_as_29_9999999(text)
-    with pytest.warns(PsdboundWarning, match=rf"f\.rnx, line {k}: 1 epoch\(s\) repeated .*"
-                                             r"2020-06-25 00:05:30\.000"):  # fmt: skip
+    with pytest.warns(
+        PsdboundWarning,
+        match=rf"f\.rnx, line {k}: 1 epoch\(s\) repeated .*"
+        r"2020-06-25 00:05:30\.000",
+    ):
         obs = read_obs(_write(tmp_path, odd))
     ref = read_obs(_write(tmp_path, text, "ref.rnx"))
     np.testing.assert_array_equal(obs.t_gps_s, ref.t_gps_s)
@@ -94,7 +97,10 @@ def test_repeat_written_once_as_29_9999999_is_dropped_with_a_warning(tmp_path):
 
 def test_repeat_written_once_as_29_9999999_with_other_data_is_refused(tmp_path):
     odd, k = _repeat_as_29_9999999(_text(), change=True)
-    with pytest.raises(InputError, match=rf"f\.rnx, line {k}: epoch 2020-06-25 00:05:30\.000 "
-                                         rf"appears twice with different data \(lines {k - 3} "
-                                         rf"and {k}\)"):  # fmt: skip
+    with pytest.raises(
+        InputError,
+        match=rf"f\.rnx, line {k}: epoch 2020-06-25 00:05:30\.000 "
+        rf"appears twice with different data \(lines {k - 3} "
+        rf"and {k}\)",
+    ):
         read_obs(_write(tmp_path, odd))

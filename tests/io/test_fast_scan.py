@@ -62,8 +62,11 @@ def test_reading_some_codes_still_checks_the_columns(tmp_path):
     bad = tmp_path / "swapped.rnx"
     bad.write_bytes(text.replace(good, b"G    6 L1C C1C S1C C2W L2W S2W"))  # two labels swapped
     for codes in (None, ["L1C", "L2W"]):
-        with pytest.raises(InputError, match=r"swapped.rnx, line \d+: observation L1C of system G "
-                           "does not follow the range"):  # fmt: skip
+        with pytest.raises(
+            InputError,
+            match=r"swapped.rnx, line \d+: observation L1C of system G "
+            "does not follow the range",
+        ):
             read_obs(bad, codes=codes)
     some = read_obs(demo_data().obs_paths[0], codes=["L1C", "L2W"])
     assert some.blocks["G"].codes == ("L1C", "L2W")

@@ -64,8 +64,12 @@ def f19(v: float) -> str:
 def record_v3(sat, ymdhms, pos, vel, acc, *, clock=6.3559e-05, gamma=0.0, health=0, k=1):
     y, mo, d, h, mi, s = ymdhms
     km = [x / 1000.0 for x in (*pos, *vel, *acc)]
-    lines = [f"{sat} {y:4d} {mo:02d} {d:02d} {h:02d} {mi:02d} {s:02d}" + f19(clock) + f19(gamma)
-             + f19(342000.0)]  # fmt: skip
+    lines = [
+        f"{sat} {y:4d} {mo:02d} {d:02d} {h:02d} {mi:02d} {s:02d}"
+        + f19(clock)
+        + f19(gamma)
+        + f19(342000.0)
+    ]
     extra = (health, k, 0.0)
     for i in range(3):
         lines.append("    " + f19(km[i]) + f19(km[3 + i]) + f19(km[6 + i]) + f19(extra[i]))
@@ -77,8 +81,12 @@ def record_v2(prn, ymdhms, pos, vel, acc, *, k=-4):
     y, mo, d, h, mi, s = ymdhms
     km = [x / 1000.0 for x in (*pos, *vel, *acc)]
     d19 = [f19(v).replace("e", "D") for v in km]
-    lines = [f"{prn:2d}{y % 100:3d}{mo:3d}{d:3d}{h:3d}{mi:3d}{s:5.1f}" + f19(-1.2e-5).replace(
-        "e", "D") + f19(9.1e-13).replace("e", "D") + f19(84600.0).replace("e", "D")]  # fmt: skip
+    lines = [
+        f"{prn:2d}{y % 100:3d}{mo:3d}{d:3d}{h:3d}{mi:3d}{s:5.1f}"
+        + f19(-1.2e-5).replace("e", "D")
+        + f19(9.1e-13).replace("e", "D")
+        + f19(84600.0).replace("e", "D")
+    ]
     extra = [f19(0.0), f19(float(k)), f19(3.0)]
     for i in range(3):
         lines.append("   " + d19[i] + d19[3 + i] + d19[6 + i] + extra[i].replace("e", "D"))
@@ -123,12 +131,18 @@ def test_two_body_circle_in_the_rotating_frame():
     pos, vel = to_rotating(r, v, 0.0)
     dt = np.linspace(-3 * 3600.0, 3 * 3600.0, 25)
     n = len(dt)
-    got, _ = propagate_glonass_state(np.tile(pos, (n, 1)), np.tile(vel, (n, 1)), np.zeros(3), dt,
-                                     j2=0.0)  # fmt: skip
+    got, _ = propagate_glonass_state(
+        np.tile(pos, (n, 1)), np.tile(vel, (n, 1)), np.zeros(3), dt, j2=0.0
+    )
     mean_motion = np.sqrt(GM / R_GLO**3)
-    want = np.array([to_rotating(R_GLO * (np.cos(u0 + mean_motion * t) * p
-                                          + np.sin(u0 + mean_motion * t) * q), v, t)[0]
-                     for t in dt])  # fmt: skip
+    want = np.array(
+        [
+            to_rotating(
+                R_GLO * (np.cos(u0 + mean_motion * t) * p + np.sin(u0 + mean_motion * t) * q), v, t
+            )[0]
+            for t in dt
+        ]
+    )
     np.testing.assert_allclose(np.linalg.norm(got, axis=1), R_GLO, rtol=0, atol=0.01)
     assert np.max(np.linalg.norm(got - want, axis=1)) < 0.01
 
@@ -192,11 +206,18 @@ def test_read_rinex3_glonass_records(tmp_path):
 def test_positions_equal_direct_integration():
     (pos, vel, acc), _ = two_records()
     eph = GlonassEphemerides(
-        sat=np.array(["R05"]), tb_gps_s=np.array([TB]), xyz_m=pos[None], vel_m_s=vel[None],
-        acc_m_s2=acc[None], clock_bias_s=np.zeros(1), gamma_n=np.zeros(1),
-        message_time_s=np.zeros(1), health=np.zeros(1, np.int64), channel=np.ones(1, np.int64),
+        sat=np.array(["R05"]),
+        tb_gps_s=np.array([TB]),
+        xyz_m=pos[None],
+        vel_m_s=vel[None],
+        acc_m_s2=acc[None],
+        clock_bias_s=np.zeros(1),
+        gamma_n=np.zeros(1),
+        message_time_s=np.zeros(1),
+        health=np.zeros(1, np.int64),
+        channel=np.ones(1, np.int64),
         age_days=np.zeros(1, np.int64),
-    )  # fmt: skip
+    )
     dt = np.array([-1800.0, -1234.5, -60.0, -0.5, 0.0, 7.0, 60.0, 61.0, 959.3, 1800.0])
     got = glonass_positions_ecef_m(eph, "R05", TB + dt)
     ref, _ = propagate_glonass_state(np.tile(pos, (dt.size, 1)), vel, acc, dt)
@@ -250,12 +271,18 @@ def test_channels_from_the_navigation_file_reach_the_wavelengths(tmp_path):
     tb = t0 + np.arange(0.0, 3601.0, 1800.0)
     states = [propagate_glonass_state(pos, vel, acc, x - tb[0]) for x in tb]
     eph = GlonassEphemerides(
-        sat=np.array(["R05"] * tb.size), tb_gps_s=tb, xyz_m=np.vstack([s[0] for s in states]),
-        vel_m_s=np.vstack([s[1] for s in states]), acc_m_s2=np.tile(acc, (tb.size, 1)),
-        clock_bias_s=np.zeros(tb.size), gamma_n=np.zeros(tb.size),
-        message_time_s=np.zeros(tb.size), health=np.zeros(tb.size, np.int64),
-        channel=np.full(tb.size, 6), age_days=np.zeros(tb.size, np.int64),
-    )  # fmt: skip
+        sat=np.array(["R05"] * tb.size),
+        tb_gps_s=tb,
+        xyz_m=np.vstack([s[0] for s in states]),
+        vel_m_s=np.vstack([s[1] for s in states]),
+        acc_m_s2=np.tile(acc, (tb.size, 1)),
+        clock_bias_s=np.zeros(tb.size),
+        gamma_n=np.zeros(tb.size),
+        message_time_s=np.zeros(tb.size),
+        health=np.zeros(tb.size, np.int64),
+        channel=np.full(tb.size, 6),
+        age_days=np.zeros(tb.size, np.int64),
+    )
     from dataclasses import replace
 
     from psdbound.io.geometry import signal_path
@@ -294,8 +321,11 @@ def test_esbc_consecutive_glonass_records_agree():
     for sat in g.satellites:
         rows = np.flatnonzero((g.sat == sat) & (g.health == 0))
         rows = rows[np.argsort(g.tb_gps_s[rows])]
-        pairs += [(a, b) for a, b in zip(rows[:-1], rows[1:], strict=True)
-                  if g.tb_gps_s[b] - g.tb_gps_s[a] == 1800.0]  # fmt: skip
+        pairs += [
+            (a, b)
+            for a, b in zip(rows[:-1], rows[1:], strict=True)
+            if g.tb_gps_s[b] - g.tb_gps_s[a] == 1800.0
+        ]
     a, b = np.array(pairs).T
 
     def ahead(rows, dt, **kw):
@@ -305,8 +335,10 @@ def test_esbc_consecutive_glonass_records_agree():
     full = np.linalg.norm(ahead(a, 1800.0) - g.xyz_m[b], axis=1)
     half = np.linalg.norm(ahead(a, 900.0) - ahead(b, -900.0), axis=1)
     no_j2 = np.linalg.norm(ahead(a, 1800.0, j2=0.0) - g.xyz_m[b], axis=1)
-    print(f"\n{full.size} pairs: 30 min ahead median {np.median(full):.2f} m, max "
-          f"{full.max():.2f} m; meeting half-way median {np.median(half):.2f} m")  # fmt: skip
+    print(
+        f"\n{full.size} pairs: 30 min ahead median {np.median(full):.2f} m, max "
+        f"{full.max():.2f} m; meeting half-way median {np.median(half):.2f} m"
+    )
     assert full.size > 300
     assert np.median(full) < 5.0 and np.percentile(full, 99) < 20.0
     assert np.median(half) < 3.0 and half.max() < 20.0

@@ -34,16 +34,27 @@ def test_overlap_kept_once_and_said(pieces):
     blk, blk_a = m.blocks["G"], a.blocks["G"]
     i, j = m.codes("G").index("L1C"), blk_a.codes.index("L1C")
     for s in blk_a.sats:
-        np.testing.assert_array_equal(blk.values[:120, blk.sats.index(s), i],
-                                      blk_a.values[:120, blk_a.sats.index(s), j])  # fmt: skip
+        np.testing.assert_array_equal(
+            blk.values[:120, blk.sats.index(s), i], blk_a.values[:120, blk_a.sats.index(s), j]
+        )
 
 
 @pytest.mark.realdata
 def test_union_of_codes_and_errors(pieces):
     a, b, _ = pieces
     blk = b.blocks["G"]
-    fewer = replace(b, blocks={"G": replace(blk, codes=blk.codes[:-1], values=blk.values[..., :-1],
-                                            lli=blk.lli[..., :-1], ssi=blk.ssi[..., :-1])})
+    fewer = replace(
+        b,
+        blocks={
+            "G": replace(
+                blk,
+                codes=blk.codes[:-1],
+                values=blk.values[..., :-1],
+                lli=blk.lli[..., :-1],
+                ssi=blk.ssi[..., :-1],
+            )
+        },
+    )
     m = merge_observations([a, fewer])
     last = m.codes("G").index(blk.codes[-1])
     assert np.isnan(m.blocks["G"].values[-1, :, last]).all()  # missing code: NaN, not dropped
@@ -51,10 +62,13 @@ def test_union_of_codes_and_errors(pieces):
     assert not same_station(a, other)
     with pytest.raises(InputError, match="different stations.*'ESBC'.*'ZZZZ'"):
         merge_observations([a, other])
-    slow = replace(b, t_gps_s=b.t_gps_s[::2], epoch_flag=b.epoch_flag[::2],
-                   header=replace(b.header, interval_s=60.0),
-                   blocks={"G": replace(blk, values=blk.values[::2], lli=blk.lli[::2],
-                                        ssi=blk.ssi[::2])})  # fmt: skip
+    slow = replace(
+        b,
+        t_gps_s=b.t_gps_s[::2],
+        epoch_flag=b.epoch_flag[::2],
+        header=replace(b.header, interval_s=60.0),
+        blocks={"G": replace(blk, values=blk.values[::2], lli=blk.lli[::2], ssi=blk.ssi[::2])},
+    )
     with pytest.raises(InputError, match="different sampling intervals"):
         merge_observations([a, slow])
 

@@ -272,8 +272,11 @@ def test_bad_epoch(tmp_path):
 
 def test_rinex5_rejected(tmp_path):
     lines = [hdr("     5.00           N: GNSS NAV DATA    M: MIXED", "RINEX VERSION / TYPE")]
-    with pytest.raises(InputError, match=r"v5\.rnx, line 1: RINEX 5\.00 navigation files are "
-                       r"not supported; expected RINEX 2, 3 or 4 \(up to 4\.02\)"):
+    with pytest.raises(
+        InputError,
+        match=r"v5\.rnx, line 1: RINEX 5\.00 navigation files are "
+        r"not supported; expected RINEX 2, 3 or 4 \(up to 4\.02\)",
+    ):
         read_nav(write(tmp_path, "v5.rnx", lines + RNX3_HEADER[2:]))
 
 

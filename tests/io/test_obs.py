@@ -133,8 +133,11 @@ def test_unknown_signal(tmp_path):
 
 def test_requested_system_without_epochs(tmp_path):
     p = write_small(tmp_path / "a.rnx")
-    with pytest.raises(NoDataError, match=r"a\.rnx: no Galileo \(E\) observations: the file "
-                                          r"holds GPS \(G\) only"):  # fmt: skip
+    with pytest.raises(
+        NoDataError,
+        match=r"a\.rnx: no Galileo \(E\) observations: the file "
+        r"holds GPS \(G\) only",
+    ):
         read_obs(p, systems="GE")
 
 

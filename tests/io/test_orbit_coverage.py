@@ -192,8 +192,11 @@ def test_gras_with_the_esbc_navigation_file_of_2020():
 def test_gras_with_the_esbc_sp3_of_2020():
     obs = read_obs(shared_file(GRAS_OBS), systems="R")
     sp3 = read_orbit(shared_file(ESBC_SP3))
-    with pytest.raises(InputError, match=r"the SP3 file covers 2020-06-25 00:00 to 2020-06-25 "
-                       r"23:45 GPS time; .* use an SP3 file of the observation day"):  # fmt: skip
+    with pytest.raises(
+        InputError,
+        match=r"the SP3 file covers 2020-06-25 00:00 to 2020-06-25 "
+        r"23:45 GPS time; .* use an SP3 file of the observation day",
+    ):
         find_arcs(obs, system="R", orbit=sp3)
 
 
@@ -218,8 +221,9 @@ def test_no_observed_satellite_in_the_records():
     full = nominal("G")
     obs = geometric_observations(full, systems="G")
     eph = full.ephemerides["G"]
-    others = Navigation(Path("others.rnx"), 3.04, None,
-                        {"G": eph.select(~np.isin(eph.sat, obs.blocks["G"].sats))})  # fmt: skip
+    others = Navigation(
+        Path("others.rnx"), 3.04, None, {"G": eph.select(~np.isin(eph.sat, obs.blocks["G"].sats))}
+    )
     with pytest.raises(InputError) as err:
         find_arcs(obs, system="G", orbit=others, min_length_s=600)
     msg = str(err.value)

@@ -82,8 +82,9 @@ def test_rinex4_nav_gives_the_rinex3_orbits(tmp_path, version):
     assert assert_same_orbits(a, b) > 1000
     for s in a.ephemerides:  # the same records, field by field
         for f in ("sat", "toc_gps_s", "toe_gps_s", "sqrt_a", "m0_rad", "health", "data_source"):
-            np.testing.assert_array_equal(getattr(a.ephemerides[s], f),
-                                          getattr(b.ephemerides[s], f))  # fmt: skip
+            np.testing.assert_array_equal(
+                getattr(a.ephemerides[s], f), getattr(b.ephemerides[s], f)
+            )
     assert b.unused == {"EOP": 1, "EPH G CNAV": 1}
     assert msgs == list(b.warnings) and len(msgs) == 1
     assert "2 RINEX 4 navigation record(s) skipped" in msgs[0]
@@ -95,18 +96,36 @@ def test_every_record_type_and_unused_message_is_counted(tmp_path):
     lines = text.split("\n")
     k = _body_start(lines)
     extra = [
-        "> STO G01 LNAV", "    2024 05 19 00 00 00 GPUT", "    " + "0" * 19 * 4,
-        "> STO E   IFNV", "    2024 05 19 00 00 00 GAGP", "    " + "0" * 19 * 4,
-        "> ION C08 D1D2", "    2024 05 19 00 00 00", "    x", "    y",
-        "> EPH C21 CNV1", *(["    z"] * 10),
-        "> EPH R01 L1OC", *(["    z"] * 6),
-        "> EPH I09 L1NV", *(["    z"] * 9),
-        "> XYZ G01 LNAV", "    something new",
-    ]  # fmt: skip
+        "> STO G01 LNAV",
+        "    2024 05 19 00 00 00 GPUT",
+        "    " + "0" * 19 * 4,
+        "> STO E   IFNV",
+        "    2024 05 19 00 00 00 GAGP",
+        "    " + "0" * 19 * 4,
+        "> ION C08 D1D2",
+        "    2024 05 19 00 00 00",
+        "    x",
+        "    y",
+        "> EPH C21 CNV1",
+        *(["    z"] * 10),
+        "> EPH R01 L1OC",
+        *(["    z"] * 6),
+        "> EPH I09 L1NV",
+        *(["    z"] * 9),
+        "> XYZ G01 LNAV",
+        "    something new",
+    ]
     nav, msgs = _read_v4(tmp_path, "\n".join(lines[:k] + extra + lines[k:]))
-    assert nav.unused == {"EOP": 1, "EPH C CNV1": 1, "EPH G CNAV": 1, "EPH I L1NV": 1,
-                          "EPH R L1OC": 1, "ION": 1, "STO": 2,
-                          "unknown record type XYZ": 1}  # fmt: skip
+    assert nav.unused == {
+        "EOP": 1,
+        "EPH C CNV1": 1,
+        "EPH G CNAV": 1,
+        "EPH I L1NV": 1,
+        "EPH R L1OC": 1,
+        "ION": 1,
+        "STO": 2,
+        "unknown record type XYZ": 1,
+    }
     assert len(msgs) == 1 and "9 RINEX 4 navigation record(s) skipped" in msgs[0]
     assert "STO 2" in msgs[0]
 
@@ -115,8 +134,11 @@ def test_sbas_and_navic_records_are_counted_per_system_as_in_rinex3(tmp_path):
     text = nav_to_v4(_v3_text())
     lines = text.split("\n")
     k = _body_start(lines)
-    sbas = ["> EPH S23 SBAS", "S23 2024 05 19 00 00 16" + " 0.000000000000E+00" * 3,
-            *(["    " + " 0.000000000000E+00" * 4] * 3)]  # fmt: skip
+    sbas = [
+        "> EPH S23 SBAS",
+        "S23 2024 05 19 00 00 16" + " 0.000000000000E+00" * 3,
+        *(["    " + " 0.000000000000E+00" * 4] * 3),
+    ]
     nav, _ = _read_v4(tmp_path, "\n".join(lines[:k] + sbas + sbas + lines[k:]))
     assert nav.skipped == {"S": 2} and nav.unused["EPH S SBAS"] == 2
 
@@ -141,19 +163,34 @@ def test_a_cnav_record_is_not_read_as_lnav(tmp_path):
 @pytest.mark.parametrize(
     ("edit", "message"),
     [
-        (lambda r: ["> EPH G01"] + r[1:], r"line {h}: cannot read the record header '> EPH G01'; "
-         r"expected '>', the record type in columns 3-5, the satellite in columns 7-9"),
-        (lambda r: [r[0].replace(">", " ", 1)] + r[1:], r"line {h}: expected a record header such "
-         r"as '> EPH G01 LNAV'"),
-        (lambda r: [r[0], "G02" + r[1][3:]] + r[2:], r"line {f}: the record header names G01 but "
-         r"the record's first line holds 'G02' in columns 1-3"),
-        (lambda r: [r[0].replace("G01", "G77")] + r[1:], r"line {h}: satellite id 'G77' in columns "
-         r"7-9 is not valid"),
-        (lambda r: [r[0].replace("> EPH G01", "> EPH X01")] + r[1:], r"line {h}: unknown "
-         r"satellite system letter 'X' in the record header \(columns 7-9\); expected one of "
-         r"G, R, E, C, J, S, I"),
+        (
+            lambda r: ["> EPH G01"] + r[1:],
+            r"line {h}: cannot read the record header '> EPH G01'; "
+            r"expected '>', the record type in columns 3-5, the satellite in columns 7-9",
+        ),
+        (
+            lambda r: [r[0].replace(">", " ", 1)] + r[1:],
+            r"line {h}: expected a record header such "
+            r"as '> EPH G01 LNAV'",
+        ),
+        (
+            lambda r: [r[0], "G02" + r[1][3:]] + r[2:],
+            r"line {f}: the record header names G01 but "
+            r"the record's first line holds 'G02' in columns 1-3",
+        ),
+        (
+            lambda r: [r[0].replace("G01", "G77")] + r[1:],
+            r"line {h}: satellite id 'G77' in columns "
+            r"7-9 is not valid",
+        ),
+        (
+            lambda r: [r[0].replace("> EPH G01", "> EPH X01")] + r[1:],
+            r"line {h}: unknown "
+            r"satellite system letter 'X' in the record header \(columns 7-9\); expected one of "
+            r"G, R, E, C, J, S, I",
+        ),
     ],
-)  # fmt: skip
+)
 def test_damaged_record_headers_are_refused_with_the_line(tmp_path, edit, message):
     lines = nav_to_v4(_v3_text()).split("\n")
     h = next(i for i, ln in enumerate(lines) if ln.startswith("> EPH G01 LNAV"))
@@ -178,9 +215,12 @@ def test_a_record_of_the_wrong_length_is_left_out_with_a_warning(tmp_path):
 def test_a_file_cut_in_a_record_is_refused(tmp_path):
     text = nav_to_v4(_v3_text()).rstrip("\n")
     cut = "\n".join(text.split("\n")[:-3])
-    with pytest.raises(InputError, match=r"cut\.rnx, line \d+: truncated navigation record: the "
-                       r"file ends in the middle of the record of E\d\d \(it has 5 of its 8 "
-                       r"lines\)"):
+    with pytest.raises(
+        InputError,
+        match=r"cut\.rnx, line \d+: truncated navigation record: the "
+        r"file ends in the middle of the record of E\d\d \(it has 5 of its 8 "
+        r"lines\)",
+    ):
         read_nav(_write(tmp_path, cut, "cut.rnx"))
 
 
@@ -193,20 +233,27 @@ def test_a_newer_minor_version_is_read_with_a_warning(tmp_path):
 def test_rinex4_records_in_a_rinex3_file_are_refused(tmp_path):
     text = nav_to_v4(_v3_text()).split("\n")
     text[0] = "     3.05" + text[0][9:]
-    with pytest.raises(InputError, match=r"a RINEX 4 record header \('> EPH \.\.\.'\) in a file "
-                       r"whose line 1 gives a RINEX 3 version"):
+    with pytest.raises(
+        InputError,
+        match=r"a RINEX 4 record header \('> EPH \.\.\.'\) in a file "
+        r"whose line 1 gives a RINEX 3 version",
+    ):
         read_nav(_write(tmp_path, "\n".join(text), "mixed.rnx"))
 
 
 @pytest.mark.parametrize(
     ("edit", "message"),
     [
-        (lambda ln: [with_version(ln[0], "5.00"), *ln[1:]],
-         r"line 1: RINEX 5\.00 navigation files are not supported; expected RINEX 2, 3 or 4"),
-        (lambda ln: [x.replace("> EPH G01 LNAV", "> EPH G01") for x in ln],
-         r"line \d+: cannot read the record header '> EPH G01'"),
+        (
+            lambda ln: [with_version(ln[0], "5.00"), *ln[1:]],
+            r"line 1: RINEX 5\.00 navigation files are not supported; expected RINEX 2, 3 or 4",
+        ),
+        (
+            lambda ln: [x.replace("> EPH G01 LNAV", "> EPH G01") for x in ln],
+            r"line \d+: cannot read the record header '> EPH G01'",
+        ),
     ],
-)  # fmt: skip
+)
 def test_bad_navigation_input_exits_2_naming_the_line(tmp_path, capsys, edit, message):
     obs = _write(tmp_path, format_obs_v3(moving_observations()), "o.rnx")
     nav = _write(tmp_path, "\n".join(edit(nav_to_v4(_v3_text()).split("\n"))), "bad_nav.rnx")
@@ -260,12 +307,25 @@ def test_esbc_rinex4_positions_equal_rinex3_to_the_millimetre(esbc):
 # ------------------------------------------------------------ georinex cross-check
 
 _GEORINEX_FIELDS = {  # georinex name -> ours
-    "SVclockBias": "af0_s", "SVclockDrift": "af1", "Crs": "crs_m", "DeltaN": "delta_n_rad_s",
-    "M0": "m0_rad", "Cuc": "cuc_rad", "Eccentricity": "e", "Cus": "cus_rad", "sqrtA": "sqrt_a",
-    "Toe": "toe_sow_s", "Cic": "cic_rad", "Omega0": "omega0_rad", "Cis": "cis_rad",
-    "Io": "i0_rad", "Crc": "crc_m", "omega": "omega_rad", "OmegaDot": "omega_dot_rad_s",
+    "SVclockBias": "af0_s",
+    "SVclockDrift": "af1",
+    "Crs": "crs_m",
+    "DeltaN": "delta_n_rad_s",
+    "M0": "m0_rad",
+    "Cuc": "cuc_rad",
+    "Eccentricity": "e",
+    "Cus": "cus_rad",
+    "sqrtA": "sqrt_a",
+    "Toe": "toe_sow_s",
+    "Cic": "cic_rad",
+    "Omega0": "omega0_rad",
+    "Cis": "cis_rad",
+    "Io": "i0_rad",
+    "Crc": "crc_m",
+    "omega": "omega_rad",
+    "OmegaDot": "omega_dot_rad_s",
     "IDOT": "idot_rad_s",
-}  # fmt: skip
+}
 
 
 def _georinex_records(ds, system: str) -> np.ndarray:

@@ -37,9 +37,20 @@ def assert_same_observations(a: Observations, b: Observations) -> None:
         np.testing.assert_array_equal(x.lli, y.lli, err_msg=s)
         np.testing.assert_array_equal(x.ssi, y.ssi, err_msg=s)
     ha, hb = a.header, b.header
-    for name in ("file_system", "marker_name", "receiver_type", "antenna_type", "interval_s",
-                 "time_system", "obs_types", "glonass_channels", "leap_seconds", "first_obs",
-                 "last_obs", "type_lines"):  # fmt: skip
+    for name in (
+        "file_system",
+        "marker_name",
+        "receiver_type",
+        "antenna_type",
+        "interval_s",
+        "time_system",
+        "obs_types",
+        "glonass_channels",
+        "leap_seconds",
+        "first_obs",
+        "last_obs",
+        "type_lines",
+    ):
         if name == "type_lines":  # the new records come after the type lists: same lines
             assert ha.type_lines == hb.type_lines
         else:

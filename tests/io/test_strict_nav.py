@@ -31,8 +31,11 @@ def _second_g27(line_no: int, token: str, k: int = 1) -> list[str]:
 @pytest.mark.parametrize("token", ["nan", "inf", "-inf", "1.5e+400", "NaN"])
 def test_non_finite_record_is_left_out_with_a_warning(tmp_path, token):
     p = write(tmp_path, "n.rnx", RNX3_HEADER + G27 + _second_g27(2, token))
-    with pytest.warns(PsdboundWarning, match=r"n\.rnx: 1 navigation record\(s\) left out .* G28 "
-                                             r"on line \d+, non-finite eccentricity"):  # fmt: skip
+    with pytest.warns(
+        PsdboundWarning,
+        match=r"n\.rnx: 1 navigation record\(s\) left out .* G28 "
+        r"on line \d+, non-finite eccentricity",
+    ):
         nav = read_nav(p)
     assert nav.satellites == ("G27",)
     assert nav.warnings and "left out" in nav.warnings[0]
@@ -58,8 +61,11 @@ def test_satellite_ids_outside_their_range_are_refused(tmp_path, sat):
     rec = list(G27)
     rec[0] = sat + rec[0][3:]
     p = write(tmp_path, "s.rnx", RNX3_HEADER + G27 + rec)
-    with pytest.raises(InputError, match=rf"s\.rnx, line {len(RNX3_HEADER) + 9}: satellite id "
-                                         f"'{sat}' in columns 1-3 is not valid"):  # fmt: skip
+    with pytest.raises(
+        InputError,
+        match=rf"s\.rnx, line {len(RNX3_HEADER) + 9}: satellite id "
+        f"'{sat}' in columns 1-3 is not valid",
+    ):
         read_nav(p)
 
 

@@ -69,8 +69,11 @@ def test_type_count_must_match_the_codes(tmp_path):
     codes = " ".join([f"{c}{b}C" for c in "CLDS" for b in "125"] + ["C1W"])
     long = "G   14 " + codes
     p = _write(tmp_path, _replace_line(text, k, long.ljust(60) + "SYS / # / OBS TYPES"))
-    with pytest.raises(InputError, match=rf"line {k}: the observation types of system G declare "
-                                         "14 codes but list 13"):  # fmt: skip
+    with pytest.raises(
+        InputError,
+        match=rf"line {k}: the observation types of system G declare "
+        "14 codes but list 13",
+    ):
         read_obs(p)
     p = _write(tmp_path, _replace_line(text, k, ln[:3] + "  4" + ln[6:]))
     with pytest.raises(InputError, match=rf"line {k}: .*more observation types than the 4"):
@@ -81,10 +84,14 @@ def test_dropped_code_with_its_count_is_refused_by_the_line_width(tmp_path):
     text = _text()
     k = _line_of(text, "SYS / # / OBS TYPES")
     # S1C dropped and the count decremented: every record is one field too wide
-    p = _write(tmp_path, _replace_line(text, k, "G    4 C1C L1C L2W D1C".ljust(60)
-                                       + "SYS / # / OBS TYPES"))  # fmt: skip
-    with pytest.raises(InputError, match=r"f\.rnx, line \d+: satellite G05: the record is .* "
-                                         r"observation types of G end at column 67"):  # fmt: skip
+    p = _write(
+        tmp_path, _replace_line(text, k, "G    4 C1C L1C L2W D1C".ljust(60) + "SYS / # / OBS TYPES")
+    )
+    with pytest.raises(
+        InputError,
+        match=r"f\.rnx, line \d+: satellite G05: the record is .* "
+        r"observation types of G end at column 67",
+    ):
         read_obs(p)
 
 
@@ -92,10 +99,15 @@ def test_mislabelled_phase_column_is_refused(tmp_path):
     text = _text()
     k = _line_of(text, "SYS / # / OBS TYPES")
     # L1C and L2W swapped in the header: each phase is read with the other wavelength
-    p = _write(tmp_path, _replace_line(text, k, "G    5 C1C L2W L1C D1C S1C".ljust(60)
-                                       + "SYS / # / OBS TYPES"))  # fmt: skip
-    with pytest.raises(InputError, match=rf"line {k}: observation L2W of system G does not "
-                                         "follow the range"):  # fmt: skip
+    p = _write(
+        tmp_path,
+        _replace_line(text, k, "G    5 C1C L2W L1C D1C S1C".ljust(60) + "SYS / # / OBS TYPES"),
+    )
+    with pytest.raises(
+        InputError,
+        match=rf"line {k}: observation L2W of system G does not "
+        "follow the range",
+    ):
         read_obs(p)
 
 
@@ -115,15 +127,29 @@ def test_rinex2_type_list_and_widths(tmp_path):
 
 @pytest.mark.parametrize(
     ("field", "value"),
-    [("month", "13"), ("day", "32"), ("hour", "25"), ("second", "        nan"),
-     ("second", "       1e30"), ("year", "9999"), ("minute", "60"), ("day", "31")],
-)  # fmt: skip
+    [
+        ("month", "13"),
+        ("day", "32"),
+        ("hour", "25"),
+        ("second", "        nan"),
+        ("second", "       1e30"),
+        ("year", "9999"),
+        ("minute", "60"),
+        ("day", "31"),
+    ],
+)
 def test_impossible_epoch_dates_are_refused_with_the_line(tmp_path, field, value):
     text = _text()
     k = _line_of(text, r"^> 2020 06 25 00 05  0\.")
     ln = _lines(text)[k - 1]
-    cols = {"year": (2, 6), "month": (7, 9), "day": (10, 12), "hour": (13, 15),
-            "minute": (16, 18), "second": (18, 29)}[field]  # fmt: skip
+    cols = {
+        "year": (2, 6),
+        "month": (7, 9),
+        "day": (10, 12),
+        "hour": (13, 15),
+        "minute": (16, 18),
+        "second": (18, 29),
+    }[field]
     new = ln[: cols[0]] + value.rjust(cols[1] - cols[0]) + ln[cols[1] :]
     p = _write(tmp_path, _replace_line(text, k, new))
     with pytest.raises(InputError, match=rf"f\.rnx, line {k}: (impossible|bad) epoch date"):
@@ -163,22 +189,28 @@ def test_repeated_epoch_with_other_data_is_refused(tmp_path):
     rep = lines[a - 1 : a + 2]
     rep[1] = rep[1][:14] + ("1" if rep[1][14] != "1" else "2") + rep[1][15:]
     lines[a + 2 : a + 2] = rep
-    with pytest.raises(InputError, match=rf"line {a + 3}: epoch 2020-06-25 00:05:00.000 appears "
-                                         rf"twice with different data \(lines {a} and {a + 3}\)"):
+    with pytest.raises(
+        InputError,
+        match=rf"line {a + 3}: epoch 2020-06-25 00:05:00.000 appears "
+        rf"twice with different data \(lines {a} and {a + 3}\)",
+    ):
         read_obs(_write(tmp_path, "\n".join(lines)))
 
 
 def test_epoch_before_time_of_first_obs_is_refused(tmp_path):
-    text = _text().replace("  2020     6    25     0     0    0.0000000     GPS",
-                           "  2020     6    25     0     5    0.0000000     GPS")  # fmt: skip
+    text = _text().replace(
+        "  2020     6    25     0     0    0.0000000     GPS",
+        "  2020     6    25     0     5    0.0000000     GPS",
+    )
     with pytest.raises(InputError, match="is before the header's TIME OF FIRST OBS"):
         read_obs(_write(tmp_path, text))
 
 
 @pytest.mark.parametrize("value", ["nan", "inf", "-30", "1e30", "abc", "15"])
 def test_interval_comes_from_the_epochs(tmp_path, value):
-    text = _text().replace("    30.000" + " " * 50 + "INTERVAL", value.rjust(10) + " " * 50
-                           + "INTERVAL")  # fmt: skip
+    text = _text().replace(
+        "    30.000" + " " * 50 + "INTERVAL", value.rjust(10) + " " * 50 + "INTERVAL"
+    )
     assert value.rjust(10) + " " * 50 + "INTERVAL" in text
     with pytest.warns(PsdboundWarning, match="INTERVAL"):
         obs = read_obs(_write(tmp_path, text))
@@ -192,13 +224,18 @@ def test_epoch_flags_and_record_counts_are_checked(tmp_path):
     ln = _lines(text)[k - 1]
     with pytest.raises(InputError, match=rf"line {k}: epoch flag 7 is not a RINEX epoch flag"):
         read_obs(_write(tmp_path, _replace_line(text, k, ln[:31] + "7" + ln[32:])))
-    with pytest.raises(InputError, match=rf"line {k + 2}: epoch .* announces 1 satellite records "
-                                         "but the next epoch starts after 2 lines"):  # fmt: skip
+    with pytest.raises(
+        InputError,
+        match=rf"line {k + 2}: epoch .* announces 1 satellite records "
+        "but the next epoch starts after 2 lines",
+    ):
         read_obs(_write(tmp_path, _replace_line(text, k, ln[:32] + "  1")))
     # an event (flag 4) that redefines the observation types
     lines = _lines(text)
-    event = ["> 2020 06 25 00 05 10.0000000  4  1",
-             "G    2 C1C L1C".ljust(60) + "SYS / # / OBS TYPES"]  # fmt: skip
+    event = [
+        "> 2020 06 25 00 05 10.0000000  4  1",
+        "G    2 C1C L1C".ljust(60) + "SYS / # / OBS TYPES",
+    ]
     lines[k + 2 : k + 2] = event
     with pytest.raises(InputError, match=rf"line {k + 4}: the observation types are redefined"):
         read_obs(_write(tmp_path, "\n".join(lines)))
@@ -213,8 +250,11 @@ def test_values_outside_the_format_are_refused_with_line_and_field(tmp_path, tok
     k = _line_of(text, r"^G05")
     ln = _lines(text)[k - 1]
     new = ln[:19] + token.rjust(14) + ln[33:]  # the L1C field
-    with pytest.raises(InputError, match=rf"f\.rnx, line {k}: satellite G05, observation L1C: "
-                                         ".* is not an F14.3 number"):  # fmt: skip
+    with pytest.raises(
+        InputError,
+        match=rf"f\.rnx, line {k}: satellite G05, observation L1C: "
+        ".* is not an F14.3 number",
+    ):
         read_obs(_write(tmp_path, _replace_line(text, k, new)))
 
 
@@ -232,8 +272,11 @@ def test_values_that_cannot_be_their_type_are_refused(tmp_path):
     k = _line_of(text, r"^G05")
     ln = _lines(text)[k - 1]
     new = ln[:67] + "-45.000".rjust(14) + ln[81:]  # a negative signal strength
-    with pytest.raises(InputError, match=rf"line {k}: satellite G05, observation S1C: -45.000 "
-                                         "is not a signal strength"):  # fmt: skip
+    with pytest.raises(
+        InputError,
+        match=rf"line {k}: satellite G05, observation S1C: -45.000 "
+        "is not a signal strength",
+    ):
         read_obs(_write(tmp_path, _replace_line(text, k, new)))
 
 

@@ -64,9 +64,16 @@ def test_dask_two_workers_and_cache(tmp_path):
     assert second.series_by_date["2020-01-06"]["sats"] == ["G01", "G02"]
     # any change of input is a different cache entry
     third = station_cutoffs(
-        41.84, -87.63, days[:1], name="CHI", **{**kw, "workers": 0,
-        "settings": CutoffSettings(grid_size=15, ut_step_h=1.0, margin_db=30.0)},
-    )  # fmt: skip
+        41.84,
+        -87.63,
+        days[:1],
+        name="CHI",
+        **{
+            **kw,
+            "workers": 0,
+            "settings": CutoffSettings(grid_size=15, ut_step_h=1.0, margin_db=30.0),
+        },
+    )
     assert third.from_cache == [False]
     assert third.rows[0]["f_c_hz"] < first.rows[0]["f_c_hz"]
 
@@ -76,10 +83,15 @@ def test_dask_scheduler_address(tmp_path):
 
     with LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as cluster:
         res = station_cutoffs(
-            41.84, -87.63, ["2020-01-06"], satellites=("G07",), scheduler=cluster.scheduler_address,
-            settings=CutoffSettings(grid_size=11, ut_step_h=2.0), use_cache=False,
+            41.84,
+            -87.63,
+            ["2020-01-06"],
+            satellites=("G07",),
+            scheduler=cluster.scheduler_address,
+            settings=CutoffSettings(grid_size=11, ut_step_h=2.0),
+            use_cache=False,
             cache_dir=tmp_path,
-        )  # fmt: skip
+        )
         assert [r["sat"] for r in res.rows] == ["G07"]
         assert res.from_cache == [False]
     assert not list(tmp_path.iterdir())  # use_cache=False writes nothing
@@ -88,6 +100,10 @@ def test_dask_scheduler_address(tmp_path):
 def test_station_run_no_satellite_above_mask(tmp_path):
     with pytest.raises(NoDataError, match="no satellite rises above the 89.9 deg"):
         station_cutoffs(
-            41.84, -87.63, ["2020-01-06"], workers=0, cache_dir=tmp_path,
+            41.84,
+            -87.63,
+            ["2020-01-06"],
+            workers=0,
+            cache_dir=tmp_path,
             settings=CutoffSettings(elevation_mask_deg=89.9),
-        )  # fmt: skip
+        )

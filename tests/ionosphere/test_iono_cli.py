@@ -25,10 +25,25 @@ def cli(argv):
 
 def test_cli_station_writes_table_json_and_figures(tmp_path, capsys):
     out = tmp_path / "out"
-    code = cli([
-        "cutoff", "--lat", "41.84", "--lon", "-87.63", "--days", "2020-01-06", "--workers", "0",
-        "--name", "CHICAGO", "--out", str(out), "--cache-dir", str(tmp_path / "c"),
-    ])  # fmt: skip
+    code = cli(
+        [
+            "cutoff",
+            "--lat",
+            "41.84",
+            "--lon",
+            "-87.63",
+            "--days",
+            "2020-01-06",
+            "--workers",
+            "0",
+            "--name",
+            "CHICAGO",
+            "--out",
+            str(out),
+            "--cache-dir",
+            str(tmp_path / "c"),
+        ]
+    )
     assert code == 0
     printed = capsys.readouterr().out
     assert "recommended f_c =" in printed
@@ -51,10 +66,26 @@ def test_cli_station_writes_table_json_and_figures(tmp_path, capsys):
 
 def test_cli_legacy_is_the_periodogram_criterion(tmp_path, capsys):
     out = tmp_path / "out"
-    code = cli([
-        "cutoff", "--lat", "41.84", "--lon", "-87.63", "--days", "2020-01-06", "--workers", "0",
-        "--name", "CHI", "--out", str(out), "--no-cache", "--legacy", "--no-figures",
-    ])  # fmt: skip
+    code = cli(
+        [
+            "cutoff",
+            "--lat",
+            "41.84",
+            "--lon",
+            "-87.63",
+            "--days",
+            "2020-01-06",
+            "--workers",
+            "0",
+            "--name",
+            "CHI",
+            "--out",
+            str(out),
+            "--no-cache",
+            "--legacy",
+            "--no-figures",
+        ]
+    )
     assert code == 0 and "relative criterion" in capsys.readouterr().out
     data = json.loads((out / "cutoff_CHI.json").read_text())
     assert data["settings"]["sampling_s"] == 12.0 and data["settings"]["criterion"] == "relative"
@@ -82,11 +113,26 @@ def test_cli_bad_input(tmp_path, argv, message):
 def test_cli_world_map_through_dask(tmp_path, capsys):
     """A coarse world map (2 x 2 grid, one day per layer) on a 2-worker local cluster."""
     out = tmp_path / "map"
-    code = cli([
-        "cutoff", "--map", "--days", "2020-03-02", "--grid-step", "90,180", "--workers", "2",
-        "--out", str(out), "--cache-dir", str(tmp_path / "c"), "--lat", "41.84",
-        "--lon", "-87.63",
-    ])  # fmt: skip
+    code = cli(
+        [
+            "cutoff",
+            "--map",
+            "--days",
+            "2020-03-02",
+            "--grid-step",
+            "90,180",
+            "--workers",
+            "2",
+            "--out",
+            str(out),
+            "--cache-dir",
+            str(tmp_path / "c"),
+            "--lat",
+            "41.84",
+            "--lon",
+            "-87.63",
+        ]
+    )
     assert code == 0
     printed = capsys.readouterr().out
     assert "at (41.84, -87.63), F10.7 73.8 sfu (2020): f_c" in printed

@@ -75,10 +75,13 @@ def test_yuma_round_trip(tmp_path):
     assert back.satellites == ("G01", "G02", "G03")  # G04 unhealthy
     tt = toa + np.linspace(-86400, 86400, 7)
     for s in back.satellites:
-        np.testing.assert_allclose(back.positions_ecef_m(s, tt), alm.positions_ecef_m(s, tt),
-                                   atol=0.5)  # fmt: skip
-        assert np.all(np.abs(np.linalg.norm(back.positions_ecef_m(s, tt), axis=1) - 5153.6**2)
-                      < 0.03 * 5153.6**2)  # fmt: skip
+        np.testing.assert_allclose(
+            back.positions_ecef_m(s, tt), alm.positions_ecef_m(s, tt), atol=0.5
+        )
+        assert np.all(
+            np.abs(np.linalg.norm(back.positions_ecef_m(s, tt), axis=1) - 5153.6**2)
+            < 0.03 * 5153.6**2
+        )
     assert gps.satellites  # nominal and almanac objects share the OrbitSource surface
     bad = tmp_path / "bad.yuma"
     bad.write_text("******** Week 109 almanac for PRN-01 ********\nID: 01\nHealth: zero\n")

@@ -47,8 +47,9 @@ def test_shipped_map_is_sound(doc):
     assert f107[0] == pytest.approx(annual_f107(2020), abs=0.01)
     assert f107[1] == pytest.approx(annual_f107(2024), abs=0.01)
     lat, lon = doc["grid"]["lat_deg"], doc["grid"]["lon_deg"]
-    assert len(lat) * len(lon) == len(grid_sites(doc["grid"]["lat_step_deg"],
-                                                 doc["grid"]["lon_step_deg"]))  # fmt: skip
+    assert len(lat) * len(lon) == len(
+        grid_sites(doc["grid"]["lat_step_deg"], doc["grid"]["lon_step_deg"])
+    )
     for layer in doc["layers"]:
         assert [s["name"] for s in layer["stations"]] == [s.name for s in MAP_STATIONS]
         g = np.array(layer["grid"]["recommended_f_c_hz"], dtype=float)
@@ -163,8 +164,11 @@ def test_computed_source_simulates_the_date_flux(monkeypatch):
     monkeypatch.setattr(batch, "station_cutoffs", fake)
     c = choose_cutoff(
         CutoffOptions(source="computed", margin_db=30.0),
-        lat_deg=ESBC[0], lon_deg=ESBC[1], year=2020, date="2020-06-25",
-    )  # fmt: skip
+        lat_deg=ESBC[0],
+        lon_deg=ESBC[1],
+        year=2020,
+        date="2020-06-25",
+    )
     assert c.f_c_hz == 1.23e-3 and c.source.startswith("computed (PyIRI, residual criterion, 2020")
     assert seen["n_days"] == 12 and seen["settings"].f107_sfu == pytest.approx(69.7)
     assert seen["settings"].margin_db == 30.0 and c.info["computed"]["n_series"] == 7

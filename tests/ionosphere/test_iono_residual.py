@@ -107,8 +107,7 @@ def test_batched_filter_is_the_fit_filter():
     arcs = [np.cumsum(rng.normal(size=n)) for n in (40, 301, 1500)]
     for hp in (HighPass(), HighPass(order=2), HighPass(kind="cheby2"), HighPass(edge="pad")):
         for f_c in (3e-4, 2e-3, 1e-2):
-            for x, (y, keep) in zip(arcs, highpass_arcs(arcs, DT_S, f_c, highpass=hp),
-                                    strict=True):  # fmt: skip
+            for x, (y, keep) in zip(arcs, highpass_arcs(arcs, DT_S, f_c, highpass=hp), strict=True):
                 y0, keep0 = hp.apply(x, DT_S, f_c)
                 assert np.array_equal(keep, keep0)
                 np.testing.assert_allclose(y, y0, rtol=0, atol=1e-12 * np.abs(y0).max())

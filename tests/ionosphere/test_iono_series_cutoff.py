@@ -41,8 +41,9 @@ def synthetic_series(seed: int, alpha: float = 1.0, noise_m: float = 1e-7):
     m = np.unique(np.round(np.geomspace(1, 3300, 60)).astype(int))
     amp = 1.0 / m**alpha
     phase = rng.uniform(0, 2 * np.pi, m.size)
-    y = (amp[:, None] * np.cos(2 * np.pi * m[:, None] * t[None, :] / SIDEREAL_DAY_S
-                                + phase[:, None])).sum(axis=0)  # fmt: skip
+    y = (
+        amp[:, None] * np.cos(2 * np.pi * m[:, None] * t[None, :] / SIDEREAL_DAY_S + phase[:, None])
+    ).sum(axis=0)
     y += rng.normal(0.0, noise_m, t.size)
     return t, y, m, amp
 

@@ -69,8 +69,11 @@ def test_defaults_and_the_legacy_settings():
     assert s.highpass() == HighPass()
     old = CutoffSettings.legacy()
     assert (old.criterion, old.sampling_s, old.grid_size, old.second_frequency_hz) == (
-        "relative", 12.0, 21, None,
-    )  # fmt: skip
+        "relative",
+        12.0,
+        21,
+        None,
+    )
     assert old.residual_scale == 1.0 and old.series_options()["criterion"] == "relative"
     assert CutoffSettings.legacy(drop_db=30.0).drop_db == 30.0
     with pytest.raises(InputError, match="criterion"):

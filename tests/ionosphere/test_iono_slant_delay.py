@@ -17,9 +17,13 @@ DT_S = 12.0
 @lru_cache(maxsize=4)
 def chicago_day(method: str = "line-of-sight", stride: int = 5, satellites=None):
     return simulate_slant_delay(
-        CHICAGO.lat_deg, CHICAGO.lon_deg, "2020-01-06", method=method, ray_stride=stride,
+        CHICAGO.lat_deg,
+        CHICAGO.lon_deg,
+        "2020-01-06",
+        method=method,
+        ray_stride=stride,
         satellites=satellites,
-    )  # fmt: skip
+    )
 
 
 def test_slant_delay_magnitude_and_elevation_dependence():
@@ -57,9 +61,13 @@ def test_grid_interpolation_matches_pyiri_along_the_ray():
     for i in rng.choice(js.size, 4, replace=False):
         j, k = js[i], ks[i]
         direct = slant_tec_direct(
-            CHICAGO.lat_deg, CHICAGO.lon_deg, "2020-01-06", sd.t_gps_s[k],
-            sd.elevation_deg[j, k], sd.azimuth_deg[j, k],
-        )  # fmt: skip
+            CHICAGO.lat_deg,
+            CHICAGO.lon_deg,
+            "2020-01-06",
+            sd.t_gps_s[k],
+            sd.elevation_deg[j, k],
+            sd.azimuth_deg[j, k],
+        )
         assert sd.delay_m[j, k] / k_tecu == pytest.approx(direct, rel=0.02)
 
 
@@ -74,9 +82,12 @@ def test_delay_scales_with_frequency():
     sats = ("G01",)
     l1 = chicago_day(satellites=sats)
     l2 = simulate_slant_delay(
-        CHICAGO.lat_deg, CHICAGO.lon_deg, "2020-01-06", satellites=sats,
+        CHICAGO.lat_deg,
+        CHICAGO.lon_deg,
+        "2020-01-06",
+        satellites=sats,
         frequency_hz=FREQUENCIES_HZ["L2"],
-    )  # fmt: skip
+    )
     ratio = (FREQUENCIES_HZ["L1"] / FREQUENCIES_HZ["L2"]) ** 2
     np.testing.assert_allclose(l2.delay_m, l1.delay_m * ratio, rtol=1e-9)
 

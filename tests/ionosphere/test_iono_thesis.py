@@ -32,9 +32,13 @@ THESIS = THESIS_CHICAGO_2020_HZ
 def test_one_june_day_against_the_thesis():
     """June 1 2020 (the month of Chicago's largest cutoff), in-process: a quick check."""
     res = station_cutoffs(
-        CHICAGO.lat_deg, CHICAGO.lon_deg, ["2020-06-01"], workers=0, use_cache=False,
+        CHICAGO.lat_deg,
+        CHICAGO.lon_deg,
+        ["2020-06-01"],
+        workers=0,
+        use_cache=False,
         keep_series=False,
-    )  # fmt: skip
+    )
     s = res.summary()
     assert s["n_series"] >= 20 and s["n_not_reached"] == 0 and s["n_floor"] == 0
     assert 0.7 < s["mean_f_c_hz"] / THESIS["mean"] < 1.6
@@ -46,9 +50,14 @@ def test_one_june_day_against_the_thesis():
 @pytest.mark.slow
 def test_chicago_2020_station_year_against_the_thesis(tmp_path):
     res = station_cutoffs(
-        CHICAGO.lat_deg, CHICAGO.lon_deg, select_days(2020), name="CHICAGO", workers=2,
-        cache_dir=tmp_path, keep_series=False,
-    )  # fmt: skip
+        CHICAGO.lat_deg,
+        CHICAGO.lon_deg,
+        select_days(2020),
+        name="CHICAGO",
+        workers=2,
+        cache_dir=tmp_path,
+        keep_series=False,
+    )
     s = res.summary()
     ratios = {k: s[f"{k}_f_c_hz"] / THESIS[k] for k in ("mean", "min", "max")}
     assert 0.65 <= ratios["mean"] <= 1.35, ratios
@@ -63,8 +72,13 @@ def test_chicago_2020_station_year_against_the_thesis(tmp_path):
 def test_issue_4_criterion_is_leakage_bound(tmp_path):
     """The untapered 40 dB Lomb-Scargle criterion, two days: 5-10x the thesis."""
     res = station_cutoffs(
-        CHICAGO.lat_deg, CHICAGO.lon_deg, ["2020-01-06", "2020-07-06"], workers=2,
-        settings=CutoffSettings.legacy(), cache_dir=tmp_path, keep_series=False,
-    )  # fmt: skip
+        CHICAGO.lat_deg,
+        CHICAGO.lon_deg,
+        ["2020-01-06", "2020-07-06"],
+        workers=2,
+        settings=CutoffSettings.legacy(),
+        cache_dir=tmp_path,
+        keep_series=False,
+    )
     s = res.summary()
     assert s["mean_f_c_hz"] / THESIS["mean"] > 4

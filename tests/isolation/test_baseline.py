@@ -30,12 +30,21 @@ def _arcs(rng, d_m, n_arcs=12, n=600, noise_m=0.003, rho=0.99):
     for _ in range(n_arcs):
         t = np.linspace(0.0, 1.0, n)
         a0, w = rng.uniform(0, 2 * np.pi, 2), rng.uniform(0.3, 1.0, 2)
-        u = [np.stack([np.cos(a0[k] + w[k] * t), np.sin(a0[k] + w[k] * t),
-                       0.5 + 0.3 * t * (k - 0.5)], axis=1) for k in range(2)]  # fmt: skip
+        u = [
+            np.stack(
+                [np.cos(a0[k] + w[k] * t), np.sin(a0[k] + w[k] * t), 0.5 + 0.3 * t * (k - 0.5)],
+                axis=1,
+            )
+            for k in range(2)
+        ]
         u = [x / np.linalg.norm(x, axis=1, keepdims=True) for x in u]
         g = u[0] - u[1]
-        e = lfilter([np.sqrt(1 - rho**2)], [1.0, -rho], rng.normal(0, noise_m, n),
-                    zi=[rho * rng.normal(0, noise_m)])[0]  # fmt: skip
+        e = lfilter(
+            [np.sqrt(1 - rho**2)],
+            [1.0, -rho],
+            rng.normal(0, noise_m, n),
+            zi=[rho * rng.normal(0, noise_m)],
+        )[0]
         dd.append(g @ d_m + rng.uniform(-5, 5) + e)
         los.append(g)
     return dd, los
@@ -96,8 +105,9 @@ HEADER_ERROR_ENU_M = (1.2, -0.7, 0.6)  # 1.51 m
 
 @pytest.fixture(scope="module")
 def pair(tmp_path_factory):
-    sc = preset("demo").replace(name="pair", header_error_enu_m=HEADER_ERROR_ENU_M,
-                                duration_s=2 * 3600.0, seed=3)  # fmt: skip
+    sc = preset("demo").replace(
+        name="pair", header_error_enu_m=HEADER_ERROR_ENU_M, duration_s=2 * 3600.0, seed=3
+    )
     return simulate(sc, tmp_path_factory.mktemp("pair"))
 
 
@@ -120,18 +130,23 @@ def test_simulated_header_error_is_found_and_corrected(pair):
     given = isolate_dual_antenna(a, b, nav, baseline="given")
     assert given.meta["baseline_estimate"]["used"] is False
     assert "kept" in baseline_note(given.meta["baseline_estimate"], given.meta["markers"])
-    rms = [np.sqrt(np.mean(np.concatenate([x.value_m for x in s.arcs()]) ** 2))
-           for s in (auto, given)]  # fmt: skip
+    rms = [
+        np.sqrt(np.mean(np.concatenate([x.value_m for x in s.arcs()]) ** 2)) for s in (auto, given)
+    ]
     assert rms[1] > 5 * rms[0]
 
 
 def test_simulated_pair_windows_come_back(pair):
     files = [str(p) for p in pair.obs_paths]
-    res = {mode: psdbound.fit(files, nav=pair.nav_path, pair=tuple(files), baseline=mode)
-           for mode in ("auto", "given")}  # fmt: skip
+    res = {
+        mode: psdbound.fit(files, nav=pair.nav_path, pair=tuple(files), baseline=mode)
+        for mode in ("auto", "given")
+    }
     cov = {m: r.document["windows"]["covered_fraction"] for m, r in res.items()}
-    print(f"\ncovered fraction: {cov}; sigma_GM: "
-          f"{ {m: round(1e3 * r.bound.sigma_gm_m, 2) for m, r in res.items()} } mm")
+    print(
+        f"\ncovered fraction: {cov}; sigma_GM: "
+        f"{ {m: round(1e3 * r.bound.sigma_gm_m, 2) for m, r in res.items()} } mm"
+    )
     assert cov["auto"] >= 0.95 and res["auto"].verdict == "bounded"
     assert res["given"].bound.sigma_gm_m > 2 * res["auto"].bound.sigma_gm_m
     assert any("antenna position corrected" in w for w in res["auto"].warnings)

@@ -34,8 +34,19 @@ def rms(v):
     return float(np.sqrt(np.mean(np.square(v))))
 
 
-def synthetic(system="G", *, n=960, dt=30.0, seed=0, mp_m=0.5, noise_m=0.2, iono_m=15.0,
-              slip_at=400, extra_codes=(), drop_codes=()):  # fmt: skip
+def synthetic(
+    system="G",
+    *,
+    n=960,
+    dt=30.0,
+    seed=0,
+    mp_m=0.5,
+    noise_m=0.2,
+    iono_m=15.0,
+    slip_at=400,
+    extra_codes=(),
+    drop_codes=(),
+):
     """Two satellites: code = range + I + MP, phase = range - I + N lambda (metres).
 
     Per satellite: a common geometric range, an ionosphere ramp with a bend
@@ -58,8 +69,11 @@ def synthetic(system="G", *, n=960, dt=30.0, seed=0, mp_m=0.5, noise_m=0.2, iono
         fi, fj = (carrier_frequency_hz(sat, c, GLONASS_K) for c in (li, lj))
         rho = 2.1e7 + 3.0e6 * np.sin(np.pi * x + s)
         ii = 2.0 + iono_m * (x + 0.3 * x**2)
-        mp = [mp_m * np.sin(2 * np.pi * (t - t[0]) / rng.uniform(300, 900) + rng.uniform(0, 6))
-              + rng.normal(0.0, noise_m, n) for _ in range(2)]  # fmt: skip
+        mp = [
+            mp_m * np.sin(2 * np.pi * (t - t[0]) / rng.uniform(300, 900) + rng.uniform(0, 6))
+            + rng.normal(0.0, noise_m, n)
+            for _ in range(2)
+        ]
         n_i, n_j = rng.integers(-(10**6), 10**6, 2)
         slip = np.where(np.arange(n) >= slip_at, 7, 0) if slip_at else 0
         cols = {ci: mp[0], cj: mp[1], li: slip + n_i, lj: n_j}  # on top of range and ionosphere
@@ -75,10 +89,19 @@ def synthetic(system="G", *, n=960, dt=30.0, seed=0, mp_m=0.5, noise_m=0.2, iono
         v[100:105, 0, codes.index(ci)] = np.nan
         v[200, 0, codes.index(ci)] = 0.0
     lli = np.where(np.isfinite(v), 0, -1).astype(np.int8)
-    header = ObsHeader(version=3.04, file_system=system, marker_name="SYN", receiver_type="",
-                       antenna_type="", approx_position_m=None, antenna_delta_hen_m=np.zeros(3),
-                       interval_s=dt, time_system="GPS", obs_types={system: codes},
-                       glonass_channels=dict(GLONASS_K) if system == "R" else {})  # fmt: skip
+    header = ObsHeader(
+        version=3.04,
+        file_system=system,
+        marker_name="SYN",
+        receiver_type="",
+        antenna_type="",
+        approx_position_m=None,
+        antenna_delta_hen_m=np.zeros(3),
+        interval_s=dt,
+        time_system="GPS",
+        obs_types={system: codes},
+        glonass_channels=dict(GLONASS_K) if system == "R" else {},
+    )
     block = SystemBlock(system, sats, codes, v, lli, lli.copy())
     obs = Observations("synthetic.rnx", header, t, np.zeros(n, np.int8), {system: block})
     return obs, truth
@@ -229,8 +252,13 @@ def test_bad_code_or_phase_choices(codes, phases, match):
 def test_several_systems_need_system():
     obs, _ = synthetic("G")
     e, _ = synthetic("E")
-    both = Observations(obs.path, obs.header, obs.t_gps_s, obs.epoch_flag,
-                        {"G": obs.blocks["G"], "E": e.blocks["E"]})  # fmt: skip
+    both = Observations(
+        obs.path,
+        obs.header,
+        obs.t_gps_s,
+        obs.epoch_flag,
+        {"G": obs.blocks["G"], "E": e.blocks["E"]},
+    )
     with pytest.raises(InputError, match="give system"):
         isolate_code_multipath(both, "C1C")
     assert isolate_code_multipath(both, "C1C", system="E").arc_sats[0] == "E11"
@@ -268,8 +296,12 @@ def test_rinex2(upc, code, signals):
 
 # ---------------------------------------------------------------- gnssmultipath cross-check
 
-GM_SIGNALS = [("G", "GPS", "Band_1", "C1C"), ("G", "GPS", "Band_2", "C2W"),
-              ("G", "GPS", "Band_5", "C5Q"), ("E", "Galileo", "Band_1", "C1C")]  # fmt: skip
+GM_SIGNALS = [
+    ("G", "GPS", "Band_1", "C1C"),
+    ("G", "GPS", "Band_2", "C2W"),
+    ("G", "GPS", "Band_5", "C5Q"),
+    ("E", "Galileo", "Band_1", "C1C"),
+]
 MIN_COMMON_S = 7200.0
 
 
@@ -339,8 +371,14 @@ def _compare(esbc, system, name, band, code):
         # our slips strictly inside one of gnssmultipath's slip-free periods
         starts = [a.epoch_index[0] for a in arcs if a.sat == sat and a.start_reason == "cycle slip"]
         spanned = [i for i in starts if fin[i] and fin[i - 1]]  # same finite run
-        rows[sat] = SimpleNamespace(common_s=both.sum() * esbc.obs.interval_s, ours=o, theirs=g,
-                                    ours_lev=o2, theirs_lev=g2, spanned=spanned)  # fmt: skip
+        rows[sat] = SimpleNamespace(
+            common_s=both.sum() * esbc.obs.interval_s,
+            ours=o,
+            theirs=g,
+            ours_lev=o2,
+            theirs_lev=g2,
+            spanned=spanned,
+        )
     return ours, rows, runtime
 
 
@@ -372,11 +410,13 @@ def test_agrees_with_gnssmultipath(esbc, system, name, band, code):
     spanned = sorted(s for s, r in judged.items() if r.spanned)
     worst = max(rel_lev, key=lambda s: abs(rel_lev[s]))
     clean = [s for s in judged if s not in spanned]
-    print(f"\n{system} {code} ({c['phase1_Code']}-{c['phase2_Code']}): psdbound {runtime:.2f} s, "
-          f"{len(judged)} satellites with >= 2 h common, re-levelled max |rel| "
-          f"{abs(rel_lev[worst]):.1e} ({worst}); as is max |rel| without spanned slips "
-          f"{max(abs(rel_raw[s]) for s in clean):.2e}; spanned slips: {spanned or 'none'} "
-          + " ".join(f"{s} {100 * rel_raw[s]:+.1f} %" for s in spanned))  # fmt: skip
+    print(
+        f"\n{system} {code} ({c['phase1_Code']}-{c['phase2_Code']}): psdbound {runtime:.2f} s, "
+        f"{len(judged)} satellites with >= 2 h common, re-levelled max |rel| "
+        f"{abs(rel_lev[worst]):.1e} ({worst}); as is max |rel| without spanned slips "
+        f"{max(abs(rel_raw[s]) for s in clean):.2e}; spanned slips: {spanned or 'none'} "
+        + " ".join(f"{s} {100 * rel_raw[s]:+.1f} %" for s in spanned)
+    )
     assert len(judged) >= 10
     assert all(abs(v) < 0.05 for v in rel_lev.values()), rel_lev
     for sat, r in rows.items():  # every satellite, every common sample
@@ -395,9 +435,11 @@ def test_agrees_with_gnssmultipath(esbc, system, name, band, code):
         g = theirs_all[:, keep]
         o = ours.value_m[~np.isin(np.asarray(ours.arc_sats)[ours.arc_id], list(drop))]
         day[label] = (rms(o), rms(g[np.isfinite(g)]), o.size, int(np.isfinite(g).sum()))
-    print("day RMS psdbound / gnssmultipath (samples): " + "; ".join(
-        f"{k} {a:.4f} / {b:.4f} m ({n} / {m})" for k, (a, b, n, m) in day.items())
-        + f"; common re-levelled {rms(o_lev):.4f} / {rms(g_lev):.4f} m")  # fmt: skip
+    print(
+        "day RMS psdbound / gnssmultipath (samples): "
+        + "; ".join(f"{k} {a:.4f} / {b:.4f} m ({n} / {m})" for k, (a, b, n, m) in day.items())
+        + f"; common re-levelled {rms(o_lev):.4f} / {rms(g_lev):.4f} m"
+    )
     a, b, n, m = day["without spanned slips"]
     assert a == pytest.approx(b, rel=0.05) and n == pytest.approx(m, rel=0.02)
     n_common = sum(r.ours.size for r in rows.values())

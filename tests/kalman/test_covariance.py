@@ -206,9 +206,17 @@ def test_covariance_recursion_matches_a_simulated_filter():
     Q = FILTERS["kinematic"] * 1e-2
     truth = raw(ErrorProcess.second_order(0.003, 2 * np.pi / 30.0, 1.0, damping=0.5))
     res = analyze_covariance(
-        np.eye(4), Q, H6, R_OTHER, BOUND, truth, dt_s=1.0, n_steps=n_steps, p0_base=P0,
+        np.eye(4),
+        Q,
+        H6,
+        R_OTHER,
+        BOUND,
+        truth,
+        dt_s=1.0,
+        n_steps=n_steps,
+        p0_base=P0,
         elevation_deg=EL6,
-    )  # fmt: skip
+    )
     aug = augment_gm_states(np.eye(4), Q, H6, R_OTHER, BOUND, 1.0, elevation_deg=EL6)
     rng = np.random.default_rng(3)
     x = rng.multivariate_normal(np.zeros(4), P0, n_paths)
@@ -253,26 +261,48 @@ def test_time_varying_geometry_and_other_interval():
         h[:, :2] = h[:, :2] @ np.array([[c, -s], [s, c]])
         hs.append(h)
     res = analyze_covariance(
-        np.eye(4), FILTERS["static"] * 5, np.array(hs), R_OTHER, BOUND,
-        raw(ErrorProcess.gauss_markov(0.0031, 15.0, 5.0)), dt_s=5.0, n_steps=n_steps,
-        p0_base=P0, elevation_deg=EL6,
-    )  # fmt: skip
+        np.eye(4),
+        FILTERS["static"] * 5,
+        np.array(hs),
+        R_OTHER,
+        BOUND,
+        raw(ErrorProcess.gauss_markov(0.0031, 15.0, 5.0)),
+        dt_s=5.0,
+        n_steps=n_steps,
+        p0_base=P0,
+        elevation_deg=EL6,
+    )
     assert res.p_true_ss_m2 is None
     assert res.psd_ratio_min.min() >= 1.0
     assert res.bounded()
     with pytest.raises(InputError, match="sampled at 1 s, the filter runs at 5 s"):
         analyze_covariance(
-            np.eye(4), FILTERS["static"], H6, R_OTHER, BOUND, UNDER_BOUND["white"],
-            dt_s=5.0, n_steps=10, p0_base=P0,
-        )  # fmt: skip
+            np.eye(4),
+            FILTERS["static"],
+            H6,
+            R_OTHER,
+            BOUND,
+            UNDER_BOUND["white"],
+            dt_s=5.0,
+            n_steps=10,
+            p0_base=P0,
+        )
 
 
 def test_no_steady_state_is_reported_not_raised():
     q = np.diag([0.0, 0.0, 0.0, 1e-2])  # position a random constant: P -> 0, no DARE solution
     res = analyze_covariance(
-        np.eye(4), q, H6, R_OTHER, BOUND, raw(UNDER_BOUND["white"]), dt_s=1.0, n_steps=100,
-        p0_base=P0, elevation_deg=EL6,
-    )  # fmt: skip
+        np.eye(4),
+        q,
+        H6,
+        R_OTHER,
+        BOUND,
+        raw(UNDER_BOUND["white"]),
+        dt_s=1.0,
+        n_steps=100,
+        p0_base=P0,
+        elevation_deg=EL6,
+    )
     assert res.p_true_ss_m2 is None and res.p_filter_ss_m2 is None
     assert "no steady state" in res.notes[0] and "note:" in res.summary()
     assert res.bounded()

@@ -101,8 +101,14 @@ def test_components_check_their_numbers():
         Component("x", "gauss-markov", 0.001, None)
     with pytest.raises(psdbound.InputError):
         Component("x", "white", -1.0)
-    em = ErrorModel((Component("gauss_markov", "gauss-markov", 0.003, 60.0),
-                     Component("white", "white", 0.001)), 1.0, 1e-3)  # fmt: skip
+    em = ErrorModel(
+        (
+            Component("gauss_markov", "gauss-markov", 0.003, 60.0),
+            Component("white", "white", 0.001),
+        ),
+        1.0,
+        1e-3,
+    )
     ss = em.to_state_space(2.0)
     assert ss.phi[0, 0] == pytest.approx(math.exp(-2.0 / 60.0))
     assert em.variance_m2() == pytest.approx(0.003**2 + 0.001**2)
@@ -120,8 +126,16 @@ def test_parameter_set_holds_the_truth_and_the_bound_and_its_design_is_safe(demo
     assert gs.tau_lo_s <= truth["tau_s"] <= gs.tau_hi_s
     assert gs.sigma_lo_m <= truth["sigma_gm_m"] <= gs.sigma_hi_m
     # a one-state filter estimating a constant through the multipath: safe for every corner
-    check = verify_design(gs.design(), [[1.0]], [[0.0]], [[1.0]], None, dt_s=b.dt_s,
-                          n_steps=int(6 * gs.tau_hi_s / b.dt_s), p0_base=[[100.0]])  # fmt: skip
+    check = verify_design(
+        gs.design(),
+        [[1.0]],
+        [[0.0]],
+        [[1.0]],
+        None,
+        dt_s=b.dt_s,
+        n_steps=int(6 * gs.tau_hi_s / b.dt_s),
+        p0_base=[[100.0]],
+    )
     assert check.bounded(), check.worst
 
 

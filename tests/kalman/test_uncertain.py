@@ -48,11 +48,21 @@ FILTERS = {
         None,
         np.eye(2),
     ),
-    "6-sat static": (np.eye(4), np.diag([1e-6] * 3 + [1e-2]), H6, np.eye(6) * 1e-6,
-                     np.diag([1.0, 1.0, 1.0, 100.0])),
-    "6-sat kinematic": (np.eye(4), np.diag([1.0] * 3 + [1e2]), H6, np.eye(6) * 1e-6,
-                        np.diag([1.0, 1.0, 1.0, 100.0])),
-}  # fmt: skip
+    "6-sat static": (
+        np.eye(4),
+        np.diag([1e-6] * 3 + [1e-2]),
+        H6,
+        np.eye(6) * 1e-6,
+        np.diag([1.0, 1.0, 1.0, 100.0]),
+    ),
+    "6-sat kinematic": (
+        np.eye(4),
+        np.diag([1.0] * 3 + [1e2]),
+        H6,
+        np.eye(6) * 1e-6,
+        np.diag([1.0, 1.0, 1.0, 100.0]),
+    ),
+}
 GRID = SET.grid(n_tau=4, n_sigma=2)  # tau 20, 43, 93, 200 s x sigma 5, 3 mm
 
 
@@ -211,8 +221,9 @@ def test_analyze_covariance_p0_override():
     b = GaussMarkovBound.from_params(0.005, 50.0, 0.002, 1.0)
     truth = ErrorProcess.from_bound(b)
     a = analyze_covariance(F, Q, H, R, b, truth, dt_s=1.0, n_steps=50, p0_base=P0)
-    c = analyze_covariance(F, Q, H, R, b, truth, dt_s=1.0, n_steps=50, p0_base=P0,
-                           p0_gm_m2=0.005**2)  # fmt: skip
+    c = analyze_covariance(
+        F, Q, H, R, b, truth, dt_s=1.0, n_steps=50, p0_base=P0, p0_gm_m2=0.005**2
+    )
     np.testing.assert_allclose(a.p_filter_m2, c.p_filter_m2)
     with pytest.raises(InputError, match="p0_gm_m2"):
         analyze_covariance(F, Q, H, R, b, truth, dt_s=1.0, n_steps=5, p0_base=P0, p0_gm_m2=-1.0)

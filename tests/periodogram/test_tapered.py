@@ -41,8 +41,12 @@ def test_tapered_lomb_scargle_on_a_grid_uses_the_exact_fft():
     f = np.arange(1.0 / span, 0.98 / (2 * dt), 0.25 / span)
     w = pg.hann_taper(t.size)
     exact = LombScargle(t, y * w, fit_mean=False, center_data=False, normalization="psd")
-    np.testing.assert_allclose(pg.tapered_lomb_scargle(t, y, f, dt_s=dt),
-                               exact.power(f, method="slow"), rtol=1e-9, atol=1e-12)  # fmt: skip
+    np.testing.assert_allclose(
+        pg.tapered_lomb_scargle(t, y, f, dt_s=dt),
+        exact.power(f, method="slow"),
+        rtol=1e-9,
+        atol=1e-12,
+    )
     # and it was the FFT form (it raises off the grid instead of falling back)
     fft = lombscargle_gridfft(t, y * w, f, dt_s=dt, fit_mean=False)
     np.testing.assert_array_equal(fft, pg.tapered_lomb_scargle(t, y, f, dt_s=dt))

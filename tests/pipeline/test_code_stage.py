@@ -38,8 +38,9 @@ def test_demo_section_schema_and_unchanged_carrier_bound(demo_pair):
     assert c["n_samples"] == with_code.code.series.value_m.size > 1000
     bins = c["overbound"]["bins"]
     assert bins and all(b["sigma"] >= b["std"] * 0.5 and b["inflation"] > 0 for b in bins)
-    assert set(c["qq"]) == {f"[{b['elevation_deg'][0]:g}, {b['elevation_deg'][1]:g}) deg"
-                            for b in bins}  # fmt: skip
+    assert set(c["qq"]) == {
+        f"[{b['elevation_deg'][0]:g}, {b['elevation_deg'][1]:g}) deg" for b in bins
+    }
     assert "code multipath C1C: overbound sigma (inflation)" in with_code.summary()
     assert "code multipath" not in plain.summary()
     # the carrier-phase chain does not see the code stage
@@ -66,8 +67,10 @@ def test_report_has_the_section_and_the_qq_figure(demo_pair):
 def test_reloaded_result_keeps_the_section(demo_pair, tmp_path):
     _, with_code = demo_pair
     again = psdbound.load(with_code.to_json(tmp_path / "r.json"))
-    assert again.document["code_multipath"]["overbound"] == \
-        with_code.document["code_multipath"]["overbound"]  # fmt: skip
+    assert (
+        again.document["code_multipath"]["overbound"]
+        == with_code.document["code_multipath"]["overbound"]
+    )
 
 
 def test_options_checked_and_from_toml(tmp_path):
@@ -94,16 +97,31 @@ def test_campaign_refuses_the_option_instead_of_ignoring_it(tmp_path):
     from psdbound.campaign import run_campaign
 
     with pytest.raises(InputError, match="code_multipath"):
-        run_campaign([tmp_path / "x.rnx"], [tmp_path / "n.rnx"],
-                     options={"code_multipath": {"codes": ["C1C"]}})  # fmt: skip
+        run_campaign(
+            [tmp_path / "x.rnx"],
+            [tmp_path / "n.rnx"],
+            options={"code_multipath": {"codes": ["C1C"]}},
+        )
 
 
 def test_fit_cli_bad_code_is_exit_2(tmp_path):
     r = subprocess.run(
-        [sys.executable, "-m", "psdbound", "fit", "--code-multipath", "L1C", "--out",
-         str(tmp_path / "o"), "--quiet"],
-        capture_output=True, text=True, timeout=300, env=dict(os.environ),
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "psdbound",
+            "fit",
+            "--code-multipath",
+            "L1C",
+            "--out",
+            str(tmp_path / "o"),
+            "--quiet",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env=dict(os.environ),
+    )
     assert r.returncode == 2, r.stderr
     assert "--code-multipath" in r.stderr and "C1C" in r.stderr
     assert not (tmp_path / "o").exists()
@@ -139,8 +157,19 @@ def test_overbound_cli_on_esbc(tmp_path):
     obs, nav = shared_file(ESBC_OBS), shared_file(ESBC_NAV)
     out = tmp_path / "ob"
     out.mkdir()
-    cmd = [sys.executable, "-m", "psdbound", "overbound", str(obs), "--nav", str(nav),
-           "--code", "C1C", "--out", str(out)]  # fmt: skip
+    cmd = [
+        sys.executable,
+        "-m",
+        "psdbound",
+        "overbound",
+        str(obs),
+        "--nav",
+        str(nav),
+        "--code",
+        "C1C",
+        "--out",
+        str(out),
+    ]
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=600, env=dict(os.environ))
     assert r.returncode == 0, r.stderr
     doc = json.loads((out / "result.json").read_text())
@@ -159,8 +188,13 @@ def test_overbound_cli_on_esbc(tmp_path):
     # too few samples in a bin: exit 2, the bin named, nothing written
     out2 = tmp_path / "ob2"
     out2.mkdir()
-    r = subprocess.run(cmd[:-1] + [str(out2), "--min-samples", "10000000"], capture_output=True,
-                       text=True, timeout=600, env=dict(os.environ))  # fmt: skip
+    r = subprocess.run(
+        cmd[:-1] + [str(out2), "--min-samples", "10000000"],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        env=dict(os.environ),
+    )
     assert r.returncode == 2
     assert "elevation bin [5, 15) deg" in r.stderr
     assert list(out2.iterdir()) == []
@@ -190,10 +224,24 @@ def test_overbound_cli_high_latitude_sparse_bin_is_named_not_fatal(tmp_path):
     out = tmp_path / "nya"
     out.mkdir()
     r = subprocess.run(
-        [sys.executable, "-m", "psdbound", "overbound", str(shared_file(NYA1_OBS)), "--nav",
-         str(shared_file(NYA1_NAV)), "--code", "C1C", "--out", str(out)],
-        capture_output=True, text=True, timeout=600, env=dict(os.environ),
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "psdbound",
+            "overbound",
+            str(shared_file(NYA1_OBS)),
+            "--nav",
+            str(shared_file(NYA1_NAV)),
+            "--code",
+            "C1C",
+            "--out",
+            str(out),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        env=dict(os.environ),
+    )
     assert r.returncode == 0, r.stderr
     assert "note: elevation bin [60, 90) deg holds" in r.stdout
     doc = json.loads((out / "result.json").read_text())
@@ -212,4 +260,5 @@ def test_samples_in_full_bins():
     assert keep.sum() == 270 and notes == []  # 120 in the closed last bin [60, 90]
     keep, notes = samples_in_full_bins(el, (5, 15, 60, 80, 90), 100)
     assert keep.sum() == 250 and notes == [
-        "elevation bin [60, 80) deg holds 20 samples, fewer than 100: not overbounded"]
+        "elevation bin [60, 80) deg holds 20 samples, fewer than 100: not overbounded"
+    ]

@@ -118,15 +118,18 @@ def test_report_out_never_loses_a_user_file(demo_run, tmp_path, capsys):
     afile = tmp_path / "afile"
     afile.write_text("x")
     assert main(["report", str(src), "--out", str(afile)]) == 2
-    assert afile.read_text() == "x" and not [p for p in tmp_path.iterdir()
-                                             if p.name.startswith(".")]  # fmt: skip
+    assert afile.read_text() == "x" and not [
+        p for p in tmp_path.iterdir() if p.name.startswith(".")
+    ]
 
 
 def test_config_file_is_applied_and_saved(tmp_path, demo_run):
     work, _ = demo_run
     cfg = tmp_path / "run.toml"
-    cfg.write_text('[cutoff]\nf_c_hz = 1.2e-3\n[spectra]\nestimator = "welch"\n'
-                   '[output]\nname = "toml-run"\npdf = false\n')  # fmt: skip
+    cfg.write_text(
+        '[cutoff]\nf_c_hz = 1.2e-3\n[spectra]\nestimator = "welch"\n'
+        '[output]\nname = "toml-run"\npdf = false\n'
+    )
     cache = {"PSDBOUND_CACHE": str(next(work.parent.glob("cache*")))}
     r = run_cli("fit", "--config", cfg, "--quiet", cwd=tmp_path, env_extra=cache)
     assert r.returncode == 0, r.stderr
@@ -142,8 +145,10 @@ def test_config_file_is_applied_and_saved(tmp_path, demo_run):
     [
         (["fit", "missing.rnx", "--nav", "nav.rnx"], "missing.rnx: observation file not found"),
         (["fit", "--frobnicate"], "unrecognized arguments: --frobnicate"),
-        (["fit", "a.rnx", "--method", "da"],
-         "--method da needs the observation files of two antennas"),
+        (
+            ["fit", "a.rnx", "--method", "da"],
+            "--method da needs the observation files of two antennas",
+        ),
         (["fit", "--config", "nope.toml"], "nope.toml: configuration file not found"),
         (["report", "nothing.json"], "nothing.json: result file not found"),
     ],
@@ -179,9 +184,11 @@ def test_fit_real_data(tmp_path, case):
     out = tmp_path / "reports" / case
     d = psdbound.load(out / "result.json").document
     b = d["bound"]
-    print(f"{case}: sigma_GM {100 * b['sigma_gm_m']:.2f} cm, tau {b['tau_s']:.0f} s, "
-          f"sigma_WN {100 * b['sigma_wn_m']:.2f} cm, {d['windows']['count']} windows, "
-          f"validation {d['validation']['verdict']}")  # fmt: skip
+    print(
+        f"{case}: sigma_GM {100 * b['sigma_gm_m']:.2f} cm, tau {b['tau_s']:.0f} s, "
+        f"sigma_WN {100 * b['sigma_wn_m']:.2f} cm, {d['windows']['count']} windows, "
+        f"validation {d['validation']['verdict']}"
+    )
     assert 1e-4 < b["sigma_gm_m"] < 0.05
     assert d["method"] == "DA"
     assert any("cancel" in w for w in d["warnings"])
@@ -208,17 +215,31 @@ def test_reports_as_a_person_sees_them(demo_run, tmp_path):
     out = work / "reports" / "demo"
     shot = tmp_path / "report.png"
     subprocess.run(
-        ["chromium", "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
-         "--no-first-run", "--disable-background-networking", "--disable-component-update",
-         "--disable-sync", f"--user-data-dir={tmp_path / 'ud'}", "--window-size=1100,2400",
-         f"--screenshot={shot}", (out / "report.html").as_uri()],
-        capture_output=True, timeout=120, check=True,
-    )  # fmt: skip
+        [
+            "chromium",
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            f"--user-data-dir={tmp_path / 'ud'}",
+            "--window-size=1100,2400",
+            f"--screenshot={shot}",
+            (out / "report.html").as_uri(),
+        ],
+        capture_output=True,
+        timeout=120,
+        check=True,
+    )
     assert shot.stat().st_size > 20_000 and _not_blank(shot) > 0.05
     subprocess.run(
         ["pdftoppm", "-r", "40", "-png", str(out / "report.pdf"), str(tmp_path / "page")],
-        check=True, timeout=120,
-    )  # fmt: skip
+        check=True,
+        timeout=120,
+    )
     pages = sorted(tmp_path.glob("page-*.png"))
     assert len(pages) >= 5
     for p in pages:
@@ -235,11 +256,15 @@ def test_cutoff_map_lookup_nearest_station():
     assert info2["station"] == "ISPA" and f_c2 != f_c
 
 
-@pytest.mark.xfail(strict=False, reason=(
-    "known gap (issue 27): after the screening against the multipath null (issue 29) the demo "
-    "keeps every block, and one of its 13 homogeneous windows (G22, 160 min) fails the "
-    "family-wise shape test and forms a group of its own: bound 7.36 mm / 55.5 s, variance "
-    "5.4 x the truth's (1.8 with 14 windows)"))
+@pytest.mark.xfail(
+    strict=False,
+    reason=(
+        "known gap (issue 27): after the screening against the multipath null (issue 29) the demo "
+        "keeps every block, and one of its 13 homogeneous windows (G22, 160 min) fails the "
+        "family-wise shape test and forms a group of its own: bound 7.36 mm / 55.5 s, variance "
+        "5.4 x the truth's (1.8 with 14 windows)"
+    ),
+)
 def test_demo_bound_is_within_twice_the_truth_variance():
     import psdbound
 

@@ -33,10 +33,21 @@ def demo_fit():
 
 def test_library_and_cli_write_the_same_result(demo_fit, tmp_path):
     r = subprocess.run(
-        [sys.executable, "-m", "psdbound", "fit", "--out", str(tmp_path / "cli"), "--no-pdf",
-         "--quiet"],
-        capture_output=True, text=True, timeout=600, env=dict(os.environ),
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "psdbound",
+            "fit",
+            "--out",
+            str(tmp_path / "cli"),
+            "--no-pdf",
+            "--quiet",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        env=dict(os.environ),
+    )
     assert r.returncode == 0, r.stderr
     cli = psdbound.load(tmp_path / "cli" / "result.json").document
     lib_path = demo_fit.to_json(tmp_path / "lib.json")
@@ -79,11 +90,13 @@ def test_stages_compose_like_fit(demo_fit):
     mapping = stages.map_elevation(run.screened.series, cfg.mapping)
     assert mapping == demo_fit.windowed.mapping
     win = stages.window(run.screened, mapping=mapping, options=cfg.stationarity)
-    res = stages.bound(win, spectra=cfg.spectra, options=cfg.bound, cutoff=run.cutoff,
-                       highpass=cfg.filter)
+    res = stages.bound(
+        win, spectra=cfg.spectra, options=cfg.bound, cutoff=run.cutoff, highpass=cfg.filter
+    )
     assert res.bound.sigma_gm_m == demo_fit.bound.sigma_gm_m
-    val = stages.validate(run.cutoff, inputs=run.inputs, isolated=run.isolated, arcs=cfg.arcs,
-                          options=cfg.validation)
+    val = stages.validate(
+        run.cutoff, inputs=run.inputs, isolated=run.isolated, arcs=cfg.arcs, options=cfg.validation
+    )
     assert val.summary["max_removed_rms_m"] == demo_fit.validation["max_removed_rms_m"]
     with pytest.raises(InputError, match="unknown stage 'bound'"):
         run_stages(cfg, until="bound")

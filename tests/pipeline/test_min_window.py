@@ -10,9 +10,12 @@ from psdbound.errors import InputError
 
 def test_too_short_min_window_names_the_option_and_the_remedy():
     # the demo is sampled at 1 s: the spectral test needs 68 samples = 67 s
-    with pytest.raises(InputError, match=r"--min-window-s .*= 30 s is shorter than the spectral "
-                       r"stationarity test needs at 1 s sampling \(68 samples = 67 s\): give "
-                       r"--min-window-s 67 or more, or --stationarity thesis"):  # fmt: skip
+    with pytest.raises(
+        InputError,
+        match=r"--min-window-s .*= 30 s is shorter than the spectral "
+        r"stationarity test needs at 1 s sampling \(68 samples = 67 s\): give "
+        r"--min-window-s 67 or more, or --stationarity thesis",
+    ):
         psdbound.fit(min_window_s=30.0)
 
 

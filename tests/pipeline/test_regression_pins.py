@@ -104,8 +104,11 @@ OPTIONS = {"upc": {"pair": ("UPC1", "UPC2")}}
 @pytest.mark.parametrize("case", sorted(PINS))
 def test_pinned_bound(case):
     obs, nav = FILES[case]
-    res = psdbound.fit([shared_file(o) for o in obs], nav=shared_file(nav) if nav else None,
-                       **OPTIONS.get(case, {}))
+    res = psdbound.fit(
+        [shared_file(o) for o in obs],
+        nav=shared_file(nav) if nav else None,
+        **OPTIONS.get(case, {}),
+    )
     b, d = res.bound, res.document
     sigma_gm, tau, sigma_wn, n_windows = PINS[case]
     print(f"{case}: {b.sigma_gm_m!r} {b.tau_s!r} {b.sigma_wn_m!r} {d['windows']['count']}")
@@ -135,8 +138,11 @@ def test_pinned_bound(case):
         assert any("carrier-multipath limit" in e["reason"] for e in scr["excluded"])
         for e in scr["excluded"]:
             assert e["sat"] and e["stop_gps_s"] >= e["start_gps_s"] and e["reason"]
-            assert (e["statistic"] > e["threshold"] or e["kind"] == "short remainder"
-                    or "improbable under" in e["reason"])  # a 15-min run (persistence)
+            assert (
+                e["statistic"] > e["threshold"]
+                or e["kind"] == "short remainder"
+                or "improbable under" in e["reason"]
+            )  # a 15-min run (persistence)
         # the tightest bound over the bands (before the low-frequency prior raised it)
         assert d["bound"]["low_frequency"]["before"]["sigma_gm_m"] <= 0.025
         assert scr["multipath_limit_m"] == pytest.approx(0.0770, abs=2e-4)

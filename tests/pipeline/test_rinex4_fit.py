@@ -27,10 +27,24 @@ from rinex4_samples import cut_obs, nav_to_v4, obs_to_v4  # noqa: E402
 
 def _fit(obs: Path, nav: Path, out: Path) -> dict:
     r = subprocess.run(
-        [sys.executable, "-m", "psdbound", "fit", str(obs), "--nav", str(nav), "--out", str(out),
-         "--no-pdf", "--quiet"],
-        capture_output=True, text=True, timeout=600, env=dict(os.environ),
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "psdbound",
+            "fit",
+            str(obs),
+            "--nav",
+            str(nav),
+            "--out",
+            str(out),
+            "--no-pdf",
+            "--quiet",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        env=dict(os.environ),
+    )
     assert r.returncode == 0, r.stderr
     return json.loads((out / "result.json").read_text())
 

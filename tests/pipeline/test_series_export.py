@@ -36,12 +36,18 @@ def test_screened_spans_and_windows_are_marked_by_satellite_and_time():
     from types import SimpleNamespace
 
     t = np.arange(0.0, 300.0, 30.0)
-    series = SimpleNamespace(t_gps_s=np.r_[t, t], value_m=np.zeros(20),
-                             elevation_deg=np.full(20, 40.0), arc_sats=("G01", "G02"),
-                             arc_bounds=lambda: [(0, 10), (10, 20)])  # fmt: skip
+    series = SimpleNamespace(
+        t_gps_s=np.r_[t, t],
+        value_m=np.zeros(20),
+        elevation_deg=np.full(20, 40.0),
+        arc_sats=("G01", "G02"),
+        arc_bounds=lambda: [(0, 10), (10, 20)],
+    )
     excluded = [{"sat": "G02", "start_gps_s": 60.0, "stop_gps_s": 120.0, "kind": "ionosphere"}]
-    windows = [{"sats": "G01", "t_start_gps_s": 0.0, "t_stop_gps_s": 150.0},
-               {"sats": "G02", "t_start_gps_s": 0.0, "t_stop_gps_s": 270.0}]  # fmt: skip
+    windows = [
+        {"sats": "G01", "t_start_gps_s": 0.0, "t_stop_gps_s": 150.0},
+        {"sats": "G02", "t_start_gps_s": 0.0, "t_stop_gps_s": 270.0},
+    ]
     tab = series_table(series, None, excluded, windows)
     assert list(tab["screened"][10:]) == [""] * 2 + ["ionosphere"] * 3 + [""] * 5
     assert list(tab["window"][:10]) == [0] * 6 + [-1] * 4
@@ -72,8 +78,7 @@ def test_fit_series_writes_the_table_with_the_report(tmp_path, capsys):
     out = tmp_path / "out"
     code = main(["fit", "--series", "--no-pdf", "--quiet", "--out", str(out)])
     assert code == 0
-    assert sorted(p.name for p in out.iterdir()) == ["report.html", "result.json",
-                                                     "series.csv.gz"]  # fmt: skip
+    assert sorted(p.name for p in out.iterdir()) == ["report.html", "result.json", "series.csv.gz"]
     with gzip.open(out / "series.csv.gz", "rt") as f:
         head = f.readline().strip().split(",")
         first = f.readline().strip().split(",")

@@ -26,10 +26,19 @@ DT = 30.0
 
 
 def _day(out: Path, reflections):
-    base = preset("short").replace(name="slow", duration_s=86400.0, interval_s=DT, systems="G",
-                                   dual_antenna=False)  # fmt: skip
-    mp = replace(base.multipath, sigma_gm_m=0.001, tau_s=30.0, sigma_wn_m=0.001, a=1.0, b=0.0,
-                 c_deg=10.0, reflections=tuple(reflections))  # fmt: skip
+    base = preset("short").replace(
+        name="slow", duration_s=86400.0, interval_s=DT, systems="G", dual_antenna=False
+    )
+    mp = replace(
+        base.multipath,
+        sigma_gm_m=0.001,
+        tau_s=30.0,
+        sigma_wn_m=0.001,
+        a=1.0,
+        b=0.0,
+        c_deg=10.0,
+        reflections=tuple(reflections),
+    )
     return simulate(base.replace(multipath=mp), out)
 
 
@@ -66,8 +75,12 @@ def test_slow_component_covers_what_the_filter_removes(tmp_path):
     assert site["measured"]
     assert site["ground_height_m"] == pytest.approx(0.5, abs=0.05)
     assert site["alpha"] == pytest.approx(0.2, rel=0.15)
-    rem = _removed_truth(_truth(with_r), _truth(without), res.config.arcs.elevation_mask_deg,
-                         res.document["cutoff"]["f_c_hz"])  # fmt: skip
+    rem = _removed_truth(
+        _truth(with_r),
+        _truth(without),
+        res.config.arcs.elevation_mask_deg,
+        res.document["cutoff"]["f_c_hz"],
+    )
     rms_truth = float(np.sqrt(np.mean(np.concatenate(rem) ** 2)))
     assert 0.9 < slow["removed_rms_m"] / rms_truth < 1.4
     # the exported slow component lies above the removed truth's pooled periodogram everywhere

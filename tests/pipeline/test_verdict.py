@@ -15,20 +15,25 @@ from psdbound.pipeline.verdict import VerdictOptions, judge, verdict_checks
 from psdbound.results.headline import DO_NOT_USE, headline
 
 GOOD = {
-    "bound": {"sigma_gm_m": 0.006, "tau_s": 58.0, "sigma_wn_m": 0.0,
-              "tau_grid_s": [15.0, 60.0, 2.0e5]},
+    "bound": {
+        "sigma_gm_m": 0.006,
+        "tau_s": 58.0,
+        "sigma_wn_m": 0.0,
+        "tau_grid_s": [15.0, 60.0, 2.0e5],
+    },
     "sampling": {"interval_s": 30.0, "nyquist_hz": 1 / 60},
     "cutoff": {"f_c_hz": 9.55e-4},
-    "isolation": {"safety": {"removed_above_fc_median": 0.18},
-                  "offered": {"offered_s": 7200.0}},
+    "isolation": {"safety": {"removed_above_fc_median": 0.18}, "offered": {"offered_s": 7200.0}},
     "screening": {"excluded_fraction": 0.02, "multipath_limit_m": 0.0770},
     "validation": {"max_removed_rms_m": 0.0025, "geometries_used": ["ground:h=0.216"]},
-    "windows": {"per_window": [
-        {"arc": 0, "t_start_gps_s": 0.0, "t_stop_gps_s": 3570.0},
-        {"arc": 0, "t_start_gps_s": 1800.0, "t_stop_gps_s": 5370.0},
-        {"arc": 1, "t_start_gps_s": 0.0, "t_stop_gps_s": 1770.0},
-    ]},
-}  # fmt: skip
+    "windows": {
+        "per_window": [
+            {"arc": 0, "t_start_gps_s": 0.0, "t_stop_gps_s": 3570.0},
+            {"arc": 0, "t_start_gps_s": 1800.0, "t_stop_gps_s": 5370.0},
+            {"arc": 1, "t_start_gps_s": 0.0, "t_stop_gps_s": 1770.0},
+        ]
+    },
+}
 
 
 def _with(path, value):
@@ -56,8 +61,12 @@ def test_good_document_is_bounded():
         ("isolation.safety", {"removed_above_fc_median": 0.875}, "filter loss", 1),
         ("cutoff.f_c_hz", 9.5e-3, "below the Nyquist", 1),
         ("screening.excluded_fraction", 0.62, "most data excluded", 1),
-        ("bound.low_frequency", {"status": "prior", "tau_max_s": 900.0,
-                                 "envelope_at_0_m2_hz": None}, "only time constants above", 1),
+        (
+            "bound.low_frequency",
+            {"status": "prior", "tau_max_s": 900.0, "envelope_at_0_m2_hz": None},
+            "only time constants above",
+            1,
+        ),
         # 2 h in windows of 24 h offered (e.g. an orbit file covering 17 % of the day)
         ("isolation.offered", {"offered_s": 86400.0}, "data used", 1),
         # 19.7 cm "bounded" on a real 1.6 m pair with a forced baseline (issue 30)
@@ -77,8 +86,9 @@ def test_removed_multipath_is_modelled_not_a_refusal():
 
 
 def test_low_frequency_policy_is_an_option():
-    d = _with("bound.low_frequency", {"status": "prior", "tau_max_s": 900.0,
-                                      "envelope_at_0_m2_hz": 1e-3})  # fmt: skip
+    d = _with(
+        "bound.low_frequency", {"status": "prior", "tau_max_s": 900.0, "envelope_at_0_m2_hz": 1e-3}
+    )
     assert judge(d) == ("bounded", [])
     verdict, reasons = judge(d, VerdictOptions(low_frequency="refuse"))
     assert verdict == "not-bounded" and "policy is 'refuse'" in reasons[0]
@@ -98,12 +108,31 @@ def _one_hour_of_esbc(tmp_path):
 def test_one_hour_file_exits_3_with_outputs_and_reasons(tmp_path):
     obs = _one_hour_of_esbc(tmp_path)
     r = subprocess.run(
-        [sys.executable, "-m", "psdbound", "fit", str(obs), "--nav", str(shared_file(ESBC_NAV)),
-         "--cutoff-hz", "9.55e-4", "--out", str(tmp_path / "out"), "--no-pdf",
-         # the thesis test accepts 10-min windows; the spectral test needs 68 samples (34 min)
-         "--stationarity", "thesis", "--windows", "slide", "--rule", "envelope"],
-        capture_output=True, text=True, timeout=600,
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "psdbound",
+            "fit",
+            str(obs),
+            "--nav",
+            str(shared_file(ESBC_NAV)),
+            "--cutoff-hz",
+            "9.55e-4",
+            "--out",
+            str(tmp_path / "out"),
+            "--no-pdf",
+            # the thesis test accepts 10-min windows; the spectral test needs 68 samples (34 min)
+            "--stationarity",
+            "thesis",
+            "--windows",
+            "slide",
+            "--rule",
+            "envelope",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert r.returncode == 3, r.stderr
     doc = psdbound.load(tmp_path / "out" / "result.json").document
     assert doc["verdict"] == "not-bounded"
@@ -119,10 +148,24 @@ def test_one_hour_file_exits_3_with_outputs_and_reasons(tmp_path):
 def test_one_hour_file_with_default_test_says_why_no_window(tmp_path):
     obs = _one_hour_of_esbc(tmp_path)
     r = subprocess.run(
-        [sys.executable, "-m", "psdbound", "fit", str(obs), "--nav", str(shared_file(ESBC_NAV)),
-         "--cutoff-hz", "9.55e-4", "--out", str(tmp_path / "out"), "--no-pdf"],
-        capture_output=True, text=True, timeout=600,
-    )  # fmt: skip
+        [
+            sys.executable,
+            "-m",
+            "psdbound",
+            "fit",
+            str(obs),
+            "--nav",
+            str(shared_file(ESBC_NAV)),
+            "--cutoff-hz",
+            "9.55e-4",
+            "--out",
+            str(tmp_path / "out"),
+            "--no-pdf",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert r.returncode == 2
     assert "68 samples" in r.stderr and "34 min" in r.stderr and "longest arc" in r.stderr
     assert not (tmp_path / "out").exists()
@@ -134,8 +177,9 @@ def test_map_cutoff_on_nya1_never_gives_a_white_noise_bound_with_exit_0():
     # issue 14: the old leakage-inflated map gave sigma_GM = 0 with exit 0 here
     res = psdbound.fit(shared_file(NYA1_OBS), nav=shared_file(NYA1_NAV), cutoff={"source": "map"})
     assert res.document["cutoff"]["source"].startswith("map")
-    if res.bound.sigma_gm_m == 0.0 or res.document["sampling"]["nyquist_hz"] < 4 * (
-        res.document["cutoff"]["f_c_hz"]
+    if (
+        res.bound.sigma_gm_m == 0.0
+        or res.document["sampling"]["nyquist_hz"] < 4 * (res.document["cutoff"]["f_c_hz"])
     ):
         assert res.verdict == "not-bounded"
     else:
@@ -161,8 +205,16 @@ def test_consecutive_files_are_merged_into_the_whole_day(tmp_path):
 def test_files_of_three_stations_are_an_error_naming_them(capsys):
     from psdbound.cli.main import main
 
-    code = main(["fit", str(shared_file(ESBC_OBS)), str(shared_file(NYA1_OBS)),
-                 str(shared_file(UPC1_OBS)), "--nav", str(shared_file(ESBC_NAV))])  # fmt: skip
+    code = main(
+        [
+            "fit",
+            str(shared_file(ESBC_OBS)),
+            str(shared_file(NYA1_OBS)),
+            str(shared_file(UPC1_OBS)),
+            "--nav",
+            str(shared_file(ESBC_NAV)),
+        ]
+    )
     err = capsys.readouterr().err
     assert code == 2 and "3 stations" in err and "ESBC" in err and "NYA1" in err
 
@@ -212,12 +264,18 @@ def test_an_unresolved_plateau_is_said_not_silently_extrapolated():
     from psdbound.pipeline.document import _bound_notes
     from psdbound.spectra.lowfreq import LowFrequency
 
-    ms = SimpleNamespace(open_ends={"tau_s": (False, True)}, tau_interval_s=(40.0, 8580.0),
-                         widening=1.3, confidence_level=0.95)  # fmt: skip
-    low = LowFrequency("prior", 900.0, before={"sigma_gm_m": 0.004, "tau_s": 40.0,
-                                               "sigma_wn_m": 0.0}, raised=True)  # fmt: skip
-    res = SimpleNamespace(pooled=None, model_set=ms, bound=SimpleNamespace(f_min_hz=0.002),
-                          low_frequency=low)  # fmt: skip
+    ms = SimpleNamespace(
+        open_ends={"tau_s": (False, True)},
+        tau_interval_s=(40.0, 8580.0),
+        widening=1.3,
+        confidence_level=0.95,
+    )
+    low = LowFrequency(
+        "prior", 900.0, before={"sigma_gm_m": 0.004, "tau_s": 40.0, "sigma_wn_m": 0.0}, raised=True
+    )
+    res = SimpleNamespace(
+        pooled=None, model_set=ms, bound=SimpleNamespace(f_min_hz=0.002), low_frequency=low
+    )
     notes = _bound_notes(res)
     assert any("prior 900 s" in n and "raised" in n for n in notes)
     assert any("do not bound the time constant above" in n for n in notes)
@@ -227,8 +285,17 @@ def test_an_unresolved_plateau_is_said_not_silently_extrapolated():
 def test_every_rule_reports_its_two_numbers_and_the_verdict_follows_them():
     checks = verdict_checks(GOOD)
     names = [c.rule for c in checks]
-    assert names == ["time correlation", "tau inside its search", "data for tau", "filter loss",
-                     "band", "data excluded", "data used", "low frequencies", "physical limit"]
+    assert names == [
+        "time correlation",
+        "tau inside its search",
+        "data for tau",
+        "filter loss",
+        "band",
+        "data excluded",
+        "data used",
+        "low frequencies",
+        "physical limit",
+    ]
     assert all(c.passed and c.measured and c.limit and not c.reason for c in checks)
     bad = verdict_checks(_with("bound.sigma_wn_m", 0.08))  # white noise alone above 7.7 cm
     fired = [c for c in bad if not c.passed]
@@ -259,9 +326,14 @@ def test_facts_from_products_are_the_document_s():
     from psdbound.pipeline.verdict import VerdictFacts, verdict_facts
 
     r = psdbound.fit()
-    typed = verdict_facts(bounded=r.bounded, windowed=r.windowed, screened=r.screened,
-                          isolated=r.isolated, cutoff=r.cutoff,
-                          interval_s=r.inputs.interval_s)
+    typed = verdict_facts(
+        bounded=r.bounded,
+        windowed=r.windowed,
+        screened=r.screened,
+        isolated=r.isolated,
+        cutoff=r.cutoff,
+        interval_s=r.inputs.interval_s,
+    )
     loaded = VerdictFacts.from_document(r.document)
     assert typed == loaded
     assert [c.as_dict() for c in verdict_checks(typed)] == r.document["verdict_checks"]

@@ -36,10 +36,13 @@ def _with_map_curve(doc):
     d = copy.deepcopy(doc)
     fc = d["cutoff"]["f_c_hz"]
     d["cutoff"]["by_margin"] = [
-        {"margin_db": m, "threshold_m": 1e-3 * 10 ** (-m / 20),
-         "f_c_hz": fc * 10 ** ((m - 40) / 60)}
+        {
+            "margin_db": m,
+            "threshold_m": 1e-3 * 10 ** (-m / 20),
+            "f_c_hz": fc * 10 ** ((m - 40) / 60),
+        }
         for m in (20.0, 30.0, 40.0, 50.0)
-    ]  # fmt: skip
+    ]
     return d
 
 
@@ -92,23 +95,35 @@ def _synthetic_windows_doc(n_lanes=40, n_windows=1000, seed=1):
     arcs, wins, never, excluded, mapped = [], [], [], [], []
     for k, s in enumerate(sats):
         start = t0 + rng.uniform(0, 3 * 3600)
-        arcs.append({"sat": s, "t0": start, "t1": start + 20 * 3600, "kept": True,
-                     "start_reason": ""})  # fmt: skip
-        mapped.append({"arc": k, "sats": s, "t_gps_s": [start, start + 20 * 3600],
-                       "mapped_m": [0.0, 0.0]})  # fmt: skip
+        arcs.append(
+            {"sat": s, "t0": start, "t1": start + 20 * 3600, "kept": True, "start_reason": ""}
+        )
+        mapped.append(
+            {"arc": k, "sats": s, "t_gps_s": [start, start + 20 * 3600], "mapped_m": [0.0, 0.0]}
+        )
         t = start
         for _ in range(per_lane):
             d = rng.uniform(600, 2400)
             wins.append({"arc": k, "sats": s, "t_start_gps_s": t, "t_stop_gps_s": t + d})
             t += d
         never.append([k, s, t, t + 1800.0])
-        excluded.append({"sat": s, "start_gps_s": t + 1800.0, "stop_gps_s": t + 2700.0,
-                         "kind": "ionosphere" if k % 2 else "short remainder"})  # fmt: skip
+        excluded.append(
+            {
+                "sat": s,
+                "start_gps_s": t + 1800.0,
+                "stop_gps_s": t + 2700.0,
+                "kind": "ionosphere" if k % 2 else "short remainder",
+            }
+        )
     return {
         "method": "DF",
         "data_span": {"start_gps_s": t0, "stop_gps_s": t0 + 86400.0, "n_arcs": len(mapped)},
-        "windows": {"count": len(wins), "per_window": wins, "never_stationary": never,
-                    "never_stationary_s": 1800.0 * len(never)},  # fmt: skip
+        "windows": {
+            "count": len(wins),
+            "per_window": wins,
+            "never_stationary": never,
+            "never_stationary_s": 1800.0 * len(never),
+        },
         "screening": {"excluded": excluded, "excluded_s": 900.0 * len(excluded)},
         "figures": {"t_ref_gps_s": t0, "arcs": arcs, "mapped": mapped},
     }, sats
@@ -129,8 +144,9 @@ def test_window_figure_with_1000_windows():
     polys = [c for c in ax.collections if isinstance(c, PolyCollection)]
     assert len(polys) == 5 and max(len(c.get_paths()) for c in polys) == 1000
     # the never-stationary spans are drawn only in their own lane
-    red = [c for c in polys if np.allclose(c.get_facecolor()[0][:3], (0.839, 0.153, 0.157),
-                                            atol=0.01)]  # fmt: skip
+    red = [
+        c for c in polys if np.allclose(c.get_facecolor()[0][:3], (0.839, 0.153, 0.157), atol=0.01)
+    ]
     assert len(red) == 1
     for k, path in enumerate(red[0].get_paths()):
         y = path.vertices[:, 1]
@@ -139,8 +155,12 @@ def test_window_figure_with_1000_windows():
     assert "40 arcs after screening" in title and "1000 stationary windows" in title
     legend = [x.get_text() for x in fig.legends[0].get_texts()]
     # the screened-out spans by why they were excluded, counted
-    assert {"stationary window", "never stationary", "ionosphere (20)",
-            "short remainder (20)"} <= set(legend)  # fmt: skip
+    assert {
+        "stationary window",
+        "never stationary",
+        "ionosphere (20)",
+        "short remainder (20)",
+    } <= set(legend)
 
 
 def test_psd_figure_shades_the_band_below_fc(demo_doc):
@@ -159,8 +179,10 @@ def test_psd_figure_shades_the_band_below_fc(demo_doc):
     assert any("removed by the high-pass" in s for s in labels)
     # dual-antenna: no filter, no shading
     da = copy.deepcopy(demo_doc)
-    da["method"], da["cutoff"] = "DA", {"f_c_hz": None, "source": "not applicable",
-                                        "tau_c_min": None}  # fmt: skip
+    da["method"], da["cutoff"] = (
+        "DA",
+        {"f_c_hz": None, "source": "not applicable", "tau_c_min": None},
+    )
     ax = fig_psds_bound(da).axes[0]
     assert not [p for p in ax.patches if p.get_gid() in ("stopband", "transition")]
 
@@ -180,15 +202,26 @@ def test_every_axis_has_a_unit(demo_doc):
     doc = _with_map_curve(demo_doc)
     figs = _all_figures(doc)
     keys = [k for k, _ in figs]
-    assert {"windows", "df_filter", "screening", "mapped", "psds", "tau", "cutoff",
-            "jacobi_anger"} <= set(keys)  # fmt: skip
+    assert {
+        "windows",
+        "df_filter",
+        "screening",
+        "mapped",
+        "psds",
+        "tau",
+        "cutoff",
+        "jacobi_anger",
+    } <= set(keys)
     for key, fig in figs:
         _check_units(key, fig)
     ls = copy.deepcopy(demo_doc)
     f = np.geomspace(1e-5, 1e-2, 50)
-    ls["figures"]["cutoff_envelope"] = {"f_hz": f.tolist(), "psd_m2_hz": (1e-2 / f).tolist(),
-                                        "envelope_m2_hz": (2e-2 / f).tolist(),
-                                        "threshold_m2_hz": 1e-1}  # fmt: skip
+    ls["figures"]["cutoff_envelope"] = {
+        "f_hz": f.tolist(),
+        "psd_m2_hz": (1e-2 / f).tolist(),
+        "envelope_m2_hz": (2e-2 / f).tolist(),
+        "threshold_m2_hz": 1e-1,
+    }
     _check_units("cutoff (Lomb-Scargle)", fig_cutoff_envelope(ls))
 
 
@@ -207,16 +240,28 @@ def test_cutoff_figure_appears_when_its_fields_are_present(demo_doc, tmp_path):
     # a computed cutoff: its summary's by_margin (max and mean over the series)
     comp = copy.deepcopy(demo_doc)
     comp["cutoff"]["computed"] = {
-        "n_series": 84, "threshold_m": 1e-5,
-        "by_margin": [{"margin_db": m, "threshold_m": 1e-3 * 10 ** (-m / 20),
-                       "mean_f_c_hz": 5e-4 * 10 ** ((m - 40) / 60),
-                       "max_f_c_hz": 1.5e-3 * 10 ** ((m - 40) / 60)} for m in (20.0, 40.0, 50.0)],
-    }  # fmt: skip
+        "n_series": 84,
+        "threshold_m": 1e-5,
+        "by_margin": [
+            {
+                "margin_db": m,
+                "threshold_m": 1e-3 * 10 ** (-m / 20),
+                "mean_f_c_hz": 5e-4 * 10 ** ((m - 40) / 60),
+                "max_f_c_hz": 1.5e-3 * 10 ** ((m - 40) / 60),
+            }
+            for m in (20.0, 40.0, 50.0)
+        ],
+    }
     assert len(fig_cutoff_envelope(comp).axes[0].get_lines()) >= 3
     # full curves from the pipeline (figures.cutoff_envelope via cutoff_info["figure"])
     f = np.geomspace(1e-4, 0.05, 300)
-    raw = {"f_hz": f, "residual_m": 1e-9 / f**1.5, "threshold_m": 1e-5, "label": "max over 3",
-           "curves": [{"f_hz": f, "residual_m": 0.5e-9 / f**1.5}] * 3}  # fmt: skip
+    raw = {
+        "f_hz": f,
+        "residual_m": 1e-9 / f**1.5,
+        "threshold_m": 1e-5,
+        "label": "max over 3",
+        "curves": [{"f_hz": f, "residual_m": 0.5e-9 / f**1.5}] * 3,
+    }
     data = cutoff_figure(raw)
     assert len(data["curves"]) == 3 and len(data["curves"][0]["f_hz"]) <= 120
     full = copy.deepcopy(demo_doc)
@@ -290,9 +335,14 @@ def test_sky_cells_put_each_sample_in_its_azimuth_elevation_cell():
     t = np.arange(0.0, 600.0, 30.0)
     arcs = SimpleNamespace(azimuth_at=lambda sat, tt: np.full(np.size(tt), 47.0))
     v = np.where(np.arange(t.size) % 2, 0.002, -0.002)  # RMS 2 mm
-    series = SimpleNamespace(n_arcs=1, arc_sats=("G05",), t_gps_s=t, value_m=v,
-                             elevation_deg=np.full(t.size, 32.0),
-                             arc_bounds=lambda: [(0, t.size)])  # fmt: skip
+    series = SimpleNamespace(
+        n_arcs=1,
+        arc_sats=("G05",),
+        t_gps_s=t,
+        value_m=v,
+        elevation_deg=np.full(t.size, 32.0),
+        arc_bounds=lambda: [(0, t.size)],
+    )
     d = sky_cells(series, arcs)
     assert d["n_samples"] == t.size and d["count"][6, 4] == t.size  # el 30-35, az 40-50
     assert d["rms_m"][6][4] == pytest.approx(0.002)

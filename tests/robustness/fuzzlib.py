@@ -64,8 +64,26 @@ def is_v3(data: bytes) -> bool:
 
 # --------------------------------------------------------------------- generic mutations
 
-_BYTES = [b"0", b"9", b"5", b" ", b".", b"-", b"A", b"x", b"\x00", b"\xff", "é".encode(), b"\t",
-          b"+", b"e", b"D", b"*", b">", b"\n"]  # fmt: skip
+_BYTES = [
+    b"0",
+    b"9",
+    b"5",
+    b" ",
+    b".",
+    b"-",
+    b"A",
+    b"x",
+    b"\x00",
+    b"\xff",
+    "é".encode(),
+    b"\t",
+    b"+",
+    b"e",
+    b"D",
+    b"*",
+    b">",
+    b"\n",
+]
 
 
 def byte_flip(data: bytes, rng: np.random.Generator) -> tuple[bytes, str]:
@@ -191,10 +209,22 @@ def epoch_order(data: bytes, rng: np.random.Generator) -> tuple[bytes, str]:
     return join(header, [x for c in chunks for x in c] + tail), f"epochs: {what} {i}, {j}"
 
 
-_DATE_FIELDS_V3 = {"year": (2, 6), "month": (7, 9), "day": (10, 12), "hour": (13, 15),
-                   "minute": (16, 18), "second": (18, 29)}  # fmt: skip
-_DATE_FIELDS_V2 = {"year": (1, 3), "month": (4, 6), "day": (7, 9), "hour": (10, 12),
-                   "minute": (13, 15), "second": (15, 26)}  # fmt: skip
+_DATE_FIELDS_V3 = {
+    "year": (2, 6),
+    "month": (7, 9),
+    "day": (10, 12),
+    "hour": (13, 15),
+    "minute": (16, 18),
+    "second": (18, 29),
+}
+_DATE_FIELDS_V2 = {
+    "year": (1, 3),
+    "month": (4, 6),
+    "day": (7, 9),
+    "hour": (10, 12),
+    "minute": (13, 15),
+    "second": (15, 26),
+}
 _BAD_DATES = {
     "year": [b"9999", b"1900", b"2021", b"99"],
     "month": [b"13", b" 0", b"12"],
@@ -267,8 +297,16 @@ def value_token(data: bytes, rng: np.random.Generator) -> tuple[bytes, str]:
     off = 3 if v3 else 0
     n = max((len(body[r]) - off) // 16, 1)
     f = int(rng.integers(0, n))
-    token = [b"nan", b"inf", b"1e30", b"1.0D+05", b"-----", b"12 34.567", b"0x10",
-             b"1234567890123.4"][int(rng.integers(0, 8))]  # fmt: skip
+    token = [
+        b"nan",
+        b"inf",
+        b"1e30",
+        b"1.0D+05",
+        b"-----",
+        b"12 34.567",
+        b"0x10",
+        b"1234567890123.4",
+    ][int(rng.integers(0, 8))]
     a = off + 16 * f
     ln = body[r].ljust(a + 16)
     body[r] = ln[:a] + token.rjust(14)[-14:] + ln[a + 14 :]

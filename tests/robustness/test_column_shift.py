@@ -33,8 +33,11 @@ def _fit(path, nav) -> tuple[float, float, float]:
 
 def _shift_types(data: bytes, system: bytes, what: str, slot: int) -> bytes:
     header, body = split_header(data)
-    k = next(i for i, ln in enumerate(header)
-             if ln[60:].strip() == b"SYS / # / OBS TYPES" and ln[:1] == system)  # fmt: skip
+    k = next(
+        i
+        for i, ln in enumerate(header)
+        if ln[60:].strip() == b"SYS / # / OBS TYPES" and ln[:1] == system
+    )
     ln = bytearray(header[k][:60].ljust(60))
     a = 7 + 4 * slot
     if what == "blank":
@@ -61,8 +64,13 @@ def _shift_records(data: bytes, system: bytes, n: int, col: int, every: bool, pi
     return join(header, body)
 
 
-@settings(max_examples=12, deadline=None, derandomize=True, database=None,
-          suppress_health_check=[HealthCheck.function_scoped_fixture])  # fmt: skip
+@settings(
+    max_examples=12,
+    deadline=None,
+    derandomize=True,
+    database=None,
+    suppress_health_check=[HealthCheck.function_scoped_fixture],
+)
 @given(
     kind=st.sampled_from(["types", "records"]),
     system=st.sampled_from([b"G", b"G", b"E"]),
@@ -74,7 +82,16 @@ def _shift_records(data: bytes, system: bytes, n: int, col: int, every: bool, pi
     pick=st.integers(0, 10**6),
 )
 def test_fit_refuses_or_matches_column_shifted_file(
-    bases, tmp_path_factory, kind, system, what, slot, n, col, every, pick  # noqa: F811
+    bases,  # noqa: F811 - the fixture
+    tmp_path_factory,
+    kind,
+    system,
+    what,
+    slot,
+    n,
+    col,
+    every,
+    pick,  # noqa: F811
 ):
     nav = bases.esbc_nav_path
     if "bound" not in _BASELINE:
@@ -101,6 +118,9 @@ def test_blanked_type_code_is_refused_with_its_line(bases, tmp_path):  # noqa: F
     path.write_bytes(_shift_types(bases.esbc, b"G", "blank", 4))
     header, _ = split_header(path.read_bytes())
     line = 1 + next(i for i, ln in enumerate(header) if ln[:1] == b"G" and b"OBS TYPES" in ln)
-    with pytest.raises(InputError, match=rf"blank\.rnx, line {line}: .*observation code 5 of 18 "
-                                         "is blank"):  # fmt: skip
+    with pytest.raises(
+        InputError,
+        match=rf"blank\.rnx, line {line}: .*observation code 5 of 18 "
+        "is blank",
+    ):
         psdbound.io.read_obs(path)

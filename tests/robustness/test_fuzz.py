@@ -110,8 +110,9 @@ def make_case(b, family: str, kind: str, index: int):
     return ["inspect", obs, "--nav", path], name, what
 
 
-@pytest.mark.parametrize(("family", "kind", "index"), CASES,
-                         ids=[f"{f}-{k}-{i}" for f, k, i in CASES])  # fmt: skip
+@pytest.mark.parametrize(
+    ("family", "kind", "index"), CASES, ids=[f"{f}-{k}-{i}" for f, k, i in CASES]
+)
 def test_fuzz_inspect(bases, family, kind, index):  # noqa: F811
     args, name, what = make_case(bases, family, kind, index)
     r = run_cli(args, timeout_s=60)
@@ -123,8 +124,10 @@ def test_fuzz_inspect(bases, family, kind, index):  # noqa: F811
 
 def test_fuzz_bases_are_clean(bases):  # noqa: F811
     """The unmutated bases read without warnings (so every warning above comes from a mutation)."""
-    for name, data, nav in (("clean-esbc.rnx", bases.esbc, bases.esbc_nav_path),
-                            ("clean-upc.10o", bases.upc, bases.upc_nav_path)):  # fmt: skip
+    for name, data, nav in (
+        ("clean-esbc.rnx", bases.esbc, bases.esbc_nav_path),
+        ("clean-upc.10o", bases.upc, bases.upc_nav_path),
+    ):
         r = run_cli(["inspect", write(bases.folder / name, data), "--nav", nav])
         assert r.code == 0 and not r.err and not r.warnings, r.err
 
@@ -132,9 +135,14 @@ def test_fuzz_bases_are_clean(bases):  # noqa: F811
 # ------------------------------------------------------------------ fit, in process
 
 FIT_CASES = [
-    ("epoch_order", 1), ("interval", 0), ("crlf", 0), ("obs_types", 0),
-    ("column_shift", 2), ("byte_flip", 3), ("epoch_date", 1),
-]  # fmt: skip
+    ("epoch_order", 1),
+    ("interval", 0),
+    ("crlf", 0),
+    ("obs_types", 0),
+    ("column_shift", 2),
+    ("byte_flip", 3),
+    ("epoch_date", 1),
+]
 
 
 @pytest.mark.slow
@@ -145,8 +153,21 @@ def test_fuzz_fit(bases, tmp_path, kind, index):  # noqa: F811
     name = f"fit-{kind}-{index}.rnx"
     path = write(tmp_path / name, data)
     out = tmp_path / "out"
-    r = run_cli(["fit", path, "--nav", bases.esbc_nav_path, "--out", out, "--no-pdf", "--quiet",
-                 "--cutoff-hz", "9.55e-4"], timeout_s=300)  # fmt: skip
+    r = run_cli(
+        [
+            "fit",
+            path,
+            "--nav",
+            bases.esbc_nav_path,
+            "--out",
+            out,
+            "--no-pdf",
+            "--quiet",
+            "--cutoff-hz",
+            "9.55e-4",
+        ],
+        timeout_s=300,
+    )
     problem = check_run(r, name)
     if problem is None and r.code in (0, 3):
         problem = bound_sane(json.loads((out / "result.json").read_text()))
@@ -157,18 +178,28 @@ def test_fuzz_fit(bases, tmp_path, kind, index):  # noqa: F811
 
 # ------------------------------------------------------------------ real processes
 
-SUBPROCESS_CASES = [("esbc", "obs_types", 2), ("esbc", "interval", 1), ("upc", "epoch_date", 0),
-                    ("esbc-container", "bad.gz", 0), ("esbc-nav", "nav_value", 0)]  # fmt: skip
+SUBPROCESS_CASES = [
+    ("esbc", "obs_types", 2),
+    ("esbc", "interval", 1),
+    ("upc", "epoch_date", 0),
+    ("esbc-container", "bad.gz", 0),
+    ("esbc-nav", "nav_value", 0),
+]
 
 
-@pytest.mark.parametrize(("family", "kind", "index"), SUBPROCESS_CASES,
-                         ids=[f"{f}-{k}-{i}" for f, k, i in SUBPROCESS_CASES])  # fmt: skip
+@pytest.mark.parametrize(
+    ("family", "kind", "index"),
+    SUBPROCESS_CASES,
+    ids=[f"{f}-{k}-{i}" for f, k, i in SUBPROCESS_CASES],
+)
 def test_fuzz_subprocess(bases, family, kind, index):  # noqa: F811
     args, name, what = make_case(bases, family, kind, index)
     r = subprocess.run(
         [sys.executable, "-W", "error::RuntimeWarning", "-m", "psdbound", *map(str, args)],
-        capture_output=True, text=True, timeout=120,
-    )  # fmt: skip
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert r.returncode in (0, 2), f"{name} ({what}): exit {r.returncode}: {r.stderr[-500:]}"
     assert "Traceback" not in r.stderr
     if r.returncode == 2:
@@ -180,8 +211,16 @@ def test_fuzz_subprocess(bases, family, kind, index):  # noqa: F811
 
 MULTI_KINDS = ("two-obs", "station-zip", "nav-zip", "nav-twice")
 MULTI_CASES = [(k, i) for k in MULTI_KINDS for i in range(3)] + [("same-twice", 0)]
-_MULTI_OBS = ("byte_flip", "truncate", "epoch_order", "epoch_date", "interval", "obs_types",
-              "column_shift", "satellite_id")  # fmt: skip
+_MULTI_OBS = (
+    "byte_flip",
+    "truncate",
+    "epoch_order",
+    "epoch_date",
+    "interval",
+    "obs_types",
+    "column_shift",
+    "satellite_id",
+)
 
 
 def _mutated_half(b, rng) -> tuple[list[bytes], str]:
@@ -205,8 +244,16 @@ def make_multi_case(b, kind: str, index: int, folder):
     if kind in ("two-obs", "station-zip", "same-twice"):
         (h1, h2), what = _mutated_half(b, rng)
         if kind == "two-obs":
-            return [write(folder / f"{stem}-a.rnx", h1), write(folder / f"{stem}-b.rnx", h2),
-                    "--nav", nav], stem, what  # fmt: skip
+            return (
+                [
+                    write(folder / f"{stem}-a.rnx", h1),
+                    write(folder / f"{stem}-b.rnx", h2),
+                    "--nav",
+                    nav,
+                ],
+                stem,
+                what,
+            )
         if kind == "same-twice":
             obs = write(folder / f"{stem}.rnx", h1)
             return [obs, obs, "--nav", nav], stem, what
@@ -225,8 +272,9 @@ def make_multi_case(b, kind: str, index: int, folder):
 def test_fuzz_several_files(bases, tmp_path, kind, index):  # noqa: F811
     args, stem, what = make_multi_case(bases, kind, index, tmp_path)
     out = tmp_path / "out"
-    r = run_cli(["fit", *args, "--out", out, "--no-pdf", "--quiet", "--cutoff-hz", "9.55e-4"],
-                timeout_s=120)  # fmt: skip
+    r = run_cli(
+        ["fit", *args, "--out", out, "--no-pdf", "--quiet", "--cutoff-hz", "9.55e-4"], timeout_s=120
+    )
     problem = check_run(r, stem)
     if problem is None and r.code in (0, 3):
         problem = bound_sane(json.loads((out / "result.json").read_text()))

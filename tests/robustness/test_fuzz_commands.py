@@ -88,8 +88,19 @@ def test_fuzz_overbound_code(bases, tmp_path, kind):  # noqa: F811
     data, what = OBS_MUTATIONS[kind](bases.esbc_fit, rng)
     name = f"code-{kind}.rnx"
     path = write(tmp_path / name, data)
-    r = run_cli(["overbound", path, "--code", "C1C", "--nav", bases.esbc_nav_path,
-                 "--out", tmp_path / "out"], timeout_s=300)  # fmt: skip
+    r = run_cli(
+        [
+            "overbound",
+            path,
+            "--code",
+            "C1C",
+            "--nav",
+            bases.esbc_nav_path,
+            "--out",
+            tmp_path / "out",
+        ],
+        timeout_s=300,
+    )
     problem = check_run(r, name, allowed=(0, 2, 3))
     assert problem is None, f"{name} ({what}): {problem}"
 
@@ -103,9 +114,26 @@ def test_fuzz_budget_nav(bases, tmp_path, kind, index):  # noqa: F811
     data, what = NAV_MUTATIONS[kind](bases.esbc_nav, rng)
     name = f"budget-{kind}-{index}.rnx"
     path = write(tmp_path / name, data)
-    r = run_cli(["budget", "--k-md-e", "5", "--nav", path, "--position", "55.49,8.45,60",
-                 "--start", "2020-06-25T00:00:00", "--hours", "1", "--step-s", "900",
-                 "--out", tmp_path / "out"], timeout_s=120)  # fmt: skip
+    r = run_cli(
+        [
+            "budget",
+            "--k-md-e",
+            "5",
+            "--nav",
+            path,
+            "--position",
+            "55.49,8.45,60",
+            "--start",
+            "2020-06-25T00:00:00",
+            "--hours",
+            "1",
+            "--step-s",
+            "900",
+            "--out",
+            tmp_path / "out",
+        ],
+        timeout_s=120,
+    )
     problem = check_run(r, name, allowed=(0, 2))
     assert problem is None, f"{name} ({what}): {problem}"
 
@@ -120,8 +148,14 @@ def campaign_days(tmp_path_factory):
     root = tmp_path_factory.mktemp("fuzz-campaign")
     obs, nav = [], []
     for k, start in enumerate(("2020-11-24T06:00:00", "2020-11-25T06:00:00")):
-        sc = preset("demo").replace(name="FUZZ", start_gps=start, duration_s=6 * 3600.0,
-                                    interval_s=30.0, dual_antenna=False, seed=31 + k)  # fmt: skip
+        sc = preset("demo").replace(
+            name="FUZZ",
+            start_gps=start,
+            duration_s=6 * 3600.0,
+            interval_s=30.0,
+            dual_antenna=False,
+            seed=31 + k,
+        )
         res = simulate(sc, root / f"sim{k}")
         obs.append(gzip.decompress(res.obs_paths[0].read_bytes()))
         nav.append(res.nav_path)
@@ -142,8 +176,23 @@ def test_fuzz_campaign_one_day_mutated(campaign_days, tmp_path, kind):
     name = f"campaign-{kind}-FUZZ00XXX_R_20203300600_06H_30S_MO.rnx"
     bad = write(tmp_path / name, data)
     out = tmp_path / "out"
-    r = run_cli(["campaign", good, bad, "--nav", *nav, "--out", out, "--workers", "0",
-                 "--cache-dir", tmp_path / "cache", "--no-pdf"], timeout_s=600)  # fmt: skip
+    r = run_cli(
+        [
+            "campaign",
+            good,
+            bad,
+            "--nav",
+            *nav,
+            "--out",
+            out,
+            "--workers",
+            "0",
+            "--cache-dir",
+            tmp_path / "cache",
+            "--no-pdf",
+        ],
+        timeout_s=600,
+    )
     problem = check_run(r, name, allowed=(0, 2, 3))
     if problem is None and r.code == 2:
         assert not out.exists(), "a refused campaign left an output folder"

@@ -68,34 +68,43 @@ def test_out_of_order_epochs_are_refused_naming_the_line(tmp_path, text):
     starts = [i for i, ln in enumerate(lines) if ln.startswith(">")]
     a, b = starts[5], starts[9]
     lines[a : a + 3], lines[b : b + 3] = lines[b : b + 3], lines[a : a + 3]
-    err = _one_error_line(run_cli(["inspect", _write(tmp_path, "o.rnx", "\n".join(lines))]),
-                          "o.rnx")  # fmt: skip
+    err = _one_error_line(
+        run_cli(["inspect", _write(tmp_path, "o.rnx", "\n".join(lines))]), "o.rnx"
+    )
     assert f"o.rnx, line {a + 4}: epoch" in err and "earlier than the epoch before it" in err
 
 
 @pytest.mark.parametrize(
     ("old", "new"),
-    [("> 2020 06 25 00 05", "> 2020 13 25 00 05"), ("> 2020 06 25 00 05", "> 2020 06 32 00 05"),
-     ("> 2020 06 25 00 05", "> 2020 06 25 25 05"), ("> 2020 06 25 00 05", "> 9999 06 25 00 05"),
-     ("> 2020 06 25 00 05  0.0000000", "> 2020 06 25 00 05        nan"),
-     ("> 2020 06 25 00 05  0.0000000", "> 2020 06 25 00 05       1e30")],
-)  # fmt: skip
+    [
+        ("> 2020 06 25 00 05", "> 2020 13 25 00 05"),
+        ("> 2020 06 25 00 05", "> 2020 06 32 00 05"),
+        ("> 2020 06 25 00 05", "> 2020 06 25 25 05"),
+        ("> 2020 06 25 00 05", "> 9999 06 25 00 05"),
+        ("> 2020 06 25 00 05  0.0000000", "> 2020 06 25 00 05        nan"),
+        ("> 2020 06 25 00 05  0.0000000", "> 2020 06 25 00 05       1e30"),
+    ],
+)
 def test_impossible_dates_are_refused(tmp_path, text, old, new):
-    err = _one_error_line(run_cli(["inspect", _write(tmp_path, "d.rnx", text.replace(old, new))]),
-                          "d.rnx")  # fmt: skip
+    err = _one_error_line(
+        run_cli(["inspect", _write(tmp_path, "d.rnx", text.replace(old, new))]), "d.rnx"
+    )
     assert "epoch date" in err
 
 
 def test_non_numeric_values_and_satellite_ids_are_refused(tmp_path, text):
     lines = text.split("\n")
     k = next(i for i, ln in enumerate(lines) if ln.startswith("G05"))
-    for new, what in ((lines[k][:19] + "           nan" + lines[k][33:], "not an F14.3 number"),
-                      ("G99" + lines[k][3:], "satellite id 'G99' is not valid"),
-                      ("G00" + lines[k][3:], "satellite id 'G00' is not valid")):  # fmt: skip
+    for new, what in (
+        (lines[k][:19] + "           nan" + lines[k][33:], "not an F14.3 number"),
+        ("G99" + lines[k][3:], "satellite id 'G99' is not valid"),
+        ("G00" + lines[k][3:], "satellite id 'G00' is not valid"),
+    ):
         bad = lines.copy()
         bad[k] = new
-        err = _one_error_line(run_cli(["inspect", _write(tmp_path, "v.rnx", "\n".join(bad))]),
-                              "v.rnx")  # fmt: skip
+        err = _one_error_line(
+            run_cli(["inspect", _write(tmp_path, "v.rnx", "\n".join(bad))]), "v.rnx"
+        )
         assert f"v.rnx, line {k + 1}:" in err and what in err
 
 
@@ -103,8 +112,7 @@ def test_non_numeric_values_and_satellite_ids_are_refused(tmp_path, text):
 def test_corrupt_gzip_and_unreadable_files_are_bad_input(tmp_path, text, monkeypatch):
     z = bytearray(gzip.compress(text.encode(), mtime=0))
     z[len(z) // 2 : len(z) // 2 + 4] = b"\x00\xff\x13\x37"
-    err = _one_error_line(run_cli(["inspect", _write(tmp_path, "z.rnx.gz", bytes(z))]),
-                          "z.rnx.gz")  # fmt: skip
+    err = _one_error_line(run_cli(["inspect", _write(tmp_path, "z.rnx.gz", bytes(z))]), "z.rnx.gz")
     assert "cannot decompress" in err
     p = _write(tmp_path, "locked.rnx", text)
     real = Path.read_bytes
@@ -130,19 +138,30 @@ def test_tiny_cutoff_and_toml_types_are_bad_input(tmp_path, text):
 
 # result.json never holds null where a number is documented
 def test_documented_numbers_are_never_null(tmp_path):
-    doc = {"schema_version": "1", "method": "DF",
-           "bound": {"sigma_gm_m": math.nan, "tau_s": 10.0, "sigma_wn_m": 0.0,
-                     "n_wn_two_sided_m2_hz": 0.0},
-           "cutoff": {"f_c_hz": 1e-3},
-           "sampling": {"interval_s": 30.0, "nyquist_hz": 1 / 60}}  # fmt: skip
+    doc = {
+        "schema_version": "1",
+        "method": "DF",
+        "bound": {
+            "sigma_gm_m": math.nan,
+            "tau_s": 10.0,
+            "sigma_wn_m": 0.0,
+            "n_wn_two_sided_m2_hz": 0.0,
+        },
+        "cutoff": {"f_c_hz": 1e-3},
+        "sampling": {"interval_s": 30.0, "nyquist_hz": 1 / 60},
+    }
     assert number_problems(json.loads(json.dumps(doc).replace("NaN", "null"))) == [
         "'bound.sigma_gm_m' must be a finite number, got null"
     ]
     with pytest.raises(ValueError, match="'bound.sigma_gm_m' must be a finite number, got null"):
         write_document(tmp_path / "result.json", doc)
     assert not (tmp_path / "result.json").exists()
-    da = {**doc, "method": "DA", "bound": {**doc["bound"], "sigma_gm_m": 0.01},
-          "cutoff": {"f_c_hz": None, "tau_c_min": None}}  # fmt: skip
+    da = {
+        **doc,
+        "method": "DA",
+        "bound": {**doc["bound"], "sigma_gm_m": 0.01},
+        "cutoff": {"f_c_hz": None, "tau_c_min": None},
+    }
     assert number_problems(da) == []  # no high-pass for dual-antenna: null by design
     full: dict = {}
     for f in REQUIRED_FIELDS:  # a complete document, every field filled with a number
@@ -155,7 +174,10 @@ def test_documented_numbers_are_never_null(tmp_path):
     full["bound"]["sigma_gm_m"] = None
     bad = tmp_path / "bad.json"
     bad.write_text(json.dumps(full))
-    with pytest.raises(InputError, match=r"bad\.json: no number where the schema documents one: "
-                                         r"'bound\.sigma_gm_m' must be a finite number, got "
-                                         "null"):  # fmt: skip
+    with pytest.raises(
+        InputError,
+        match=r"bad\.json: no number where the schema documents one: "
+        r"'bound\.sigma_gm_m' must be a finite number, got "
+        "null",
+    ):
         read_document(bad)

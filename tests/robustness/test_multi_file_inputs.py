@@ -46,8 +46,10 @@ def _split(nav: Navigation, t_split: float) -> tuple[Navigation, Navigation]:
     """The records before and from ``t_split`` (two files of one day)."""
     g = nav.ephemerides["G"]
     early = g.toe_gps_s < t_split
-    return (replace(nav, ephemerides={"G": g.select(early)}),
-            replace(nav, ephemerides={"G": g.select(~early)}))  # fmt: skip
+    return (
+        replace(nav, ephemerides={"G": g.select(early)}),
+        replace(nav, ephemerides={"G": g.select(~early)}),
+    )
 
 
 @pytest.fixture(scope="module")
@@ -63,8 +65,11 @@ def files(tmp_path_factory):
     }
     out["navs_zip"] = _zip(d / "navs.zip", out["nav_a"], out["nav_b"])
     out["station_zip"] = _zip(d / "station.zip", out["obs"], out["nav"])
-    out["obs_zip"] = _zip(d / "obs.zip", out["obs"], write_obs_v3(
-        d / "SYNT1771.20o", samples.geometric_observations(nav, "G", t0=T0 + 7200.0)))  # fmt: skip
+    out["obs_zip"] = _zip(
+        d / "obs.zip",
+        out["obs"],
+        write_obs_v3(d / "SYNT1771.20o", samples.geometric_observations(nav, "G", t0=T0 + 7200.0)),
+    )
     return out
 
 
@@ -116,9 +121,12 @@ def test_inspect_reads_a_zip_of_navigation_files(files):
 
 
 def test_a_zip_of_several_files_given_to_one_file_reader_lists_its_members(files):
-    with pytest.raises(InputError, match=r"obs\.zip: zip archive of 2 files \(SYNT1770\.20o, "
-                                         r"SYNT1771\.20o\): this reader takes one file; unzip "
-                                         r"it"):  # fmt: skip
+    with pytest.raises(
+        InputError,
+        match=r"obs\.zip: zip archive of 2 files \(SYNT1770\.20o, "
+        r"SYNT1771\.20o\): this reader takes one file; unzip "
+        r"it",
+    ):
         read_obs(files["obs_zip"])
 
 
@@ -132,8 +140,7 @@ def test_nav_option_accumulates(files, tmp_path, command):
         cfg = build_config(build_parser().parse_args([str(a) for a in args]))
         assert cfg.inputs.nav == (str(files["nav_a"]), str(files["nav_b"]))
         data = read_inputs(cfg.inputs)
-        assert [f["name"] for f in data.files if f["role"] == "nav"] == ["brdc_a.rnx",
-                                                                          "brdc_b.rnx"]  # fmt: skip
+        assert [f["name"] for f in data.files if f["role"] == "nav"] == ["brdc_a.rnx", "brdc_b.rnx"]
         assert len(data.orbit.ephemerides["G"]) == len(read_orbit(files["nav"]).ephemerides["G"])
     else:
         r = run_cli([*args, "--min-arc-min", "10"])
@@ -150,8 +157,11 @@ def test_navigation_records_in_two_files_count_once(files):
 def test_navigation_and_sp3_files_together_are_refused(files):
     from psdbound.io import orbits
 
-    with pytest.raises(InputError, match=r"the orbit files mix broadcast navigation \(brdc\.rnx\) "
-                                         r"and SP3 precise orbits \(orbit\.sp3\)"):  # fmt: skip
+    with pytest.raises(
+        InputError,
+        match=r"the orbit files mix broadcast navigation \(brdc\.rnx\) "
+        r"and SP3 precise orbits \(orbit\.sp3\)",
+    ):
         orbits._join([read_orbit(files["nav"]), _sp3(T0, 900.0, 4, "orbit.sp3")])
 
 
@@ -170,8 +180,11 @@ def test_sp3_files_of_consecutive_periods_are_joined():
     np.testing.assert_array_equal(j.xyz_m[:8, :2], a.xyz_m)  # the repeated epoch from a
     np.testing.assert_array_equal(j.xyz_m[8:, 1:], b.xyz_m[1:])
     assert np.isnan(j.xyz_m[8:, 0]).all() and np.isnan(j.xyz_m[:8, 2]).all()
-    with pytest.raises(InputError, match=r"SP3 files with different epoch intervals: a\.sp3 "
-                                         r"\(900 s\), c\.sp3 \(300 s\)"):  # fmt: skip
+    with pytest.raises(
+        InputError,
+        match=r"SP3 files with different epoch intervals: a\.sp3 "
+        r"\(900 s\), c\.sp3 \(300 s\)",
+    ):
         merge_precise([a, _sp3(T0 + 7200.0, 300.0, 8, "c.sp3")], "a + c")
 
 
@@ -193,8 +206,9 @@ def test_file_kinds(files, tmp_path):
     meteo = "     3.04           METEOROLOGICAL DATA                     RINEX VERSION / TYPE"
     (tmp_path / "m.rnx").write_text(meteo[:20] + "M" + meteo[21:] + "\n")
     (tmp_path / "bad.gz").write_bytes(b"\x1f\x8b" + b"\x00" * 40)
-    kinds = [file_kind(tmp_path / n) for n in ("o.gz", "o.crx.bz2", "n.gz", "o.sp3", "m.rnx",
-                                               "bad.gz")]  # fmt: skip
+    kinds = [
+        file_kind(tmp_path / n) for n in ("o.gz", "o.crx.bz2", "n.gz", "o.sp3", "m.rnx", "bad.gz")
+    ]
     assert kinds == ["obs", "obs", "nav", "sp3", "", ""]
 
 
@@ -203,30 +217,38 @@ def test_station_zip_of_observations_and_navigation(files):
     assert [o.path for o in data.observations] == [f"{files['station_zip']}:SYNT1770.20o"]
     assert isinstance(data.orbit, Navigation)
     assert str(data.orbit.path).endswith("station.zip:brdc.rnx")
-    assert [(f["role"], f["name"]) for f in data.files] == [("obs", "station.zip"),
-                                                            ("nav", "station.zip")]  # fmt: skip
+    assert [(f["role"], f["name"]) for f in data.files] == [
+        ("obs", "station.zip"),
+        ("nav", "station.zip"),
+    ]
     given = read_inputs(InputsConfig(obs=(str(files["station_zip"]),), nav=(str(files["nav"]),)))
     assert str(given.orbit.path).endswith("brdc.rnx") and ":" not in str(given.orbit.path)
-    assert any("its navigation/SP3 members are not used (--nav given)" in w
-               for w in given.warnings)  # fmt: skip
+    assert any("its navigation/SP3 members are not used (--nav given)" in w for w in given.warnings)
 
 
 def test_station_zip_through_the_command_line(files, tmp_path):
     """No --nav: the configuration check lets the archive through; the reading succeeds."""
     out = tmp_path / "out"
-    r = run_cli(["fit", files["station_zip"], "--out", out, "--no-pdf", "--quiet",
-                 "--min-arc-min", "500"])  # fmt: skip
+    r = run_cli(
+        ["fit", files["station_zip"], "--out", out, "--no-pdf", "--quiet", "--min-arc-min", "500"]
+    )
     # every arc is shorter than 500 min: a data error after both files were read
     assert check_run(r, "station.zip", allowed=(2,)) is None, r.err
     assert "station.zip:SYNT1770.20o" in r.err and "shorter than 500 min" in r.err, r.err
     assert "navigation (or SP3) file is needed" not in r.err
 
 
-@pytest.mark.parametrize(("archive", "message"), [
-    ("obs_zip", r"a navigation \(or SP3\) file is needed for elevations: give --nav"),
-    ("navs_zip", r"the archive holds no observation file \(2 navigation/SP3 files: brdc_a\.rnx, "
-                 r"brdc_b\.rnx\); give the observation files, and this archive as --nav"),
-])  # fmt: skip
+@pytest.mark.parametrize(
+    ("archive", "message"),
+    [
+        ("obs_zip", r"a navigation \(or SP3\) file is needed for elevations: give --nav"),
+        (
+            "navs_zip",
+            r"the archive holds no observation file \(2 navigation/SP3 files: brdc_a\.rnx, "
+            r"brdc_b\.rnx\); give the observation files, and this archive as --nav",
+        ),
+    ],
+)
 def test_archive_without_the_other_kind(files, archive, message):
     with pytest.raises(InputError, match=message):
         read_inputs(InputsConfig(obs=(str(files[archive]),)))
@@ -236,8 +258,20 @@ def test_archive_without_the_other_kind(files, archive, message):
 
 
 def test_fit_system_absent_from_the_file_names_the_systems_it_holds(files, tmp_path):
-    r = run_cli(["fit", files["obs"], "--nav", files["nav"], "--system", "R",
-                 "--out", tmp_path / "out", "--no-pdf", "--quiet"])  # fmt: skip
+    r = run_cli(
+        [
+            "fit",
+            files["obs"],
+            "--nav",
+            files["nav"],
+            "--system",
+            "R",
+            "--out",
+            tmp_path / "out",
+            "--no-pdf",
+            "--quiet",
+        ]
+    )
     assert check_run(r, files["obs"].name, allowed=(2,)) is None, r.err
     assert "no GLONASS (R) observations: the file holds GPS (G) only" in r.err
     assert "(--system G)" in r.err and "available:" not in r.err

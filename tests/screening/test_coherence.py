@@ -48,8 +48,9 @@ def test_a_disturbance_on_several_low_satellites_is_found_where_single_blocks_mi
         els[s][slots] = rng.uniform(10.0, 14.0, slots.size)
         quiet = _scale(els[s][slots]) * np.sqrt(rng.chisquare(NU, slots.size) / NU)
         rotis[s][slots] = np.hypot(quiet, 0.16)
-    single = [r > np.maximum(0.15, null.threshold(e, 1e-3 / 3))
-              for r, e in zip(rotis, els, strict=True)]
+    single = [
+        r > np.maximum(0.15, null.threshold(e, 1e-3 / 3)) for r, e in zip(rotis, els, strict=True)
+    ]
     flags = coherent_blocks(mids, rotis, els, null, false_alarm=1e-3 / 3, floor_tecu_min=0.15)
     found_single = np.mean([single[s][slots].mean() for s in range(5)])
     found = np.mean([flags[s][slots].mean() for s in range(5)])

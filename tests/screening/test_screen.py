@@ -96,7 +96,7 @@ class _Mapping:
     """Thesis-like mapping: strong multipath at low elevation."""
 
     def factor(self, el):
-        return 1.0 + 29.0 * np.exp(-np.asarray(el) ** 2 / (2 * 10.0**2))
+        return 1.0 + 29.0 * np.exp(-(np.asarray(el) ** 2) / (2 * 10.0**2))
 
 
 def _low_elevation_roughness(elevation):
@@ -104,10 +104,16 @@ def _low_elevation_roughness(elevation):
     rng = np.random.default_rng(7)
     t = 1e6 + np.arange(0.0, 4 * 3600.0, 30.0)
     gf = K * 0.1 * rng.standard_normal(t.size)
-    arc = {"sats": "G07", "t_gps_s": t, "value_m": 0.003 * rng.standard_normal(t.size),
-           "elevation_deg": np.full(t.size, elevation), "unfiltered_m": gf}
-    return MultipathSeries.from_arcs("DF", [arc], signals=("L1C", "L2W"), scaling=2**-0.5,
-                                     interval_s=30.0, cutoff_hz=9.55e-4)
+    arc = {
+        "sats": "G07",
+        "t_gps_s": t,
+        "value_m": 0.003 * rng.standard_normal(t.size),
+        "elevation_deg": np.full(t.size, elevation),
+        "unfiltered_m": gf,
+    }
+    return MultipathSeries.from_arcs(
+        "DF", [arc], signals=("L1C", "L2W"), scaling=2**-0.5, interval_s=30.0, cutoff_hz=9.55e-4
+    )
 
 
 def test_fixed_threshold_scales_with_the_multipath_mapping():

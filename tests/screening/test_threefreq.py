@@ -47,7 +47,8 @@ def test_combinations_cancel_and_carry_the_ionosphere():
     np.testing.assert_allclose(i_m, c.m_per_tecu * stec, rtol=1e-9)
     # per unit of equal, independent per-carrier multipath: 1.30 times L1-L2's ionosphere
     assert c.m_per_tecu / (geometry_free_m_per_tecu(F1, F2) / np.sqrt(2)) == pytest.approx(
-        1.305, abs=0.01)
+        1.305, abs=0.01
+    )
     (xi, yi), (xd, yd) = c.iono, c.free
     assert (xi + yi) * (xd + yd) + xi * xd + yi * yd == pytest.approx(0.0, abs=1e-12)
 
@@ -89,8 +90,10 @@ def _elevations(sc):
         a = s.arc(k)
         bi = np.clip(((a.t_gps_s - a.t_gps_s[0]) // 300).astype(int), 0, r["ratio_3f"].size - 1)
         n = r["ratio_3f"].size
-        out.append(np.bincount(bi, weights=a.elevation_deg, minlength=n)
-                   / np.maximum(np.bincount(bi, minlength=n), 1))
+        out.append(
+            np.bincount(bi, weights=a.elevation_deg, minlength=n)
+            / np.maximum(np.bincount(bi, minlength=n), 1)
+        )
     return out
 
 
@@ -118,8 +121,11 @@ def test_disturbance_found_and_strong_multipath_kept():
         arcs = tuple(range(seed % 4, 24, 4))
         s0 = three_carrier_series(seed)
         d = Disturbance(s0.arc(arcs[2]).t_gps_s[0] - T0 + 5400.0, 2700.0, 0.3, arcs)
-        bursts = tuple(Burst(b, s0.arc(b).t_gps_s[0] - T0 + 3600.0, 1200.0, 3.0)
-                       for b in (1, 7, 13, 19) if b not in arcs)
+        bursts = tuple(
+            Burst(b, s0.arc(b).t_gps_s[0] - T0 + 3600.0, 1200.0, 3.0)
+            for b in (1, 7, 13, 19)
+            if b not in arcs
+        )
         s = three_carrier_series(seed, disturbances=(d,), bursts=bursts)
         for tf in (True, False):
             sc = _screen(s, three_frequency=tf)
@@ -164,10 +170,15 @@ def _real(obs_name, nav_name):
     pair = ("L1C", "L2W")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        obs = read_obs(shared_file(obs_name), systems="G", codes=pair,
-                       optional_codes=third_candidates("G", pair))
-        arcs = find_arcs(obs, pair, orbit=read_orbit(shared_file(nav_name)),
-                         elevation_mask_deg=10.0)
+        obs = read_obs(
+            shared_file(obs_name),
+            systems="G",
+            codes=pair,
+            optional_codes=third_candidates("G", pair),
+        )
+        arcs = find_arcs(
+            obs, pair, orbit=read_orbit(shared_file(nav_name)), elevation_mask_deg=10.0
+        )
     return isolate_dual_frequency(add_third_carrier(arcs, obs), 1.5e-3)
 
 

@@ -53,11 +53,19 @@ def _elevation(n: int, peak_deg: float) -> np.ndarray:
     return 10.0 + (peak_deg - 10.0) * np.sin(np.pi * (np.arange(n) + 0.5) / n)
 
 
-def three_carrier_series(seed: int, *, n_arcs: int = 24, hours: float = 4.0,
-                         sigma_m: float = 0.003, tau_s: float = 30.0, wn_m: float = 0.0005,
-                         disturbances: tuple[Disturbance, ...] = (),
-                         bursts: tuple[Burst, ...] = (), third: bool = True,
-                         span_h: float = 20.0) -> MultipathSeries:
+def three_carrier_series(
+    seed: int,
+    *,
+    n_arcs: int = 24,
+    hours: float = 4.0,
+    sigma_m: float = 0.003,
+    tau_s: float = 30.0,
+    wn_m: float = 0.0005,
+    disturbances: tuple[Disturbance, ...] = (),
+    bursts: tuple[Burst, ...] = (),
+    third: bool = True,
+    span_h: float = 20.0,
+) -> MultipathSeries:
     """Return a DF series of ``n_arcs`` GPS arcs with L1-L2 and (``third``) L1-L5 unfiltered.
 
     Arcs of ``hours`` start at staggered times over ``span_h`` hours, rise to
@@ -83,14 +91,25 @@ def three_carrier_series(seed: int, *, n_arcs: int = 24, hours: float = 4.0,
                 stec = stec + np.cumsum(np.where(on, rng.normal(0, 0.5 * d.roti_tecu_min, n), 0))
         phase = -40.3e16 * stec[:, None] / np.array([F1, F2, F5]) ** 2 + mp
         gf12, gf15 = phase[:, 0] - phase[:, 1], phase[:, 0] - phase[:, 2]
-        arc = {"sats": f"G{k + 1:02d}", "t_gps_s": t, "elevation_deg": el,
-               "value_m": DF_SCALING * (mp[:, 0] - mp[:, 1]), "unfiltered_m": gf12 - gf12.mean()}
+        arc = {
+            "sats": f"G{k + 1:02d}",
+            "t_gps_s": t,
+            "elevation_deg": el,
+            "value_m": DF_SCALING * (mp[:, 0] - mp[:, 1]),
+            "unfiltered_m": gf12 - gf12.mean(),
+        }
         if third:
             arc["third_m"] = gf15 - gf15.mean()
         out.append(arc)
-    return MultipathSeries.from_arcs("DF", out, signals=("L1C", "L2W"), scaling=DF_SCALING,
-                                     interval_s=DT, cutoff_hz=1e-3,
-                                     third_signal="L5Q" if third else None)
+    return MultipathSeries.from_arcs(
+        "DF",
+        out,
+        signals=("L1C", "L2W"),
+        scaling=DF_SCALING,
+        interval_s=DT,
+        cutoff_hz=1e-3,
+        third_signal="L5Q" if third else None,
+    )
 
 
 def disturbed_blocks(series: MultipathSeries, d: Disturbance) -> int:

@@ -55,8 +55,9 @@ def test_beyond_the_limit_names_option_elevation_value_and_limit():
 
 
 def test_simulate_cli_warns_and_still_writes(tmp_path, capsys):
-    code = main([str(a) for a in [*SHORT, "--multipath", "sigma_gm_m=0.007", "--out",
-                                  tmp_path / "sim"]])  # fmt: skip
+    code = main(
+        [str(a) for a in [*SHORT, "--multipath", "sigma_gm_m=0.007", "--out", tmp_path / "sim"]]
+    )
     out, err = capsys.readouterr()
     assert code == 0 and len(out.split()) == 4
     lines = err.strip().splitlines()

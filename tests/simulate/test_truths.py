@@ -68,8 +68,10 @@ def test_spec_sets_the_given_keys_only(text, expected):
         ("tau_s=90000", "--multipath tau_s must be a number > 0 and <= 86400 s, got 90000"),
         ("tau_s=inf", "--multipath tau_s must be a number > 0 and <= 86400 s, got inf"),
         ("mapping=1,12", "--multipath mapping must be three numbers a,b,c (c in degrees)"),
-        ("mapping=1,12,10,5", "--multipath mapping must be three numbers a,b,c (c in degrees), "
-                              "got '1,12,10,5'"),
+        (
+            "mapping=1,12,10,5",
+            "--multipath mapping must be three numbers a,b,c (c in degrees), got '1,12,10,5'",
+        ),
         ("mapping=0,12,10", "--multipath mapping a must be a number > 0 and <= 1000, got 0"),
         ("mapping=1,-1,10", "--multipath mapping b must be a number from 0 to 10000, got -1"),
         ("mapping=1,12,95", "--multipath mapping c_deg must be a number > 0 and <= 90 deg"),
@@ -123,11 +125,16 @@ def _rich_scenario(tmp_path):
         baseline_enu_m=(1.5, -2.0, 0.25),
         seed=12345,
         multipath=MultipathModel(
-            sigma_gm_m=0.0042, tau_s=123.5, sigma_wn_m=1.5e-3, a=1.0, b=12.0, c_deg=10.0,
+            sigma_gm_m=0.0042,
+            tau_s=123.5,
+            sigma_wn_m=1.5e-3,
+            a=1.0,
+            b=12.0,
+            c_deg=10.0,
             reflections=(Reflection("wall", 25.0, 0.3), Reflection("ground", 1.5, 0.1)),
         ),
         disturbances=(IonoDisturbance(600.0, 1200.0, 0.8, ("G05", "E11")),),
-    )  # fmt: skip
+    )
 
 
 def test_toml_round_trip(tmp_path):
@@ -150,9 +157,13 @@ def test_toml_layers_onto_the_base(tmp_path):
     short = preset("short")
     assert sc.duration_s == 3600.0 and sc.seed == short.seed and sc.name == short.name
     assert sc.multipath == MultipathModel(
-        sigma_gm_m=short.multipath.sigma_gm_m, tau_s=120.0,
-        sigma_wn_m=short.multipath.sigma_wn_m, a=1.0, b=12.0, c_deg=10.0,
-    )  # fmt: skip
+        sigma_gm_m=short.multipath.sigma_gm_m,
+        tau_s=120.0,
+        sigma_wn_m=short.multipath.sigma_wn_m,
+        a=1.0,
+        b=12.0,
+        c_deg=10.0,
+    )
     assert sc.nav_path == str(tmp_path / "brdc.rnx")  # relative to the file
 
 
@@ -177,15 +188,21 @@ def test_toml_layers_onto_the_base(tmp_path):
         ("lat_deg = 100\n", "latitude must be within [-90, 90] deg"),
         ("duration_s = 3e6\n", "more than 2e6 epochs"),
         ("[[disturbances]]\nstart_s = 1\n", "[[disturbances]] item 1 lacks duration_s"),
-        ("[[disturbances]]\nstart_s = 1\nduration_s = 60\nroti_tecu_min = 0\n",
-         "[[disturbances]] item 1 roti_tecu_min must be a number > 0"),
-        ("[[multipath.reflections]]\nkind = 'roof'\ndistance_m = 1\nalpha = 0.1\n",
-         "[[multipath.reflections]] item 1 kind must be 'ground' or 'wall'"),
-        ("[[multipath.reflections]]\nkind = 'wall'\ndistance_m = 1\nalpha = 0.1\nh = 2\n",
-         "unknown key 'h' in [[multipath.reflections]] item 1"),
+        (
+            "[[disturbances]]\nstart_s = 1\nduration_s = 60\nroti_tecu_min = 0\n",
+            "[[disturbances]] item 1 roti_tecu_min must be a number > 0",
+        ),
+        (
+            "[[multipath.reflections]]\nkind = 'roof'\ndistance_m = 1\nalpha = 0.1\n",
+            "[[multipath.reflections]] item 1 kind must be 'ground' or 'wall'",
+        ),
+        (
+            "[[multipath.reflections]]\nkind = 'wall'\ndistance_m = 1\nalpha = 0.1\nh = 2\n",
+            "unknown key 'h' in [[multipath.reflections]] item 1",
+        ),
         ("x = [\n", "not valid TOML"),
     ],
-)  # fmt: skip
+)
 def test_toml_errors_name_the_file_and_key(tmp_path, text, message):
     p = tmp_path / "bad.toml"
     p.write_text(text)
@@ -211,9 +228,10 @@ def test_truth_model_of_the_demo():
 
 def test_truth_model_scales_the_unmapped_receiver_noise():
     sc = preset("short").replace(
-        interval_s=30.0, receiver_noise_m=0.002,
+        interval_s=30.0,
+        receiver_noise_m=0.002,
         multipath=MultipathModel(sigma_gm_m=0.004, tau_s=300.0, sigma_wn_m=0.0, a=2.0, b=0.0),
-    )  # fmt: skip
+    )
     t = truth_model(sc)
     assert t.sigma_wn_m == pytest.approx(0.001) and t.dt_s == 30.0 and t.tau_s == 300.0
 
@@ -250,8 +268,12 @@ def test_mapped_df_series_has_the_truth_variance(tmp_path):
     mp = MultipathModel.from_spec("sigma_gm_m=0.004,tau_s=30,sigma_wn_m=0.002,mapping=1,12,10")
     sc = preset("short").replace(multipath=mp, dual_antenna=False, duration_s=7200.0, seed=11)
     res = simulate(sc, tmp_path)
-    arcs = find_arcs(read_obs(res.obs_paths[0]), ("L1C", "L2W"), orbit=read_orbit(res.nav_path),
-                     elevation_mask_deg=10.0)  # fmt: skip
+    arcs = find_arcs(
+        read_obs(res.obs_paths[0]),
+        ("L1C", "L2W"),
+        orbit=read_orbit(res.nav_path),
+        elevation_mask_deg=10.0,
+    )
     series = isolate_dual_frequency(arcs, FC)
     mapped = ElevationMapping(mp.a, mp.b, mp.c_deg).apply(series.value_m, series.elevation_deg)
     truth = truth_model(sc)

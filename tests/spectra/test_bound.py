@@ -112,8 +112,9 @@ def test_a_variance_the_solver_returns_as_minus_zero_is_zero():
     """Found by hypothesis: HiGHS returned -1e-18 for the white variance (sqrt gave NaN)."""
     from types import SimpleNamespace
 
-    f = np.array([0.00195312, 0.0078125, 0.015625, 0.01763473, 0.0234375, 0.03125,
-                  0.03248409, 0.0625])  # fmt: skip
+    f = np.array(
+        [0.00195312, 0.0078125, 0.015625, 0.01763473, 0.0234375, 0.03125, 0.03248409, 0.0625]
+    )
     s = np.array([1e-3, 1e-3, 1e-3, 1e-3, 1e-4, 1e-4, 5.233e-4, 1e-4])
     fit = fit_bound([SimpleNamespace(f_hz=f, psd_m2_hz=s)], 5.0)
     m = fit.model

@@ -77,9 +77,17 @@ def test_windows_psds_bound_pipeline():
 def test_pooled_rule_refuses_overlapping_windows():
     rng = np.random.default_rng(1)
     n, dt = 4000, 1.0
-    series = MultipathSeries("DA", 1.3e9 + dt * np.arange(n), rng.normal(0, 0.003, n),
-                             np.full(n, 90.0), np.zeros(n, dtype=np.intp), ("G01-G02",),
-                             ("L1C",), 0.5, dt)  # fmt: skip
+    series = MultipathSeries(
+        "DA",
+        1.3e9 + dt * np.arange(n),
+        rng.normal(0, 0.003, n),
+        np.full(n, 90.0),
+        np.zeros(n, dtype=np.intp),
+        ("G01-G02",),
+        ("L1C",),
+        0.5,
+        dt,
+    )
     slid = find_stationary_windows(series, min_length_s=600, test="thesis", overlap=True)
     with pytest.raises(InputError, match="disjoint windows"):
         BoundModel(slid).fit()

@@ -40,10 +40,11 @@ def test_truth_inside_the_intervals_at_the_stated_level():
     for _ in range(n_trials):
         ms, why = _set(_windows(rng, 0.003, 30.0, 0.001))
         assert ms is not None, why
-        inside = (ms.tau_interval_s[0] <= truth["tau_s"] <= ms.tau_interval_s[1]
-                  and ms.sigma_gm_interval_m[0] <= truth["sigma_gm_m"] <= ms.sigma_gm_interval_m[1]
-                  and ms.sigma_wn_interval_m[0] <= truth["sigma_wn_m"]
-                  <= ms.sigma_wn_interval_m[1])  # fmt: skip
+        inside = (
+            ms.tau_interval_s[0] <= truth["tau_s"] <= ms.tau_interval_s[1]
+            and ms.sigma_gm_interval_m[0] <= truth["sigma_gm_m"] <= ms.sigma_gm_interval_m[1]
+            and ms.sigma_wn_interval_m[0] <= truth["sigma_wn_m"] <= ms.sigma_wn_interval_m[1]
+        )
         hits += int(inside)
         widths.append(ms.tau_interval_s[1] / ms.tau_interval_s[0])
     print(f"\njoint coverage {hits}/{n_trials}; median tau interval ratio {np.median(widths):.2f}")
@@ -104,8 +105,9 @@ def test_exact_multitaper_expectation_against_simulation():
     acc = np.zeros(lo.size)
     for x in _windows(rng, 1.0, tau, 0.0, n_windows=300, n=n):
         p = estimate_psd(x, DT)
-        acc += [p.psd_m2_hz[(p.f_hz >= a) & (p.f_hz < b)].mean()
-                for a, b in zip(lo, hi, strict=True)]
+        acc += [
+            p.psd_m2_hz[(p.f_hz >= a) & (p.f_hz < b)].mean() for a, b in zip(lo, hi, strict=True)
+        ]
     assert has.all()
     np.testing.assert_allclose(acc / 300, exact, rtol=0.06)
     # away from 0 Hz the form without the mean removal agrees with the exact one

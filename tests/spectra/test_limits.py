@@ -80,15 +80,20 @@ def _covered(res, truths, dt) -> int:
     f = np.geomspace(res.f_min_hz, 0.5 / dt, 300)
     b = res.bound
     bound = gm_psd_sampled(f, b.sigma_gm_m, b.tau_s, dt) + 2 * dt * b.sigma_wn_m**2
-    return sum(bool(np.all(bound >= gm_psd_sampled(f, s, t, dt) + 2 * dt * w**2))
-               for s, t, w in truths)  # fmt: skip
+    return sum(
+        bool(np.all(bound >= gm_psd_sampled(f, s, t, dt) + 2 * dt * w**2)) for s, t, w in truths
+    )
 
 
-@pytest.mark.xfail(strict=False, reason=(
-    "known gap (issue 27): 7 of these 10 seeds have every window covered against the stated "
-    "95 %: the pair's excess lies in the lowest resolution cells; a tilt tested at 5 % per "
-    "window found it in 9 of 10 but loosened the ESBC bound from 2.3 to 6.0 mm, so the tilt "
-    "test is family-wise (benchmarks/bound_coverage.py: slow classes 0.965-0.975 covered)"))
+@pytest.mark.xfail(
+    strict=False,
+    reason=(
+        "known gap (issue 27): 7 of these 10 seeds have every window covered against the stated "
+        "95 %: the pair's excess lies in the lowest resolution cells; a tilt tested at 5 % per "
+        "window found it in 9 of 10 but loosened the ESBC bound from 2.3 to 6.0 mm, so the tilt "
+        "test is family-wise (benchmarks/bound_coverage.py: slow classes 0.965-0.975 covered)"
+    ),
+)
 def test_bound_series_covers_a_minority_of_slow_strong_reflectors() -> None:
     """22 windows of 3 mm / 30 s and 2 of 6 mm / 200 s: the earlier rule missed the two.
 
@@ -127,10 +132,16 @@ def test_reference_clusters_and_their_correlation() -> None:
 
     rng = np.random.default_rng(4)
     ref = rng.normal(size=2000)
-    series = [ref[:1000] + rng.normal(size=1000), ref[500:1500] + rng.normal(size=1000),
-              rng.normal(size=1000)]  # fmt: skip
-    labels = reference_clusters(["G01-G06", "G02-G06", "G03-G09"], np.array([0.0, 500.0, 0.0]),
-                                np.array([999.0, 1499.0, 999.0]))  # fmt: skip
+    series = [
+        ref[:1000] + rng.normal(size=1000),
+        ref[500:1500] + rng.normal(size=1000),
+        rng.normal(size=1000),
+    ]
+    labels = reference_clusters(
+        ["G01-G06", "G02-G06", "G03-G09"],
+        np.array([0.0, 500.0, 0.0]),
+        np.array([999.0, 1499.0, 999.0]),
+    )
     assert labels is not None and labels[0] == labels[1] != labels[2]
     rho, n_pairs = overlap_correlation(series, np.array([0.0, 500.0, 0.0]), 1.0, labels)
     assert n_pairs == 1 and rho == pytest.approx(0.5, abs=0.1)  # var(ref) / (var(ref) + 1)

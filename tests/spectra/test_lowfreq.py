@@ -126,8 +126,9 @@ def test_lowest_fourier_frequencies_identify_the_plateau():
     lo, hi = res.model_set.tau_interval_s
     assert lo <= 600.0 <= hi
     # the statement's bands alone leave the time constant open above
-    alone, _ = model_set(res.bands, res.limits, DT, smoothing_hz=smoothing_hz(res.psds),
-                         tau_max_s=900.0)  # fmt: skip
+    alone, _ = model_set(
+        res.bands, res.limits, DT, smoothing_hz=smoothing_hz(res.psds), tau_max_s=900.0
+    )
     assert alone.open_ends["tau_s"][1] or alone.tau_interval_s[1] > 900.0
 
 

@@ -62,10 +62,14 @@ def test_minority_of_high_windows_is_covered_by_its_own_levels() -> None:
 
 
 def test_bound_tightens_as_windows_accumulate() -> None:
-    few = [_covers(fit_pooled_bound(_windows(s, 10), DT, f_min_hz=2 / (N * DT))[0], 0.002)[1]
-           for s in range(8)]  # fmt: skip
-    many = [_covers(fit_pooled_bound(_windows(s, 150), DT, f_min_hz=2 / (N * DT))[0], 0.002)[1]
-            for s in range(8)]  # fmt: skip
+    few = [
+        _covers(fit_pooled_bound(_windows(s, 10), DT, f_min_hz=2 / (N * DT))[0], 0.002)[1]
+        for s in range(8)
+    ]
+    many = [
+        _covers(fit_pooled_bound(_windows(s, 150), DT, f_min_hz=2 / (N * DT))[0], 0.002)[1]
+        for s in range(8)
+    ]
     assert np.median(many) < np.median(few)
 
 
@@ -87,8 +91,7 @@ def test_band_dof_and_merging() -> None:
     assert np.median(merged.dof[have]) >= 40.0
 
 
-@pytest.mark.parametrize("kw", [{"confidence_level": 1.0}, {"coverage": 0.4},
-                                {"shape_alpha": 0.0}])  # fmt: skip
+@pytest.mark.parametrize("kw", [{"confidence_level": 1.0}, {"coverage": 0.4}, {"shape_alpha": 0.0}])
 def test_bad_options_are_named(kw: dict) -> None:
     bands = band_spectra(_windows(0, 4), f_min_hz=2 / (N * DT))
     with pytest.raises(InputError, match=next(iter(kw)).split("_")[0]):

@@ -77,15 +77,19 @@ def test_windowing_with_the_spectral_test_covers_stationary_arcs():
         n = 2 * 3600
         t = 1e6 + a * 1e5 + np.arange(n, dtype=float)
         v = 0.003 * _gm(rng, n, 30.0) + 0.001 * rng.standard_normal(n)
-        arcs.append({"sats": f"G{a + 1:02d}", "t_gps_s": t, "value_m": v,
-                     "elevation_deg": np.full(n, 60.0)})  # fmt: skip
-    s = MultipathSeries.from_arcs("DF", arcs, signals=("L1C", "L2W"), scaling=2**-0.5,
-                                  interval_s=1.0)  # fmt: skip
+        arcs.append(
+            {"sats": f"G{a + 1:02d}", "t_gps_s": t, "value_m": v, "elevation_deg": np.full(n, 60.0)}
+        )
+    s = MultipathSeries.from_arcs(
+        "DF", arcs, signals=("L1C", "L2W"), scaling=2**-0.5, interval_s=1.0
+    )
     flat = ElevationMapping(1.0, 0.0, 10.0, "fixed")
     spectral = find_stationary_windows(s, mapping=flat, test="spectral")
     thesis = find_stationary_windows(s, mapping=flat, test="thesis")
     total_s = s.t_gps_s.size * s.interval_s
-    print(f"never stationary: spectral {100 * spectral.uncovered_s / total_s:.1f} %, "
-          f"thesis {100 * thesis.uncovered_s / total_s:.1f} %")
+    print(
+        f"never stationary: spectral {100 * spectral.uncovered_s / total_s:.1f} %, "
+        f"thesis {100 * thesis.uncovered_s / total_s:.1f} %"
+    )
     assert spectral.uncovered_s <= 0.05 * total_s < thesis.uncovered_s
     assert spectral.params["test"] == "spectral"

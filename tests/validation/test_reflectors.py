@@ -228,11 +228,17 @@ def synthetic_station(*, h_m=2.0, alpha=0.2, codes=("S1C", "S2W"), approx=True, 
     gap = (t_rel > starts["G02"] + 1800.0) & (t_rel < starts["G02"] + 2400.0)
     values[gap, 1, :] = np.nan  # a 10-minute gap inside G02's rising arc
     header = ObsHeader(
-        version=3.04, file_system="G", marker_name="SYN", receiver_type="SYNTH",
-        antenna_type="NONE", approx_position_m=ESBC_XYZ_M if approx else None,
-        antenna_delta_hen_m=np.zeros(3), interval_s=30.0, time_system="GPS",
+        version=3.04,
+        file_system="G",
+        marker_name="SYN",
+        receiver_type="SYNTH",
+        antenna_type="NONE",
+        approx_position_m=ESBC_XYZ_M if approx else None,
+        antenna_delta_hen_m=np.zeros(3),
+        interval_s=30.0,
+        time_system="GPS",
         obs_types={"G": tuple(codes)},
-    )  # fmt: skip
+    )
     lli = np.full(values.shape, -1, np.int8)
     block = SystemBlock("G", sats, tuple(codes), values, lli, lli.copy())
     obs = Observations("synthetic", header, t0 + t_rel, np.zeros(t_rel.size, np.int8), {"G": block})
@@ -254,8 +260,12 @@ def test_reflector_heights_on_a_synthetic_station():
     # G01: one rising and one setting arc; G02: the gap splits its rising arc in two
     assert r.n_arcs == 5
     assert sorted(zip(r.sat.tolist(), r.rising.tolist(), strict=True)) == [
-        ("G01", False), ("G01", True), ("G02", False), ("G02", True), ("G02", True),
-    ]  # fmt: skip
+        ("G01", False),
+        ("G01", True),
+        ("G02", False),
+        ("G02", True),
+        ("G02", True),
+    ]
     assert r.n_accepted == 3
     assert not np.any(r.accepted[(r.sat == "G02") & r.rising])
     assert all("elevation coverage" in s for s in r.reason[(r.sat == "G02") & r.rising])

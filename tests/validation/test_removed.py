@@ -32,9 +32,16 @@ def _arcs(n=4, hours=6.0):
 
 def _removed(h_m, alpha):
     el, arc = _arcs()
-    return removed_along_arcs(el, arc, geometry=parse_geometry(f"ground:h={h_m}"), alpha=alpha,
-                              wavelengths_m=LAMS, highpass=HighPass(), dt_s=DT,
-                              cutoff_hz=FC)  # fmt: skip
+    return removed_along_arcs(
+        el,
+        arc,
+        geometry=parse_geometry(f"ground:h={h_m}"),
+        alpha=alpha,
+        wavelengths_m=LAMS,
+        highpass=HighPass(),
+        dt_s=DT,
+        cutoff_hz=FC,
+    )
 
 
 def test_the_slow_component_lies_above_the_removed_spectrum_everywhere():
@@ -62,6 +69,16 @@ def test_a_low_reflector_loses_most_of_its_multipath_to_the_filter():
 
 def test_no_elevations_no_component():
     el, arc = _arcs()
-    assert removed_along_arcs(np.full_like(el, np.nan), arc, geometry=parse_geometry("ground:h=1"),
-                              alpha=0.1, wavelengths_m=LAMS, highpass=HighPass(), dt_s=DT,
-                              cutoff_hz=FC) is None  # fmt: skip
+    assert (
+        removed_along_arcs(
+            np.full_like(el, np.nan),
+            arc,
+            geometry=parse_geometry("ground:h=1"),
+            alpha=0.1,
+            wavelengths_m=LAMS,
+            highpass=HighPass(),
+            dt_s=DT,
+            cutoff_hz=FC,
+        )
+        is None
+    )

@@ -261,8 +261,12 @@ def _direct_vs_expansion(mode, geometry, cutoff_hz, theta0_deg, convention, alph
 def test_direct_and_expansion_agree_for_aircraft_cases(mode, geometry, convention):
     f_mode = AIRCRAFT_MODES[mode].frequency_hz
     # the thesis cutoff (all harmonics above it), then cutoffs splitting the harmonic comb
-    for fc, th0 in ((FC_THESIS_HZ, 30.0), (2.5 * f_mode, 30.0), (4.5 * f_mode, 60.0),
-                    (10.5 * f_mode, 0.0)):  # fmt: skip
+    for fc, th0 in (
+        (FC_THESIS_HZ, 30.0),
+        (2.5 * f_mode, 30.0),
+        (4.5 * f_mode, 60.0),
+        (10.5 * f_mode, 0.0),
+    ):
         exp, d = _direct_vs_expansion(mode, geometry, fc, th0, convention)
         diff = abs(d.fraction_below_cutoff - exp.fraction_second_order)
         assert diff < 0.02, (fc / f_mode, th0, d.fraction_below_cutoff, exp.fraction_second_order)
@@ -450,9 +454,22 @@ def _parser():
 def test_cli_writes_table_and_figures(tmp_path, capsys):
     out = tmp_path / "v"
     args = _parser().parse_args(
-        ["validate", "--cutoff-hz", "9.55e-4", "--geometry", "wall:d=25", "--geometry",
-         "ground:h=1.5", "--rate", "orbit", "--alpha", "0.2", "--out", str(out)]
-    )  # fmt: skip
+        [
+            "validate",
+            "--cutoff-hz",
+            "9.55e-4",
+            "--geometry",
+            "wall:d=25",
+            "--geometry",
+            "ground:h=1.5",
+            "--rate",
+            "orbit",
+            "--alpha",
+            "0.2",
+            "--out",
+            str(out),
+        ]
+    )
     assert run(args) == 0
     text = capsys.readouterr().out
     assert "wall:d=25" in text and "FAIL" in text and "physical" in text
@@ -475,9 +492,22 @@ def test_cli_aircraft_mode_with_user_modes(tmp_path, capsys):
     )
     out = tmp_path / "o"
     args = _parser().parse_args(
-        ["validate", "--cutoff-hz", "9.55e-4", "--geometry", "ground:h=10", "--rate", "slow",
-         "--modes", str(modes), "--convention", "physical", "--out", str(out)]
-    )  # fmt: skip
+        [
+            "validate",
+            "--cutoff-hz",
+            "9.55e-4",
+            "--geometry",
+            "ground:h=10",
+            "--rate",
+            "slow",
+            "--modes",
+            str(modes),
+            "--convention",
+            "physical",
+            "--out",
+            str(out),
+        ]
+    )
     assert run(args) == 0
     doc = json.loads((out / "validation.json").read_text())
     assert [r["model"] for r in doc["expansion"]] == ["rotating", "oscillation"]
