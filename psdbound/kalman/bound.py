@@ -280,7 +280,44 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
             inconsistent. The message names the file and the key.
         """
         p = Path(path)
-        doc = read_document(p)
+        return cls._from_document(read_document(p), p, allow_not_bounded, stacklevel=3)
+
+    @classmethod
+    def from_document(
+        cls, document: dict[str, Any], *, allow_not_bounded: bool = False, source: str = ""
+    ) -> GaussMarkovBound:
+        """Return the bound of a result document in memory (``FitResults.document``).
+
+        The same reading and checks as :meth:`from_result`, without a file:
+        ``psdbound.fit(...)`` hands its document to a filter directly.
+
+        Parameters
+        ----------
+        document : dict
+            A result document (schema 1), e.g. :attr:`psdbound.FitResults.document`.
+        allow_not_bounded : bool, default False
+            Read the numbers of a ``"not-bounded"`` result anyway.
+        source : str, optional
+            What messages name as the origin (default ``"result document"``).
+
+        Returns
+        -------
+        GaussMarkovBound
+
+        Raises
+        ------
+        InputError
+            As :meth:`from_result`.
+        """
+        return cls._from_document(
+            document, Path(source or "result document"), allow_not_bounded, stacklevel=3
+        )
+
+    @classmethod
+    def _from_document(
+        cls, doc: dict[str, Any], p: Path, allow_not_bounded: bool, *, stacklevel: int
+    ) -> GaussMarkovBound:
+        """Read and check the bound of a document; ``p`` names its origin in messages."""
         _check_verdict(doc, p, allow_not_bounded)
         b = _section(doc, "bound", p)
         sigma_gm = _number(b, "bound", "sigma_gm_m", p)
@@ -303,7 +340,7 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
                 f"carry (multipath the high-pass removed: {1000 * slow[0]['sigma_m']:.2f} mm, "
                 f"tau {slow[0]['tau_s']:.4g} s); psdbound.load(path).error_model exports every "
                 f"component",
-                stacklevel=2,
+                stacklevel=stacklevel,
             )
         mapping = _read_mapping(doc, p)
         return cls(sigma_gm, tau, sigma_wn, dt, mapping=mapping, source=str(p))

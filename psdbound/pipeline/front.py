@@ -94,6 +94,31 @@ class FitResults:
 
         return ErrorModel.from_document(self.document, source=self._source)
 
+    def kalman_bound(self, *, allow_not_bounded: bool = False) -> Any:
+        """Return the bound as a Kalman-filter model, in memory (no ``result.json`` round trip).
+
+        Parameters
+        ----------
+        allow_not_bounded : bool, default False
+            Also for a ``"not-bounded"`` result (refused otherwise, with its reasons).
+
+        Returns
+        -------
+        psdbound.kalman.GaussMarkovBound
+            The same object :meth:`GaussMarkovBound.from_result` reads from the
+            written file (``to_state_space``, ``measurement_covariance``, ...).
+
+        Raises
+        ------
+        InputError
+            A not-bounded result (without ``allow_not_bounded``).
+        """
+        from psdbound.kalman.bound import GaussMarkovBound
+
+        return GaussMarkovBound.from_document(
+            self.document, allow_not_bounded=allow_not_bounded, source=self._source or "fit"
+        )
+
     @property
     def verdict(self) -> str:
         """``"bounded"`` or ``"not-bounded"`` (see :mod:`psdbound.pipeline.verdict`)."""

@@ -117,3 +117,17 @@ def test_import_psdbound_is_light():
     code = "import sys, psdbound; print('matplotlib' in sys.modules, 'scipy' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.split() == ["False", "False"]
+
+
+def test_kalman_bound_in_memory_equals_the_file_s(demo_fit, tmp_path):
+    from psdbound.kalman import GaussMarkovBound
+
+    path = demo_fit.to_json(tmp_path / "result.json")
+    in_memory = demo_fit.kalman_bound()
+    from_file = GaussMarkovBound.from_result(path)
+    assert in_memory.to_state_space(1.0) == pytest.approx(from_file.to_state_space(1.0))
+    assert (in_memory.sigma_gm_m, in_memory.tau_s, in_memory.sigma_wn_m) == (
+        from_file.sigma_gm_m,
+        from_file.tau_s,
+        from_file.sigma_wn_m,
+    )
