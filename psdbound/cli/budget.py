@@ -26,6 +26,7 @@ import math
 from typing import Any
 
 from psdbound.cli.actions import Once
+from psdbound.cli.config_file import add_config_option
 from psdbound.errors import InputError
 
 __all__ = ["add_parser", "run"]
@@ -173,6 +174,7 @@ def add_parser(subparsers: Any) -> None:
         type=float,
         help="vertical alert limit, m: prints the availability (default: none)",
     )
+    add_config_option(p)
     p.set_defaults(func=run)
 
 

@@ -28,6 +28,7 @@ import argparse
 from typing import Any
 
 from psdbound.cli.actions import Once
+from psdbound.cli.config_file import add_config_option
 from psdbound.common.progress import counter
 from psdbound.errors import InputError
 
@@ -184,6 +185,7 @@ def add_parser(subparsers: Any) -> None:
     run_.add_argument("--no-cache", action="store_true", help="neither read nor write the cache")
     run_.add_argument("--out", default=".", help="output directory (default: .)")
     run_.add_argument("--no-figures", action="store_true", help="write no PNG")
+    add_config_option(p)
     p.set_defaults(func=run)
 
 

@@ -8,6 +8,7 @@ import sys
 import warnings
 from collections.abc import Sequence
 
+from psdbound.cli.config_file import apply_config
 from psdbound.cli.exit_codes import EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_NOT_BOUNDED, EXIT_OK
 from psdbound.errors import InputError
 from psdbound.version import __version__
@@ -122,6 +123,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_OK
     try:
         with warnings.catch_warnings(record=True) as caught:
+            apply_config(args, argv)
             code = int(args.func(args))
         _show_warnings(args.command, caught, getattr(args, "quiet", False))
         return code

@@ -21,6 +21,7 @@ import argparse
 from typing import Any
 
 from psdbound.cli.actions import Once
+from psdbound.cli.config_file import add_config_option
 from psdbound.errors import InputError
 
 __all__ = ["add_parser", "run"]
@@ -109,6 +110,7 @@ def add_parser(subparsers: Any) -> None:
     )
     p.add_argument("--unit", default="m", help="unit of the samples, for display (default: m)")
     p.add_argument("--out", help="folder for result.json and overbound_qq.png (default: none)")
+    add_config_option(p)
     p.set_defaults(func=run)
 
 

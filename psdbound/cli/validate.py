@@ -16,6 +16,7 @@ import re
 from typing import Any
 
 from psdbound.cli.actions import Once
+from psdbound.cli.config_file import add_config_option
 from psdbound.errors import InputError
 
 __all__ = ["add_parser", "run"]
@@ -133,6 +134,7 @@ def add_parser(subparsers: Any) -> None:
         help="write table (CSV, JSON) and PNG figures here (default: print only)",
     )
     p.add_argument("--no-figures", action="store_true", help="with --out: skip the PNG figures")
+    add_config_option(p)
     p.set_defaults(func=run)
 
 
