@@ -18,7 +18,6 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.stats import norm
 
 from psdbound.aviation.overbound import OverboundResult
 from psdbound.common.atomic import atomic_write_bytes
@@ -86,35 +85,13 @@ def read_samples(path: str | Path) -> tuple[NDArray[np.float64], NDArray[np.floa
 
 
 def _qq_png(result: OverboundResult) -> bytes:
-    import matplotlib
+    """Return the Q-Q figure of an overbound as PNG (the report's figure and style)."""
+    from psdbound.reports.figures_aviation import fig_overbound_qq
+    from psdbound.reports.render import rasterize
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from psdbound.reports.figures_aviation import overbound_line
-
-    fig, ax = plt.subplots(figsize=(6.4, 5.0))
-    for b in result.bins:
-        x = result.samples[b.label]
-        z = norm.ppf((np.arange(1, x.size + 1) - 0.5) / x.size)
-        label = f"{b.label}: x{b.inflation:.2f}, n {b.n}, n_eff {b.n_eff:.0f}"
-        line = ax.plot(z, x, ".", ms=2, label=label)[0]
-        ax.plot(
-            z,
-            overbound_line(z, b.bias, b.sigma, result.method),
-            "-",
-            lw=0.8,
-            color=line.get_color(),
-        )
-    ax.set_xlabel("standard-normal quantile")
-    ax.set_ylabel(f"sample quantile ({result.unit})")
-    ax.set_title(f"Q-Q plot and Gaussian overbounds ({result.method})")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, title="bin: inflation, samples n, effective n_eff", title_fontsize=7)
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=120)
-    plt.close(fig)
-    return buf.getvalue()
+    title = f"Q-Q plot and {result.method} Gaussian overbounds per elevation bin"
+    fig = fig_overbound_qq(result.to_dict(), result.qq_points(), title=title, unit=result.unit)
+    return rasterize(title, fig).png
 
 
 def write_overbound(

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import contextlib
 import inspect
-import io
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -332,47 +331,17 @@ def write_vpl_series(
 ) -> list[Path]:
     """Write ``vpl.json`` and ``vpl.png`` into the folder ``out`` (created), each atomically.
 
-    The figure: VPL_H0, VPL_eph and VPL (m) against time (h) with ``val_m``,
-    an optional vertical alert limit in metres (also adds the availability to
-    the JSON), and below it, in a panel of its own, the satellites above the
-    mask (count): on a second axis of the same panel a count reads as a
-    protection level.
-    Returns the two paths.
+    The figure (:func:`psdbound.reports.figures_aviation.fig_vpl`, the
+    report's style): VPL_H0, VPL_eph and VPL (m) against time (h) with
+    ``val_m``, an optional vertical alert limit in metres (also adds the
+    availability to the JSON), and below it, in a panel of its own, the
+    satellites above the mask (count). Returns the two paths.
     """
-    import matplotlib
+    from psdbound.reports.figures_aviation import fig_vpl
+    from psdbound.reports.render import rasterize
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    h, o = (series.t_gps_s - series.t_gps_s[0]) / 3600.0, series.options
-    fig, (ax, ax2) = plt.subplots(
-        2, 1, figsize=(8.0, 5.2), sharex=True, gridspec_kw={"height_ratios": [3, 1]}
-    )
-    ax.plot(h, series.vpl_m, "-", lw=3.0, color="0.75", label="VPL = max")
-    ax.plot(h, series.vpl_h0_m, "-", lw=0.9, label="VPL_H0")
-    ax.plot(h, series.vpl_eph_m, "--", lw=0.9, label="VPL_eph")
-    if val_m is not None:
-        ax.axhline(val_m, color="r", ls=":", label=f"VAL {val_m:g} m")
-    top = 1.35 * max(np.nanmax(series.vpl_m, initial=1.0), val_m or 0.0)
-    ax.set(ylim=(0, top), ylabel="vertical protection level (m)")
-    ax.set_title(
-        f"{o['process']} {o['base_frequency']}, tau {o['tau_gnd_s']:g}/"
-        f"{o['tau_air_s']:g} s, x_air {o['x_air_m'] / 1000:g} km",
-        fontsize=9,
-    )
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, loc="upper center", ncols=4)
-    ax2.step(h, series.n_sats, where="post", color="0.35", lw=0.9)
-    ax2.set(
-        ylabel=f"satellites > {series.elevation_mask_deg:g} deg (count)",
-        ylim=(0, 1.15 * max(int(series.n_sats.max()), 4)),
-        xlabel=f"time since {_label(series.t_gps_s[0])} GPS (h)",
-    )
-    ax2.grid(alpha=0.3)
-    fig.tight_layout()
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=120)
-    plt.close(fig)
+    doc = series.to_dict(val_m=val_m)
+    png = rasterize("vertical protection level", fig_vpl(doc)).png
     folder = Path(out)
-    png = atomic_write_bytes(folder / "vpl.png", buf.getvalue())
-    return [write_json(folder / "vpl.json", {"vpl": series.to_dict(val_m=val_m)}), png]
+    png_path = atomic_write_bytes(folder / "vpl.png", png)
+    return [write_json(folder / "vpl.json", {"vpl": doc}), png_path]
