@@ -15,7 +15,7 @@
   through a linear Kalman filter to the position error, and the probability
   that the horizontal error exceeds an alert limit (seed 003);
 * :mod:`~psdbound.aviation.files` -- sample input and the overbound's
-  ``result.json`` and Q-Q figure;
+  ``overbound.json`` and Q-Q figure;
 * :mod:`~psdbound.aviation.code_samples` -- code multipath by carrier
   levelling straight from RINEX files (:func:`code_multipath_from_files`)
   and its description for a result (:func:`describe_code_series`), its

@@ -4,7 +4,7 @@ Input (:func:`read_samples`): a ``.npy`` array (one column of errors, or two
 columns ``error, elevation_deg``) or a text/CSV file with a header naming an
 ``error`` column (any of ``error``, ``multipath``, ``value``) and optionally an
 ``elevation`` column (``elevation``, ``elevation_deg``, ``el``). Output
-(:func:`write_overbound`): ``result.json`` (per-bin sigma, bias, inflation
+(:func:`write_overbound`): ``overbound.json`` (per-bin sigma, bias, inflation
 factor, counts) and ``overbound_qq.png`` (the Q-Q figure: each bin's sample
 quantiles against standard-normal quantiles, with its overbound line),
 written atomically.
@@ -26,7 +26,7 @@ from psdbound.results import write_json
 
 __all__ = ["read_samples", "write_overbound"]
 
-_ERROR_NAMES = ("error", "multipath", "value")
+_ERROR_NAMES = ("error", "multipath", "value", "error_m", "multipath_m", "value_m")
 _EL_NAMES = ("elevation", "elevation_deg", "el")
 
 
@@ -97,7 +97,9 @@ def _qq_png(result: OverboundResult) -> bytes:
 def write_overbound(
     result: OverboundResult, out: str | Path, *, extra: dict[str, Any] | None = None
 ) -> list[Path]:
-    """Write ``result.json`` and ``overbound_qq.png`` into ``out`` (atomically).
+    """Write ``overbound.json`` and ``overbound_qq.png`` into ``out`` (atomically).
+
+    ``overbound.json`` follows ``psdbound/results/overbound.schema.json``.
 
     Parameters
     ----------
@@ -105,7 +107,7 @@ def write_overbound(
     out : str or Path
         Existing, writable folder.
     extra : dict, optional
-        More top-level sections of ``result.json`` (e.g. ``code_multipath``:
+        More top-level sections of ``overbound.json`` (e.g. ``code_multipath``:
         how the samples were computed).
 
     Returns
@@ -115,6 +117,6 @@ def write_overbound(
     """
     folder = Path(out)
     doc = {**(extra or {}), "overbound": result.to_dict()}
-    j = write_json(folder / "result.json", doc)
+    j = write_json(folder / "overbound.json", doc)
     png = atomic_write_bytes(folder / "overbound_qq.png", _qq_png(result))
     return [Path(j), Path(png)]

@@ -6,7 +6,7 @@ computes them from a RINEX observation file: code multipath by carrier
 levelling (:func:`psdbound.isolation.isolate_code_multipath`, elevations
 from ``--nav``) -- runs
 :func:`psdbound.aviation.overbound_by_elevation`, prints the summary and,
-with ``--out``, writes ``result.json`` (sigma, bias and inflation factor per
+with ``--out``, writes ``overbound.json`` (sigma, bias and inflation factor per
 bin) and ``overbound_qq.png``. Bad input (NaN, too few samples in a bin,
 the bin is named) is exit 2. Each bin reports ``n``, ``n_eff`` and the
 overbound at ``--confidence`` (``*_upper``). With ``--code`` a sparse bin is a property of
@@ -109,7 +109,7 @@ def add_parser(subparsers: Any) -> None:
         help="fewest samples per non-empty bin, count (default: 100)",
     )
     p.add_argument("--unit", default="m", help="unit of the samples, for display (default: m)")
-    p.add_argument("--out", help="folder for result.json and overbound_qq.png (default: none)")
+    p.add_argument("--out", help="folder for overbound.json and overbound_qq.png (default: none)")
     add_config_option(p)
     p.set_defaults(func=run)
 

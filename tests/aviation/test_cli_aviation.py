@@ -32,7 +32,7 @@ def test_overbound_writes_json_and_qq_figure(tmp_path, capsys):
         overbound, ["overbound", str(f), "--edges", "5", "30", "90", "--out", str(tmp_path / "out")]
     )
     assert overbound.run(args) == 0
-    doc = json.loads((tmp_path / "out" / "result.json").read_text())
+    doc = json.loads((tmp_path / "out" / "overbound.json").read_text())
     bins = doc["overbound"]["bins"]
     assert [b["elevation_deg"] for b in bins] == [[5.0, 30.0], [30.0, 90.0]]
     assert all(0.9 < b["inflation"] < 1.3 for b in bins)

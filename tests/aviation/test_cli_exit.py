@@ -17,7 +17,7 @@ def test_overbound_writes_inflation_per_bin_and_qq_figure(tmp_path, capsys):
     np.savetxt(f, np.column_stack([err, el]), delimiter=",", header="error,elevation", comments="")
     out = tmp_path / "ob"
     assert main(["overbound", str(f), "--out", str(out)]) == 0
-    d = json.loads((out / "result.json").read_text())
+    d = json.loads((out / "overbound.json").read_text())
     text = json.dumps(d)
     assert "inflation" in text
     assert (out / "overbound_qq.png").stat().st_size > 10_000

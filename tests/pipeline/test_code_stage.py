@@ -172,7 +172,8 @@ def test_overbound_cli_on_esbc(tmp_path):
     ]
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=600, env=dict(os.environ))
     assert r.returncode == 0, r.stderr
-    doc = json.loads((out / "result.json").read_text())
+    doc = json.loads((out / "overbound.json").read_text())
+    assert schema_errors(doc, schema="overbound") == []
     assert [b["elevation_deg"] for b in doc["overbound"]["bins"]][0] == [5.0, 15.0]
     assert all(b["inflation"] > 0.9 for b in doc["overbound"]["bins"])
     # issue 33: paired by default (no exempted core), per-bin sample sizes and confidence
@@ -244,7 +245,7 @@ def test_overbound_cli_high_latitude_sparse_bin_is_named_not_fatal(tmp_path):
     )
     assert r.returncode == 0, r.stderr
     assert "note: elevation bin [60, 90) deg holds" in r.stdout
-    doc = json.loads((out / "result.json").read_text())
+    doc = json.loads((out / "overbound.json").read_text())
     assert [b["elevation_deg"] for b in doc["overbound"]["bins"]][-1] == [45.0, 60.0]
     assert doc["code_multipath"]["bins_left_out"][0].startswith("elevation bin [60, 90) deg")
     # the sparse bin is a property of the sky; the other bins still fall with elevation

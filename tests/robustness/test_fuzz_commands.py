@@ -56,7 +56,7 @@ def test_overbound_base_samples_are_clean(tmp_path):
     path.write_text("\n".join(_samples_csv(_rng("base"))) + "\n")
     r = run_cli(["overbound", path, "--out", tmp_path / "out"])
     assert r.code == 0 and not r.warnings, r.err
-    assert (tmp_path / "out" / "result.json").is_file()
+    assert (tmp_path / "out" / "overbound.json").is_file()
 
 
 CSV_KINDS = ("token", "nan", "header", "truncate", "range", "binary")
