@@ -14,7 +14,7 @@ from psdbound.kalman.error_model import Component, error_model_section
 from psdbound.pipeline.config import FitConfig
 from psdbound.pipeline.products import CodeOverbound
 from psdbound.pipeline.stages import InputData, Isolated, Screened, Validated, Windowed
-from psdbound.pipeline.verdict import verdict_checks, verdict_facts, verdict_of
+from psdbound.pipeline.verdict import VerdictCheck, verdict_checks, verdict_facts, verdict_of
 from psdbound.reports import figure_data
 from psdbound.results import SCHEMA_VERSION, to_jsonable
 from psdbound.results.headline import headline
@@ -374,6 +374,79 @@ def _error_model(doc: dict[str, Any]) -> dict[str, Any]:
     return error_model_section(doc["bound"], mapping=doc.get("mapping"), slow=comps)
 
 
+def _figures(
+    inputs: InputData,
+    cutoff: CutoffChoice | None,
+    isolated: Isolated,
+    screened: Screened,
+    windowed: Windowed,
+    bounded: BoundResults,
+    validated: Validated,
+) -> dict[str, Any]:
+    """Return the data of the report's figures (section ``figures``)."""
+    return figure_data(
+        series=screened.series,
+        arcs=isolated.arcs,
+        windows=windowed.windows,
+        bound_results=bounded,
+        t_ref_gps_s=inputs.t_ref_gps_s,
+        interval_s=inputs.interval_s,
+        cutoff_info=None if cutoff is None else cutoff.info,
+        validation_report=validated.report,
+        screening=screened.screening,
+    )
+
+
+def _data_span_section(isolated: Isolated, screened: Screened) -> dict[str, Any]:
+    """Return the span of the isolated series and the number of screened arcs."""
+    t_all = isolated.series.t_gps_s
+    return {
+        "start_gps_s": float(t_all.min()),
+        "stop_gps_s": float(t_all.max()),
+        "n_samples": int(t_all.size),
+        "n_arcs": screened.series.n_arcs,
+    }
+
+
+def _provenance_section(config: FitConfig, inputs: InputData, run_time_s: float) -> dict[str, Any]:
+    """Return the inputs, package versions, configuration, time and platform of the run."""
+    return {
+        "inputs": list(inputs.files),
+        "versions": package_versions(),
+        "configuration": config.to_dict(),
+        "created_utc": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
+        "platform": platform.platform(),
+        "run_time_s": run_time_s,
+    }
+
+
+def _demo_section(inputs: InputData, bounded: BoundResults) -> dict[str, Any]:
+    """Return the demo's injected truth and how the bound compares with it (section ``demo``)."""
+    meta = inputs.demo
+    return {
+        "note": "simulated demo data (antenna A, dual-frequency); the truth model is "
+        "known: compare the bound with the injected multipath",
+        "injected": meta["scenario"]["multipath"],
+        "seed": meta["seed"],
+        "digest": meta["digest"],
+        **_demo_truth(meta["scenario"], bounded, inputs.interval_s),
+    }
+
+
+def _verdict_first(doc: dict[str, Any], checks: list[VerdictCheck]) -> dict[str, Any]:
+    """Return the document with the verdict after the schema version and the headline last."""
+    verdict, reasons = verdict_of(checks)
+    out = {
+        "schema_version": doc.pop("schema_version"),
+        "verdict": verdict,
+        "verdict_reasons": reasons,
+        "verdict_checks": [c.as_dict() for c in checks],
+        **doc,
+    }
+    out["headline"] = headline(out)
+    return out
+
+
 def build_document(
     *,
     config: FitConfig,
@@ -405,20 +478,8 @@ def build_document(
     dict
         The ``result.json`` content, schema :data:`psdbound.results.SCHEMA_VERSION`.
     """
-    series = screened.series
     interval_s = inputs.interval_s
-    t_all = isolated.series.t_gps_s
-    figures = figure_data(
-        series=series,
-        arcs=isolated.arcs,
-        windows=windowed.windows,
-        bound_results=bounded,
-        t_ref_gps_s=inputs.t_ref_gps_s,
-        interval_s=interval_s,
-        cutoff_info=None if cutoff is None else cutoff.info,
-        validation_report=validated.report,
-        screening=screened.screening,
-    )
+    figures = _figures(inputs, cutoff, isolated, screened, windowed, bounded, validated)
     grouped = stage_warnings(
         inputs, cutoff, isolated, screened, windowed, bounded, validated, interval_s, code
     )
@@ -431,39 +492,19 @@ def build_document(
         "mapping": _mapping_section(windowed, bounded, screened),
         "isolation": isolated.details,
         "screening": _screening_section(screened),
-        "data_span": {
-            "start_gps_s": float(t_all.min()),
-            "stop_gps_s": float(t_all.max()),
-            "n_samples": int(t_all.size),
-            "n_arcs": series.n_arcs,
-        },
+        "data_span": _data_span_section(isolated, screened),
         "windows": _windows_section(windowed, bounded, screened),
         "validation": validated.summary,
         "warnings": [w for g in grouped for w in g["warnings"]],
         "warnings_by_stage": grouped,
-        "provenance": {
-            "inputs": list(inputs.files),
-            "versions": package_versions(),
-            "configuration": config.to_dict(),
-            "created_utc": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
-            "platform": platform.platform(),
-            "run_time_s": run_time_s,
-        },
+        "provenance": _provenance_section(config, inputs, run_time_s),
         "figures": figures,
     }
     doc["error_model"] = _error_model(doc)
     if code is not None:
         doc["code_multipath"] = code.details
     if inputs.demo is not None:
-        meta = inputs.demo
-        doc["demo"] = {
-            "note": "simulated demo data (antenna A, dual-frequency); the truth model is "
-            "known: compare the bound with the injected multipath",
-            "injected": meta["scenario"]["multipath"],
-            "seed": meta["seed"],
-            "digest": meta["digest"],
-            **_demo_truth(meta["scenario"], bounded, inputs.interval_s),
-        }
+        doc["demo"] = _demo_section(inputs, bounded)
     doc = to_jsonable(doc)
     facts = verdict_facts(
         bounded=bounded,
@@ -473,14 +514,4 @@ def build_document(
         cutoff=cutoff,
         interval_s=interval_s,
     )
-    checks = verdict_checks(facts, config.verdict)
-    verdict, reasons = verdict_of(checks)
-    out = {
-        "schema_version": doc.pop("schema_version"),
-        "verdict": verdict,
-        "verdict_reasons": reasons,
-        "verdict_checks": [c.as_dict() for c in checks],
-        **doc,
-    }
-    out["headline"] = headline(out)
-    return out
+    return _verdict_first(doc, verdict_checks(facts, config.verdict))

@@ -272,6 +272,67 @@ def _best(
     return out, best
 
 
+def _band_intervals(
+    pooled: NDArray, dof: NDArray, confidence_level: float, n_b: int
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Return each test band's exact chi-square interval at ``(1 - confidence_level) / B``."""
+    a = (1.0 - confidence_level) / n_b
+    lower = dof * pooled / stats.chi2.isf(a / 2.0, dof)
+    upper = dof * pooled / stats.chi2.ppf(a / 2.0, dof)
+    return lower, upper
+
+
+def _tau_grid(dt_s: float, f_lo_hz: float, t_s: float, tau_max_s: float) -> NDArray[np.float64]:
+    """Return the time constants searched, ``dt / 2`` up beyond the lowest band, 2 T, 2 tau_max."""
+    return np.geomspace(
+        0.5 * dt_s, max(10.0 / (2.0 * np.pi * f_lo_hz), 2.0 * t_s, 2.0 * tau_max_s), N_TAU
+    )
+
+
+def _unit_expectations(
+    lo: NDArray, hi: NDArray, taus: NDArray, dt_s: float, t_s: float, smoothing_hz: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
+    """Return the expected band averages per unit GM variance (per tau) and per unit white noise.
+
+    The multitaper estimate of a mean-removed window of ``t_s`` seconds; exact (lag kernels)
+    below :data:`EXACT_BELOW` smoothing widths. None when a band holds no Fourier frequency.
+    """
+    n = int(round(t_s / dt_s))
+    nw = smoothing_hz * t_s
+    low = lo < EXACT_BELOW * smoothing_hz
+    unit = np.zeros((taus.size, lo.size))  # expected band averages per unit GM variance
+    white_unit = np.full(lo.size, 2.0 * dt_s)  # white noise: unbiased away from zero frequency
+    if low.any():
+        kernels, has = lag_kernels(n, dt_s, lo[low], hi[low], nw=nw)
+        if not has.all():
+            return None
+        unit[:, low] = gm_band_expectation(kernels, taus, dt_s)
+        white_unit[low] = 2.0 * dt_s * kernels[:, 0]  # R(l) = variance at l = 0 only
+    if (~low).any():
+        kernels, _ = far_lag_kernels(n, dt_s, lo[~low], hi[~low], nw=nw)
+        unit[:, ~low] = gm_band_expectation(kernels, taus, dt_s)
+    return unit, white_unit
+
+
+def _corner_extents(corners: list[NDArray], idx: NDArray) -> NDArray[np.float64]:
+    """Return the extents ``(v_min, v_max, w_min, w_max)`` of the admitted taus' polygons."""
+    return np.array(
+        [
+            [c[:, 0].min(), c[:, 0].max(), c[:, 1].min(), c[:, 1].max()]
+            for c in (corners[i] for i in idx)
+        ]
+    )
+
+
+def _window_half_term(limits: PooledLimits) -> float:
+    """Return half the largest window term of group 0 (the sigmas' widening, log scale)."""
+    return (
+        float(np.nanmax(limits.window_term_log[0])) / 2.0
+        if (limits.window_term_log is not None)
+        else 0.0
+    )
+
+
 def model_set(
     bands: BandSpectra,
     limits: PooledLimits,
@@ -320,28 +381,13 @@ def model_set(
         return None, f"{n_b} test bands with data, at least {MIN_BANDS} needed"
     lo, hi = test.edges_hz[:-1][have], np.minimum(test.edges_hz[1:][have], 0.5 / dt_s)
     pooled, dof = pooled[have], dof[have]
-    a = (1.0 - confidence_level) / n_b
-    lower = dof * pooled / stats.chi2.isf(a / 2.0, dof)
-    upper = dof * pooled / stats.chi2.ppf(a / 2.0, dof)
-    rows = limits.groups == 0
-    t_s = float(np.median(test.duration_s[rows]))
-    n = int(round(t_s / dt_s))
-    nw = smoothing_hz * t_s
-    taus = np.geomspace(
-        0.5 * dt_s, max(10.0 / (2.0 * np.pi * float(lo[0])), 2.0 * t_s, 2.0 * tau_max_s), N_TAU
-    )
-    low = lo < EXACT_BELOW * smoothing_hz
-    unit = np.zeros((taus.size, n_b))  # expected band averages per unit GM variance
-    white_unit = np.full(n_b, 2.0 * dt_s)  # white noise: unbiased away from zero frequency
-    if low.any():
-        kernels, has = lag_kernels(n, dt_s, lo[low], hi[low], nw=nw)
-        if not has.all():
-            return None, "a test band holds no Fourier frequency of the median window"
-        unit[:, low] = gm_band_expectation(kernels, taus, dt_s)
-        white_unit[low] = 2.0 * dt_s * kernels[:, 0]  # R(l) = variance at l = 0 only
-    if (~low).any():
-        kernels, _ = far_lag_kernels(n, dt_s, lo[~low], hi[~low], nw=nw)
-        unit[:, ~low] = gm_band_expectation(kernels, taus, dt_s)
+    lower, upper = _band_intervals(pooled, dof, confidence_level, n_b)
+    t_s = float(np.median(test.duration_s[limits.groups == 0]))
+    taus = _tau_grid(dt_s, float(lo[0]), t_s, tau_max_s)
+    expected = _unit_expectations(lo, hi, taus, dt_s, t_s, smoothing_hz)
+    if expected is None:
+        return None, "a test band holds no Fourier frequency of the median window"
+    unit, white_unit = expected
     widening = _min_widening(unit, white_unit, lower, upper, pooled)
     if not np.isfinite(widening):
         return None, (
@@ -357,18 +403,9 @@ def model_set(
     idx = np.flatnonzero(ok)
     if idx.size == 0:  # the widening's feasibility is a linear program, to its tolerance
         return None, "no Gauss-Markov + white-noise model lies inside every band's interval"
-    ext = np.array(
-        [
-            [c[:, 0].min(), c[:, 0].max(), c[:, 1].min(), c[:, 1].max()]
-            for c in (corners[i] for i in idx)
-        ]
-    )
+    ext = _corner_extents(corners, idx)
     best, misfit = _best(unit, white_unit, pooled, dof, taus, ok)
-    widen = (
-        float(np.nanmax(limits.window_term_log[0])) / 2.0
-        if (limits.window_term_log is not None)
-        else 0.0
-    )
+    widen = _window_half_term(limits)
     gm = np.sqrt(np.maximum(ext[:, :2], 0.0))
     wn = np.sqrt(np.maximum(ext[:, 2:], 0.0))
     out = ModelSet(

@@ -336,6 +336,125 @@ def _loose_notes(
     return tuple(notes)
 
 
+def _check_pool_options(
+    confidence_level: float,
+    coverage: float,
+    shape_alpha: float,
+    deviation_model: str,
+    cluster_correlation: float,
+) -> None:
+    """Raise :class:`InputError` for a level, deviation model or correlation out of range."""
+    _check_levels(confidence_level, coverage, shape_alpha)
+    if deviation_model not in (*SHAPE_MODELS, "auto"):
+        raise InputError(
+            f"unknown deviation model {deviation_model!r}; choose from {', '.join(SHAPE_MODELS)}"
+        )
+    if not 0.0 <= cluster_correlation <= 1.0:
+        raise InputError(f"cluster correlation must lie in [0, 1], got {cluster_correlation!r}")
+
+
+def _check_pool_data(ok: NDArray[np.bool_], clusters: NDArray[np.int64] | None, n_w: int) -> None:
+    """Raise :class:`InputError` when no window has data or the cluster labels do not fit."""
+    if not ok.any():
+        raise InputError("no window has a positive PSD in any band")
+    if clusters is not None and np.shape(clusters) != (n_w,):
+        raise InputError(
+            f"clusters must give one label per window ({n_w}), got {np.shape(clusters)}"
+        )
+
+
+def _shape_groups(
+    bands: BandSpectra, smoothing_hz: float, shape_alpha: float, max_groups: int
+) -> tuple[BandSpectra, NDArray[np.int64]]:
+    """Return the bands of the shape tests (at least ``2 W`` wide) and the windows' groups."""
+    test_bands = (
+        merge_bands(bands, min_window_dof=0.0, min_width_hz=2.0 * smoothing_hz)
+        if smoothing_hz > 0
+        else bands
+    )
+    zt, vt = test_bands.log_unbiased()
+    labels = shape_groups(
+        zt,
+        vt,
+        np.isfinite(zt),
+        log_frequency(test_bands.centres_hz),
+        test_bands.dof,
+        shape_alpha,
+        max_groups,
+    )
+    return test_bands, labels
+
+
+def _error_levels(confidence_level: float, n_g: int, n_b: int) -> tuple[float, float]:
+    """Split ``1 - confidence_level``: per group level and band, and per group's windows."""
+    alpha = 1.0 - confidence_level
+    a_win = (1.0 - MEAN_SHARE) * alpha / n_g  # per group: the windows' own upper levels
+    return (MEAN_SHARE * alpha / (n_g * n_b), a_win)
+
+
+@dataclass(frozen=True)
+class _Pooled:
+    """The limits of every group, stacked (rows: groups; per-window arrays: windows)."""
+
+    mean_upper: NDArray[np.float64]
+    tau2: NDArray[np.float64]
+    p_hom: NDArray[np.float64]
+    eff_dof: NDArray[np.float64]
+    window_max: NDArray[np.float64]
+    upper: NDArray[np.float64]
+    level: NDArray[np.float64]
+    level_se: NDArray[np.float64]
+    shape_p: NDArray[np.float64]
+    spread: NDArray[np.float64]
+    z_star: NDArray[np.float64]
+    window_term: NDArray[np.float64]
+
+
+def _pool_groups(
+    bands: BandSpectra,
+    test_bands: BandSpectra,
+    labels: NDArray[np.int64],
+    ok: NDArray[np.bool_],
+    levels: tuple[float, float],
+    coverage: float,
+    clusters: NDArray[np.int64] | None,
+    rho: float,
+    model: str,
+) -> _Pooled:
+    """Return the limits of each shape group (:func:`_group_limits`) and its largest window."""
+    n_w, n_b = ok.shape
+    n_g = int(labels.max()) + 1
+    keys = ("mean_upper", "tau2", "p_hom", "eff_dof", "window_max", "upper")
+    out = {k: np.full((n_g, n_b), np.nan) for k in keys}
+    level, level_se, shape_p = np.full(n_w, np.nan), np.full(n_w, np.nan), np.ones(n_w)
+    spread, z_star, window_term = np.zeros(n_g), np.zeros(n_g), np.zeros((n_g, n_b))
+    for g in range(n_g):
+        rows = np.flatnonzero(labels == g)
+        gl = _group_limits(bands, test_bands, rows, levels, coverage, clusters, rho, model)
+        out["mean_upper"][g], out["tau2"][g], out["p_hom"][g], out["eff_dof"][g] = (
+            gl.mean_upper,
+            gl.tau2,
+            gl.p_hom,
+            gl.eff_dof,
+        )
+        spread[g], z_star[g] = np.sqrt(gl.spread_upper), gl.z_star
+        window_term[g] = gl.max_term
+        out["upper"][g] = gl.mean_upper * np.exp(window_term[g])
+        out["window_max"][g] = np.where(ok[rows], bands.psd_m2_hz[rows], -np.inf).max(axis=0)
+        out["window_max"][g][~np.isfinite(out["window_max"][g])] = np.nan
+        level[rows], level_se[rows] = gl.dev.coef[:, 0], np.sqrt(gl.dev.cov[:, 0, 0])
+        shape_p[rows] = gl.dev.shape_p
+    return _Pooled(
+        **out,
+        level=level,
+        level_se=level_se,
+        shape_p=shape_p,
+        spread=spread,
+        z_star=z_star,
+        window_term=window_term,
+    )
+
+
 def pool_bands(
     bands: BandSpectra,
     *,
@@ -407,88 +526,48 @@ def pool_bands(
     Viechtbauer, W. (2007). Confidence intervals for the amount of
     heterogeneity in meta-analysis. Statistics in Medicine 26(1), 37-52.
     """
-    _check_levels(confidence_level, coverage, shape_alpha)
-    if deviation_model not in (*SHAPE_MODELS, "auto"):
-        raise InputError(
-            f"unknown deviation model {deviation_model!r}; choose from {', '.join(SHAPE_MODELS)}"
-        )
-    if not 0.0 <= cluster_correlation <= 1.0:
-        raise InputError(f"cluster correlation must lie in [0, 1], got {cluster_correlation!r}")
+    _check_pool_options(
+        confidence_level, coverage, shape_alpha, deviation_model, cluster_correlation
+    )
     z, var = bands.log_unbiased()
     ok = np.isfinite(z)
     n_w, n_b = z.shape
-    if not ok.any():
-        raise InputError("no window has a positive PSD in any band")
-    if clusters is not None and np.shape(clusters) != (n_w,):
-        raise InputError(
-            f"clusters must give one label per window ({n_w}), got {np.shape(clusters)}"
-        )
-    test_bands = (
-        merge_bands(bands, min_window_dof=0.0, min_width_hz=2.0 * smoothing_hz)
-        if smoothing_hz > 0
-        else bands
-    )
-    zt, vt = test_bands.log_unbiased()
-    labels = shape_groups(
-        zt,
-        vt,
-        np.isfinite(zt),
-        log_frequency(test_bands.centres_hz),
-        test_bands.dof,
-        shape_alpha,
-        max_groups,
-    )
+    _check_pool_data(ok, clusters, n_w)
+    test_bands, labels = _shape_groups(bands, smoothing_hz, shape_alpha, max_groups)
     n_g = int(labels.max()) + 1
-    alpha = 1.0 - confidence_level
-    a_win = (1.0 - MEAN_SHARE) * alpha / n_g  # per group: the windows' own upper levels
-    levels = (MEAN_SHARE * alpha / (n_g * n_b), a_win)
-    out = {k: np.full((n_g, n_b), np.nan) for k in ("mean", "tau2", "p", "eff", "max", "up")}
-    level, level_se, shape_p = np.full(n_w, np.nan), np.full(n_w, np.nan), np.ones(n_w)
-    spread, z_star, window_term = np.zeros(n_g), np.zeros(n_g), np.zeros((n_g, n_b))
-    for g in range(n_g):
-        rows = np.flatnonzero(labels == g)
-        gl = _group_limits(
-            bands,
-            test_bands,
-            rows,
-            levels,
-            coverage,
-            clusters,
-            cluster_correlation,
-            deviation_model,
-        )
-        out["mean"][g], out["tau2"][g], out["p"][g], out["eff"][g] = (
-            gl.mean_upper,
-            gl.tau2,
-            gl.p_hom,
-            gl.eff_dof,
-        )
-        spread[g], z_star[g] = np.sqrt(gl.spread_upper), gl.z_star
-        window_term[g] = gl.max_term
-        out["up"][g] = gl.mean_upper * np.exp(window_term[g])
-        out["max"][g] = np.where(ok[rows], bands.psd_m2_hz[rows], -np.inf).max(axis=0)
-        out["max"][g][~np.isfinite(out["max"][g])] = np.nan
-        level[rows], level_se[rows] = gl.dev.coef[:, 0], np.sqrt(gl.dev.cov[:, 0, 0])
-        shape_p[rows] = gl.dev.shape_p
+    levels = _error_levels(confidence_level, n_g, n_b)
+    pooled = _pool_groups(
+        bands,
+        test_bands,
+        labels,
+        ok,
+        levels,
+        coverage,
+        clusters,
+        cluster_correlation,
+        deviation_model,
+    )
     sizes = np.bincount(labels[labels >= 0], minlength=n_g)
     return PooledLimits(
         f_hz=bands.centres_hz,
         groups=labels,
-        upper_m2_hz=out["up"],
-        tau2=out["tau2"],
-        p_homogeneous=out["p"],
+        upper_m2_hz=pooled.upper,
+        tau2=pooled.tau2,
+        p_homogeneous=pooled.p_hom,
         confidence_level=confidence_level,
         coverage=coverage,
-        mean_upper_m2_hz=out["mean"],
-        window_psd_max_m2_hz=out["max"],
-        shape_p=shape_p,
-        level_log=level,
-        level_se_log=level_se,
-        spread_upper_log_sd=spread,
-        tolerance_factor=z_star,
-        window_term_log=window_term,
-        effective_dof=out["eff"],
-        notes=_loose_notes(out["up"], out["max"], bands.centres_hz, sizes, out["eff"]),
+        mean_upper_m2_hz=pooled.mean_upper,
+        window_psd_max_m2_hz=pooled.window_max,
+        shape_p=pooled.shape_p,
+        level_log=pooled.level,
+        level_se_log=pooled.level_se,
+        spread_upper_log_sd=pooled.spread,
+        tolerance_factor=pooled.z_star,
+        window_term_log=pooled.window_term,
+        effective_dof=pooled.eff_dof,
+        notes=_loose_notes(
+            pooled.upper, pooled.window_max, bands.centres_hz, sizes, pooled.eff_dof
+        ),
         shape_alpha=shape_alpha,
     )
 
