@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from psdbound.campaign.heldout import held_out
+from psdbound.campaign.sidereal import repeat_warnings
 from psdbound.campaign.tasks import station_day_task
 from psdbound.errors import InputError
 
@@ -175,6 +176,7 @@ class CampaignResult:
                 + ("" if d["in_pool"] else " (not pooled)")
             )
             lines += [f"    reason: {x}" for x in d["verdict_reasons"]]
+        lines += [f"  warning: {w}" for w in repeat_warnings(self.meta.get("sidereal_repeat", []))]
         for h in self.held_out:
             lines.append(
                 f"  held out {h['station']} {h['day']}: windows covered "
@@ -279,6 +281,7 @@ def run_campaign(
         anything is computed).
     """
     from psdbound.campaign.pool import pool_stations
+    from psdbound.campaign.sidereal import sidereal_repeats
     from psdbound.compute import run_tasks
     from psdbound.version import __version__
 
@@ -295,11 +298,12 @@ def run_campaign(
     )
     results = list(run.results)
     stations, pooled = pool_stations(results, bound_options=cfg.bound, verdict_options=cfg.verdict)
+    days = [
+        _public(r, it, any(r is p for p in pooled)) for r, it in zip(results, items, strict=True)
+    ]
+    documents = [r.get("document") for r in results]
     return CampaignResult(
-        days=[
-            _public(r, it, any(r is p for p in pooled))
-            for r, it in zip(results, items, strict=True)
-        ],
+        days=days,
         stations=stations,
         held_out=held_out(pooled, options=cfg.bound),
         n_computed=run.n_computed,
@@ -310,8 +314,9 @@ def run_campaign(
             ],
             "options": options or {},
             "psdbound": __version__,
+            "sidereal_repeat": sidereal_repeats(days, documents),
         },
-        documents=[r.get("document") for r in results],
+        documents=documents,
     )
 
 

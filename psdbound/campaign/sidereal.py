@@ -1,0 +1,157 @@
+"""Sidereal repeat of the spans screened as ionosphere, over a station's consecutive days.
+
+Multipath is fixed to the geometry of antenna, reflectors and satellite: the
+GPS geometry repeats one sidereal day later (:data:`~psdbound.constants.SIDEREAL_DAY_S`,
+about 236 s earlier each day), and so does the multipath. A travelling
+ionospheric disturbance does not. So when a span the screening took out as
+ionosphere on one day reappears on the same satellite one sidereal day later
+(within ``tolerance_s``: the screening works on 5-minute blocks), more often
+than two independent sets of spans would meet by chance, the screening has
+probably cut multipath, and the days' bounds are optimistic there.
+
+For each pair of a station's consecutive days :func:`sidereal_repeats`
+reports the time screened as ionosphere on the later day (``flagged_s``),
+the part of it that repeats a span of the day before shifted by the
+sidereal day (``repeated_s``), and what two independent sets with the same
+amounts would share on average (``expected_s``: each satellite's flagged
+time on the later day times the fraction of the earlier day's time it was
+flagged, widened by the tolerance). ``ratio = repeated_s / expected_s`` far
+above 1 with ``repeated_s`` of tens of minutes is the warning sign.
+
+Caveats: the block length (300 s) is longer than the difference between the
+sidereal and the solar day (236 s), so an ionospheric effect that recurs at
+the same local time on the same satellite (e.g. post-sunset equatorial
+irregularities) repeats too; the test counts only satellites of the system
+fitted; and it needs consecutive days with their result documents.
+"""
+
+from __future__ import annotations
+
+import datetime as dt
+from collections import defaultdict
+from typing import Any
+
+from psdbound.constants import SIDEREAL_DAY_S
+
+__all__ = ["DEFAULT_TOLERANCE_S", "repeat_warnings", "sidereal_repeats"]
+
+#: Shift allowed between a span and its repeat, s: one screening block.
+DEFAULT_TOLERANCE_S = 300.0
+
+Spans = dict[str, list[tuple[float, float]]]
+
+
+def _ionosphere_spans(document: dict[str, Any]) -> Spans:
+    """Return the spans screened as ionosphere, per satellite (GPS seconds)."""
+    out: Spans = defaultdict(list)
+    for e in (document.get("screening") or {}).get("excluded", []):
+        if e.get("kind") == "ionosphere":
+            out[e["sat"]].append((float(e["start_gps_s"]), float(e["stop_gps_s"])))
+    return out
+
+
+def _length(spans: list[tuple[float, float]]) -> float:
+    """Total length of possibly overlapping spans, s."""
+    total, end = 0.0, -float("inf")
+    for a, b in sorted(spans):
+        if b > end:
+            total += b - max(a, end)
+            end = b
+    return total
+
+
+def _overlap(spans: list[tuple[float, float]], others: list[tuple[float, float]]) -> float:
+    """Time of ``spans`` that lies in the union of ``others``, s."""
+    cut = [(max(a, c), min(b, d)) for a, b in spans for c, d in others if min(b, d) > max(a, c)]
+    return _length(cut)
+
+
+def _pair(early: dict[str, Any], late: dict[str, Any], tolerance_s: float) -> dict[str, float]:
+    """Repeat statistics of the later day's ionosphere spans against the earlier day's."""
+    s1, s2 = _ionosphere_spans(early), _ionosphere_spans(late)
+    span = early["data_span"]
+    duration = max(float(span["stop_gps_s"]) - float(span["start_gps_s"]), 1.0)
+    shifted = {
+        sat: [(a + SIDEREAL_DAY_S - tolerance_s, b + SIDEREAL_DAY_S + tolerance_s) for a, b in v]
+        for sat, v in s1.items()
+    }
+    flagged = sum(_length(v) for v in s2.values())
+    repeated = sum(_overlap(v, shifted.get(sat, [])) for sat, v in s2.items())
+    expected = sum(
+        _length(v) * min(1.0, _length(shifted.get(sat, [])) / duration) for sat, v in s2.items()
+    )
+    return {
+        "flagged_s": flagged,
+        "repeated_s": repeated,
+        "expected_s": expected,
+        "ratio": repeated / expected if expected > 0 else (0.0 if repeated == 0 else float("inf")),
+    }
+
+
+def sidereal_repeats(
+    days: list[dict[str, Any]],
+    documents: list[dict[str, Any] | None],
+    *,
+    tolerance_s: float = DEFAULT_TOLERANCE_S,
+) -> list[dict[str, Any]]:
+    """Return, per station and pair of consecutive days, how the ionosphere spans repeat.
+
+    Parameters
+    ----------
+    days : list of dict
+        The campaign's station-days (``station``, ``day`` as an ISO date).
+    documents : list of dict or None
+        Each day's result document (None: the day failed), in the order of ``days``.
+    tolerance_s : float, default :data:`DEFAULT_TOLERANCE_S`
+        Shift allowed between a span and its repeat, s.
+
+    Returns
+    -------
+    list of dict
+        ``station``, ``days`` (the two dates), ``flagged_s``, ``repeated_s``,
+        ``expected_s`` (s) and ``ratio`` (see the module docstring); pairs
+        with nothing flagged on the later day are left out.
+    """
+    by_station: dict[str, list[tuple[dt.date, dict[str, Any]]]] = defaultdict(list)
+    for d, doc in zip(days, documents, strict=True):
+        if doc is not None:
+            by_station[d["station"]].append((dt.date.fromisoformat(d["day"]), doc))
+    out = []
+    for station, items in sorted(by_station.items()):
+        items.sort(key=lambda x: x[0])
+        for (d1, doc1), (d2, doc2) in zip(items, items[1:], strict=False):
+            if (d2 - d1).days != 1:
+                continue
+            stats = _pair(doc1, doc2, tolerance_s)
+            if stats["flagged_s"] > 0:
+                out.append({"station": station, "days": [str(d1), str(d2)], **stats})
+    return out
+
+
+def repeat_warnings(
+    repeats: list[dict[str, Any]], *, min_ratio: float = 3.0, min_repeated_s: float = 600.0
+) -> list[str]:
+    """Return one sentence per day pair whose ionosphere spans repeat with the sidereal day.
+
+    Parameters
+    ----------
+    repeats : list of dict
+        :func:`sidereal_repeats`.
+    min_ratio : float, default 3
+        Repeated time over the time independent spans would share.
+    min_repeated_s : float, default 600
+        Repeated time, s.
+
+    Returns
+    -------
+    list of str
+    """
+    return [
+        f"{r['station']} {r['days'][1]}: {r['repeated_s'] / 60:.0f} of the "
+        f"{r['flagged_s'] / 60:.0f} min screened as ionosphere repeat {r['days'][0]}'s spans "
+        f"one sidereal day later on the same satellites ({r['ratio']:.1f} times what "
+        "independent spans would share): multipath repeats with the geometry, a disturbance "
+        "does not, so part of it is probably multipath and the day's bound optimistic there"
+        for r in repeats
+        if r["ratio"] >= min_ratio and r["repeated_s"] >= min_repeated_s
+    ]

@@ -1,0 +1,78 @@
+"""The sidereal repeat of ionosphere spans over consecutive days (campaign diagnostic)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from psdbound.campaign.sidereal import repeat_warnings, sidereal_repeats
+from psdbound.constants import SIDEREAL_DAY_S
+
+T0 = 1.293e9  # GPS seconds, a day's start
+DAY = 86400.0
+
+
+def _doc(t0: float, spans: dict[str, list[tuple[float, float]]]) -> dict:
+    excluded = [
+        {"sat": sat, "start_gps_s": t0 + a, "stop_gps_s": t0 + b, "kind": "ionosphere"}
+        for sat, v in spans.items()
+        for a, b in v
+    ]
+    excluded.append({"sat": "G01", "start_gps_s": t0, "stop_gps_s": t0 + 60, "kind": "limit"})
+    return {
+        "screening": {"excluded": excluded},
+        "data_span": {"start_gps_s": t0, "stop_gps_s": t0 + DAY - 30},
+    }
+
+
+def _days(n: int) -> list[dict]:
+    return [{"station": "SITE", "day": f"2021-01-0{i + 1}"} for i in range(n)]
+
+
+def test_spans_that_repeat_with_the_sidereal_day_are_counted():
+    spans = {"G05": [(3600.0, 5400.0)], "G12": [(40000.0, 41200.0)]}
+    shift = SIDEREAL_DAY_S - DAY  # the same geometry, 236 s earlier in the next day's clock
+    later = {s: [(a + shift, b + shift) for a, b in v] for s, v in spans.items()}
+    docs = [_doc(T0, spans), _doc(T0 + DAY, later)]
+    (r,) = sidereal_repeats(_days(2), docs)
+    assert r["days"] == ["2021-01-01", "2021-01-02"]
+    assert r["flagged_s"] == pytest.approx(3000.0)
+    assert r["repeated_s"] == pytest.approx(3000.0)
+    assert r["ratio"] > 20.0
+    (w,) = repeat_warnings([r])
+    assert "SITE 2021-01-02: 50 of the 50 min" in w and "probably multipath" in w
+
+
+def test_independent_spans_share_about_what_chance_gives():
+    rng = np.random.default_rng(5)
+    ratios = []
+    for _ in range(200):
+        docs = []
+        for d in range(2):
+            spans = {}
+            for sat in ("G02", "G07", "G19", "G24"):
+                starts = rng.uniform(0.0, DAY - 1800.0, 3)
+                spans[sat] = [(a, a + 900.0) for a in starts]
+            docs.append(_doc(T0 + d * DAY, spans))
+        (r,) = sidereal_repeats(_days(2), docs)
+        ratios.append(r["ratio"])
+    assert 0.6 < np.mean(ratios) < 1.6  # near 1: independent sets meet as often as expected
+    assert not repeat_warnings(
+        [
+            {
+                "station": "S",
+                "days": ["a", "b"],
+                "flagged_s": 1e4,
+                "repeated_s": 500.0,
+                "ratio": 1.1,
+                "expected_s": 450.0,
+            }
+        ]
+    )
+
+
+def test_only_consecutive_days_with_documents_are_paired():
+    docs = [_doc(T0, {"G05": [(0.0, 600.0)]}), None, _doc(T0 + 2 * DAY, {"G05": [(0.0, 600.0)]})]
+    assert sidereal_repeats(_days(3), docs) == []
+    quiet = [_doc(T0, {"G05": [(0.0, 600.0)]}), _doc(T0 + DAY, {})]
+    assert sidereal_repeats(_days(2), quiet) == []  # nothing flagged on the later day
