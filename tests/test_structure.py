@@ -100,7 +100,6 @@ LARGE_FUNCTIONS: dict[str, str] = {
     "psdbound.cli.validate.add_parser": "not split yet",
     "psdbound.pipeline.document.build_document": "formatted past 80 lines: to split",
     "psdbound.reports.figures_spectra.fig_psds_bound": "formatted past 80 lines: to split",
-    "psdbound.screening.screen.screen_series": "formatted past 80 lines: to split",
     "psdbound.spectra.intervals.model_set": "formatted past 80 lines: to split",
     "psdbound.spectra.pooled.pool_bands": "formatted past 80 lines: to split",
     "psdbound.stationarity.windowing.find_stationary_windows": "formatted past 80 lines: to split",
