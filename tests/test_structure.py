@@ -102,7 +102,6 @@ LARGE_FUNCTIONS: dict[str, str] = {
     "psdbound.reports.figures_spectra.fig_psds_bound": "formatted past 80 lines: to split",
     "psdbound.spectra.intervals.model_set": "formatted past 80 lines: to split",
     "psdbound.spectra.pooled.pool_bands": "formatted past 80 lines: to split",
-    "psdbound.stationarity.windowing.find_stationary_windows": "formatted past 80 lines: to split",
 }
 
 
