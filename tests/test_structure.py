@@ -99,7 +99,6 @@ LARGE_FUNCTIONS: dict[str, str] = {
     "psdbound.cli.cutoff.add_parser": "not split yet",
     "psdbound.cli.validate.add_parser": "not split yet",
     "psdbound.pipeline.document.build_document": "formatted past 80 lines: to split",
-    "psdbound.reports.figures_spectra.fig_psds_bound": "formatted past 80 lines: to split",
     "psdbound.spectra.intervals.model_set": "formatted past 80 lines: to split",
     "psdbound.spectra.pooled.pool_bands": "formatted past 80 lines: to split",
 }
