@@ -98,10 +98,6 @@ LARGE_FUNCTIONS: dict[str, str] = {
     "psdbound.cli.budget.add_parser": "not split yet",
     "psdbound.cli.cutoff.add_parser": "not split yet",
     "psdbound.cli.validate.add_parser": "not split yet",
-    "psdbound.isolation.dual_antenna.isolate_dual_antenna": "formatted past 80 lines: to split",
-    "psdbound.reports.figures_spectra.fig_psds_bound": "formatted past 80 lines: to split",
-    "psdbound.screening.screen.screen_series": "formatted past 80 lines: to split",
-    "psdbound.stationarity.windowing.find_stationary_windows": "formatted past 80 lines: to split",
 }
 
 

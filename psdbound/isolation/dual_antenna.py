@@ -234,22 +234,10 @@ def isolate_dual_antenna(
     sats = common_satellites(obs1, obs2, system, inp.code1, inp.code2, i1, i2, files)
 
     # geometry at the nominal epochs: receiver clocks and the find_arcs pre-filter
-    trk1 = _track(
+    trk1, trk2 = _track_both(
         obs1,
-        inp.pos1,
-        inp.code1,
-        inp.slip1,
-        orbit,
-        sats,
-        system=system,
-        min_length_s=min_length_s,
-        elevation_mask_deg=elevation_mask_deg,
-    )
-    trk2 = _track(
         obs2,
-        inp.pos2,
-        inp.code2,
-        inp.slip2,
+        inp,
         orbit,
         sats,
         system=system,
@@ -257,38 +245,16 @@ def isolate_dual_antenna(
         elevation_mask_deg=elevation_mask_deg,
     )
     common = _Common.of(obs1, obs2, i1, i2, trk1, trk2, inp)
-
-    sd = _single_differences(trk1.arcs, trk2.arcs, common, orbit, min_length_s)
-    if not sd.arcs:
-        raise NoDataError(
-            f"no single-difference arc of at least {min_length_s:g} s above "
-            f"{elevation_mask_deg:g} deg in {files} ({len(trk1.arcs)} and "
-            f"{len(trk2.arcs)} tracking arcs, {sd.n_short} common stretches too short)"
-        )
-    sd.arcs.sort(key=lambda a: (int(a.ci[0]), a.sat))
-
+    sd = _single_difference_arcs(trk1, trk2, common, orbit, files, min_length_s, elevation_mask_deg)
     lam = wavelength_m(
         sats[0], RINEX2_TO_RINEX3.get(inp.code1, inp.code1), obs1.header.glonass_channels
     )
-    dd = _double_differences(sd.arcs, common.t_s, DD_JUMP_FRACTION * lam, min_length_s)
-    if not dd.pieces:
-        raise NoDataError(
-            f"no double-difference arc of at least {min_length_s:g} s in {files} "
-            f"({len(sd.arcs)} single-difference arcs, {dd.n_short} double-difference "
-            "arcs too short)"
-        )
+    dd = _double_difference_arcs(sd, common, DD_JUMP_FRACTION * lam, files, min_length_s)
     choice = _choose_baseline(dd.pieces, inp, baseline, baseline_tolerance_m)
     n_common = int(i1.size)
     interval_s = float(np.median(np.diff(common.t_s))) if n_common > 1 else obs1.interval_s
     meta: dict[str, Any] = {
-        "files": (obs1.path, obs2.path),
-        "markers": (obs1.header.marker_name, obs2.header.marker_name),
-        "baseline_m": choice.baseline_m,
-        "positions_m": (inp.pos1.tolist(), choice.pos2.tolist()),
-        "baseline_estimate": choice.info,
-        "position_sources": (inp.src1, choice.src2),
-        "codes": (inp.code1, inp.code2),
-        "slip_codes": (inp.slip1, inp.slip2),
+        **_station_meta(obs1, obs2, inp, choice),
         "slip_detection": _slip_detection_text(slip_signal),
         "reference_periods": _reference_meta(dd.periods, common.t_s),
         "receiver_clock": _clock_meta(orbit, trk1, trk2, i1, i2),
@@ -433,6 +399,43 @@ def _track(
     return _Tracking(dt, code_c, n_interp, arcs)
 
 
+def _track_both(
+    obs1: Observations,
+    obs2: Observations,
+    inp: _Inputs,
+    orbit: OrbitSource,
+    sats: list[str],
+    *,
+    system: str,
+    min_length_s: float,
+    elevation_mask_deg: float,
+) -> tuple[_Tracking, _Tracking]:
+    """Estimate both receivers' clocks and find their tracking arcs (:func:`_track`)."""
+    trk1 = _track(
+        obs1,
+        inp.pos1,
+        inp.code1,
+        inp.slip1,
+        orbit,
+        sats,
+        system=system,
+        min_length_s=min_length_s,
+        elevation_mask_deg=elevation_mask_deg,
+    )
+    trk2 = _track(
+        obs2,
+        inp.pos2,
+        inp.code2,
+        inp.slip2,
+        orbit,
+        sats,
+        system=system,
+        min_length_s=min_length_s,
+        elevation_mask_deg=elevation_mask_deg,
+    )
+    return trk1, trk2
+
+
 @dataclass(frozen=True)
 class _Common:
     """Both receivers on the common epochs: times and clock-corrected receive times (GPS s)."""
@@ -502,6 +505,27 @@ def _single_differences(
     return out
 
 
+def _single_difference_arcs(
+    trk1: _Tracking,
+    trk2: _Tracking,
+    common: _Common,
+    orbit: OrbitSource,
+    files: str,
+    min_length_s: float,
+    elevation_mask_deg: float,
+) -> _SingleDifferences:
+    """Single-difference arcs sorted by first common epoch and satellite; none is an error."""
+    sd = _single_differences(trk1.arcs, trk2.arcs, common, orbit, min_length_s)
+    if not sd.arcs:
+        raise NoDataError(
+            f"no single-difference arc of at least {min_length_s:g} s above "
+            f"{elevation_mask_deg:g} deg in {files} ({len(trk1.arcs)} and "
+            f"{len(trk2.arcs)} tracking arcs, {sd.n_short} common stretches too short)"
+        )
+    sd.arcs.sort(key=lambda a: (int(a.ci[0]), a.sat))
+    return sd
+
+
 def _single_difference(
     a1: Any,
     c1: NDArray[np.intp],
@@ -544,6 +568,24 @@ class _DoubleDifferences:
     periods: list[tuple[SDArc, int, int]]
     n_short: int = 0
     n_jump_splits: int = 0
+
+
+def _double_difference_arcs(
+    sd: _SingleDifferences,
+    common: _Common,
+    jump_m: float,
+    files: str,
+    min_length_s: float,
+) -> _DoubleDifferences:
+    """Double-difference arcs of the single-difference arcs; none is an error."""
+    dd = _double_differences(sd.arcs, common.t_s, jump_m, min_length_s)
+    if not dd.pieces:
+        raise NoDataError(
+            f"no double-difference arc of at least {min_length_s:g} s in {files} "
+            f"({len(sd.arcs)} single-difference arcs, {dd.n_short} double-difference "
+            "arcs too short)"
+        )
+    return dd
 
 
 def _double_differences(
@@ -656,6 +698,22 @@ def _choose_baseline(
 
 
 # --------------------------------------------------------------------------- meta
+
+
+def _station_meta(
+    obs1: Observations, obs2: Observations, inp: _Inputs, choice: _BaselineChoice
+) -> dict[str, Any]:
+    """Describe the two stations: files, markers, baseline, positions and codes used."""
+    return {
+        "files": (obs1.path, obs2.path),
+        "markers": (obs1.header.marker_name, obs2.header.marker_name),
+        "baseline_m": choice.baseline_m,
+        "positions_m": (inp.pos1.tolist(), choice.pos2.tolist()),
+        "baseline_estimate": choice.info,
+        "position_sources": (inp.src1, choice.src2),
+        "codes": (inp.code1, inp.code2),
+        "slip_codes": (inp.slip1, inp.slip2),
+    }
 
 
 def _slip_detection_text(slip_signal: str | None) -> str:

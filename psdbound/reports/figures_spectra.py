@@ -10,6 +10,7 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from psdbound.reports.figures_base import finish, new_figure
@@ -47,71 +48,13 @@ def fig_psds_bound(r: dict[str, Any]) -> Figure | None:
     fig = new_figure(4.8)
     ax = fig.add_subplot()
     f_lo = min(min(p["f_hz"][0] for p in psds if p["f_hz"]), bc["f_hz"][0])
-    for p in psds:
-        ax.loglog(p["f_hz"], p["psd_m2_hz"], color="0.6", lw=0.4, alpha=0.6)
     b = r["bound"]
-    ax.loglog(
-        bc["f_hz"],
-        bc["psd_m2_hz"],
-        color="C3",
-        lw=2.2,
-        label=f"bound: sigma_GM {100 * b['sigma_gm_m']:.2f} cm, tau {b['tau_s']:.0f} s, "
-        f"sigma_WN {100 * b['sigma_wn_m']:.2f} cm",
-    )
-    pooled = b.get("pooled")
-    if pooled:
-        up = np.atleast_2d(np.asarray(pooled["upper_m2_hz"], dtype=float))
-        for k, row in enumerate(up):
-            ax.loglog(
-                pooled["band_centres_hz"],
-                row,
-                "v",
-                color="C1",
-                ms=4,
-                label=(
-                    f"pooled {100 * b['confidence_level']:g} % limits "
-                    f"({pooled['n_groups']} group(s))"
-                    if k == 0
-                    else None
-                ),
-            )
-    truth = r.get("demo", {}).get("truth_curve")
-    if truth:
-        ax.loglog(
-            truth["f_hz"],
-            truth["psd_m2_hz"],
-            color="C2",
-            lw=1.6,
-            ls="--",
-            label="injected truth (demo)",
-        )
+    _plot_psds_and_bound(ax, psds, bc, b)
+    _plot_pooled_limits(ax, b)
+    _plot_truth(ax, r)
     nyq = r["sampling"]["nyquist_hz"]
     ax.axvline(nyq, color="k", ls=":", lw=1, label=f"Nyquist {nyq:.3g} Hz")
-    x0 = min(f_lo, nyq) / 1.2
-    fc = r["cutoff"].get("f_c_hz")
-    start = _passband_start_hz(r)
-    if fc and start:
-        ax.axvline(fc, color="C0", ls="--", lw=1, label=f"f_c {fc:.3g} Hz")
-        x0 = min(x0, fc / 2)
-        ax.axvspan(
-            x0,
-            fc,
-            color="0.55",
-            alpha=0.25,
-            lw=0,
-            gid="stopband",
-            label="f < f_c: removed by the high-pass (not bounded)",
-        )
-        if start > fc * 1.0001:
-            ax.axvspan(
-                fc,
-                start,
-                color="0.55",
-                alpha=0.12,
-                lw=0,
-                gid="transition",
-                label=f"f_c to {start:.3g} Hz: attenuated by the filter, outside the bound's band",
-            )
+    x0 = _shade_filter_bands(ax, r, min(f_lo, nyq) / 1.2)
     ax.set_xlim(x0, nyq * 1.2)
     ax.set_xlabel("frequency [Hz]")
     ax.set_ylabel("one-sided PSD [m²/Hz]")
@@ -123,6 +66,91 @@ def fig_psds_bound(r: dict[str, Any]) -> Figure | None:
     ax.legend(fontsize=7, loc="lower left")
     ax.grid(alpha=0.3, which="both")
     return finish(fig)
+
+
+def _plot_psds_and_bound(
+    ax: Axes, psds: list[dict[str, Any]], bc: dict[str, Any], b: dict[str, Any]
+) -> None:
+    """Draw every window's PSD estimate and the bound's curve."""
+    for p in psds:
+        ax.loglog(p["f_hz"], p["psd_m2_hz"], color="0.6", lw=0.4, alpha=0.6)
+    ax.loglog(
+        bc["f_hz"],
+        bc["psd_m2_hz"],
+        color="C3",
+        lw=2.2,
+        label=f"bound: sigma_GM {100 * b['sigma_gm_m']:.2f} cm, tau {b['tau_s']:.0f} s, "
+        f"sigma_WN {100 * b['sigma_wn_m']:.2f} cm",
+    )
+
+
+def _plot_pooled_limits(ax: Axes, b: dict[str, Any]) -> None:
+    """Draw the pooled upper limits of every group of windows (none without pooling)."""
+    pooled = b.get("pooled")
+    if not pooled:
+        return
+    up = np.atleast_2d(np.asarray(pooled["upper_m2_hz"], dtype=float))
+    for k, row in enumerate(up):
+        ax.loglog(
+            pooled["band_centres_hz"],
+            row,
+            "v",
+            color="C1",
+            ms=4,
+            label=(
+                f"pooled {100 * b['confidence_level']:g} % limits ({pooled['n_groups']} group(s))"
+                if k == 0
+                else None
+            ),
+        )
+
+
+def _plot_truth(ax: Axes, r: dict[str, Any]) -> None:
+    """Draw the injected truth of a demo run (nothing for other runs)."""
+    truth = r.get("demo", {}).get("truth_curve")
+    if not truth:
+        return
+    ax.loglog(
+        truth["f_hz"],
+        truth["psd_m2_hz"],
+        color="C2",
+        lw=1.6,
+        ls="--",
+        label="injected truth (demo)",
+    )
+
+
+def _shade_filter_bands(ax: Axes, r: dict[str, Any], x0: float) -> float:
+    """Mark f_c and shade the bands the high-pass removes or attenuates; return the left x limit.
+
+    ``x0`` is the left limit without a filter; with one it extends to ``f_c / 2``.
+    """
+    fc = r["cutoff"].get("f_c_hz")
+    start = _passband_start_hz(r)
+    if not (fc and start):
+        return x0
+    ax.axvline(fc, color="C0", ls="--", lw=1, label=f"f_c {fc:.3g} Hz")
+    x0 = min(x0, fc / 2)
+    ax.axvspan(
+        x0,
+        fc,
+        color="0.55",
+        alpha=0.25,
+        lw=0,
+        gid="stopband",
+        label="f < f_c: removed by the high-pass (not bounded)",
+    )
+    if start > fc * 1.0001:
+        ax.axvspan(
+            fc,
+            start,
+            color="0.55",
+            alpha=0.12,
+            lw=0,
+            gid="transition",
+            label=f"f_c to {start:.3g} Hz: attenuated by the filter, outside the bound's band",
+        )
+    return x0
 
 
 def fig_tau_search(r: dict[str, Any]) -> Figure | None:

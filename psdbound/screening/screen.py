@@ -475,23 +475,10 @@ def screen_series(
     Screening
     """
     opt = options or ScreeningOptions()
-    guard_s = opt.guard_s
-    if guard_s is None:
-        guard_s = 0.5 / series.cutoff_hz if series.cutoff_hz else 0.0
+    guard_s = _guard_s(series, opt)
     m_per_tecu = _m_per_tecu(series, glonass_channels)
     bounds = series.arc_bounds()
-    blocks = [
-        _arc_blocks(
-            series.t_gps_s[lo:hi],
-            series.value_m[lo:hi],
-            series.elevation_deg[lo:hi],
-            _part(series.unfiltered_m, lo, hi),
-            m_per_tecu,
-            _part(series.third_m, lo, hi),
-            _combination(series, series.arc_sats[k], glonass_channels),
-        )
-        for k, (lo, hi) in enumerate(bounds)
-    ]
+    blocks = _series_blocks(series, bounds, m_per_tecu, glonass_channels)
     null = _series_null(blocks, opt) if m_per_tecu is not None else None
     rnull = _ratio_null(blocks, opt, null)
     three = rnull is not None and rnull.trusted
@@ -516,42 +503,11 @@ def screen_series(
     kept = [p for a in arcs for p in a["kept"]]
     input_s = float(sum(a["input_s"] for a in arcs))
     excluded_s = input_s - sum(p["t_gps_s"].size for p in kept) * series.interval_s
-    meta = dict(series.meta)
-    meta["screening"] = {
-        "limit_m": ctx["limit"],
-        "guard_s": guard_s,
-        "roti_threshold_tecu_min": opt.roti_threshold_tecu_min,
-    }
-    out = MultipathSeries.from_arcs(
-        series.method,
-        kept,
-        signals=series.signals,
-        scaling=series.scaling,
-        interval_s=series.interval_s,
-        cutoff_hz=series.cutoff_hz,
-        meta=meta,
-        third_signal=series.third_signal,
-    )
-    three_freq = None
-    if rnull is not None or (null is not None and series.third_m is not None):
-        three_freq = summary(
-            tf,
-            rnull,
-            series.third_signal,
-            len(bounds),
-            sum(bool(np.isfinite(b["ratio"]).any()) for b in blocks),
-            blocks,
-            [a["flagged"] for a in arcs],
-        )
+    out = _kept_series(series, kept, ctx)
+    three_freq = _three_frequency(series, bounds, blocks, arcs, null, rnull, tf)
     notes = _notes(m_per_tecu, null, rnull, tf)
     if tf is not None and three_freq is not None:
-        f = three_freq
-        notes += (
-            f"three-frequency test ({f['signal']} on {f['arcs_with_third']} of "
-            f"{f['arcs']} arcs): {f['kept_as_multipath']} blocks flagged by ROTI kept as "
-            f"multipath, {f['confirmed']} confirmed and {f['added']} added as ionosphere "
-            "(screening.three_frequency)",
-        )
+        notes += (_three_frequency_note(three_freq),)
     return Screening(
         out,
         tuple(e for a in arcs for e in a["excluded"]),
@@ -564,6 +520,90 @@ def screen_series(
         guard_s,
         null,
         three_freq,
+    )
+
+
+def _guard_s(series: MultipathSeries, opt: ScreeningOptions) -> float:
+    """Return the guard around flagged blocks, s: the option, else half a cutoff period or 0."""
+    guard_s = opt.guard_s
+    if guard_s is None:
+        guard_s = 0.5 / series.cutoff_hz if series.cutoff_hz else 0.0
+    return guard_s
+
+
+def _series_blocks(
+    series: MultipathSeries,
+    bounds: list[tuple[int, int]],
+    m_per_tecu: float | None,
+    glonass_channels: Mapping[str, int] | None,
+) -> list[dict[str, Any]]:
+    """Per arc of the series, its 5-min blocks (:func:`_arc_blocks`)."""
+    return [
+        _arc_blocks(
+            series.t_gps_s[lo:hi],
+            series.value_m[lo:hi],
+            series.elevation_deg[lo:hi],
+            _part(series.unfiltered_m, lo, hi),
+            m_per_tecu,
+            _part(series.third_m, lo, hi),
+            _combination(series, series.arc_sats[k], glonass_channels),
+        )
+        for k, (lo, hi) in enumerate(bounds)
+    ]
+
+
+def _kept_series(
+    series: MultipathSeries, kept: list[dict[str, Any]], ctx: dict[str, Any]
+) -> MultipathSeries:
+    """Return the series of the kept pieces, its meta with the screening's limit and guard."""
+    meta = dict(series.meta)
+    meta["screening"] = {
+        "limit_m": ctx["limit"],
+        "guard_s": ctx["guard_s"],
+        "roti_threshold_tecu_min": ctx["opt"].roti_threshold_tecu_min,
+    }
+    return MultipathSeries.from_arcs(
+        series.method,
+        kept,
+        signals=series.signals,
+        scaling=series.scaling,
+        interval_s=series.interval_s,
+        cutoff_hz=series.cutoff_hz,
+        meta=meta,
+        third_signal=series.third_signal,
+    )
+
+
+def _three_frequency(
+    series: MultipathSeries,
+    bounds: list[tuple[int, int]],
+    blocks: list[dict[str, Any]],
+    arcs: list[dict[str, Any]],
+    null: MultipathNull | None,
+    rnull: RatioNull | None,
+    tf: ThreeFrequencyTest | None,
+) -> dict[str, Any] | None:
+    """Return what the three-frequency test did (None: the series has no third carrier)."""
+    if rnull is None and (null is None or series.third_m is None):
+        return None
+    return summary(
+        tf,
+        rnull,
+        series.third_signal,
+        len(bounds),
+        sum(bool(np.isfinite(b["ratio"]).any()) for b in blocks),
+        blocks,
+        [a["flagged"] for a in arcs],
+    )
+
+
+def _three_frequency_note(f: dict[str, Any]) -> str:
+    """Say what the three-frequency test kept, confirmed and added."""
+    return (
+        f"three-frequency test ({f['signal']} on {f['arcs_with_third']} of "
+        f"{f['arcs']} arcs): {f['kept_as_multipath']} blocks flagged by ROTI kept as "
+        f"multipath, {f['confirmed']} confirmed and {f['added']} added as ionosphere "
+        "(screening.three_frequency)"
     )
 
 

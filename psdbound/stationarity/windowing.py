@@ -365,10 +365,7 @@ def find_stationary_windows(
     """
     mp = THESIS_MAPPING if mapping is None else mapping
     mapped = mp.apply(series.value_m, series.elevation_deg)
-    L = max(8, int(math.ceil(min_length_s / series.interval_s)) + 1)
-    if test == "spectral":
-        # the spectral test needs two parts with two test frequencies each
-        L = max(L, min_samples())
+    L = _min_window_samples(min_length_s, series.interval_s, test)
     windows: list[Window] = []
     uncovered: list[tuple[int, str, float, float]] = []
     n_tests = 0
@@ -392,31 +389,13 @@ def find_stationary_windows(
             overlap=overlap,
         )
         n_tests += nt
-        covered = np.zeros(x.size, dtype=bool)
         for s, e, lp, kp in found:
-            covered[s : e + 1] = True
             windows.append(
                 Window(k, series.arc_sats[k], s, e, lo, float(t[s]), float(t[e]), lp, kp)
             )
-        # stretches never covered
-        edges = np.flatnonzero(np.diff(np.r_[False, ~covered, False].astype(np.int8)))
-        for a, b in zip(edges[::2], edges[1::2], strict=True):
-            if b - a >= 2:
-                uncovered.append((k, series.arc_sats[k], float(t[a]), float(t[b - 1])))
+        uncovered += _uncovered(k, series.arc_sats[k], t, found)
     if long_enough == 0:
-        why = ""
-        if (L - 1) * series.interval_s > min_length_s:
-            why = (
-                f" (the spectral stationarity test needs {min_samples()} samples: "
-                f"{(L - 1) * series.interval_s / 60:.0f} min at {series.interval_s:g} s; use "
-                "longer data, a higher sampling rate or the thesis test)"
-            )
-        longest = max((hi - lo for lo, hi in series.arc_bounds()), default=0)
-        raise NoDataError(
-            f"no arc is as long as the minimum window length {(L - 1) * series.interval_s:g} s"
-            f"{why}; longest arc after filtering {max(longest - 1, 0) * series.interval_s / 60:.1f}"
-            f" min of {series.n_arcs}"
-        )
+        raise _no_long_arc_error(series, L, min_length_s)
     return WindowSet(
         windows=tuple(windows),
         mapped_m=mapped,
@@ -437,4 +416,45 @@ def find_stationary_windows(
         uncovered=tuple(uncovered),
         uncovered_s=float(sum(b - a for _, _, a, b in uncovered)),
         short_s=short_s,
+    )
+
+
+def _min_window_samples(min_length_s: float, interval_s: float, test: str) -> int:
+    """Return the minimum window length ``L``, samples (raised to the spectral test's minimum)."""
+    L = max(8, int(math.ceil(min_length_s / interval_s)) + 1)
+    if test == "spectral":
+        # the spectral test needs two parts with two test frequencies each
+        L = max(L, min_samples())
+    return L
+
+
+def _uncovered(
+    k: int, sats: str, t: NDArray[np.float64], found: list[tuple[int, int, float, float]]
+) -> list[tuple[int, str, float, float]]:
+    """Return the stretches of at least two samples of arc ``k`` that no window covers."""
+    covered = np.zeros(t.size, dtype=bool)
+    for s, e, _, _ in found:
+        covered[s : e + 1] = True
+    edges = np.flatnonzero(np.diff(np.r_[False, ~covered, False].astype(np.int8)))
+    return [
+        (k, sats, float(t[a]), float(t[b - 1]))
+        for a, b in zip(edges[::2], edges[1::2], strict=True)
+        if b - a >= 2
+    ]
+
+
+def _no_long_arc_error(series: MultipathSeries, L: int, min_length_s: float) -> NoDataError:
+    """Return the error for a series with no arc as long as the minimum window (``L`` samples)."""
+    why = ""
+    if (L - 1) * series.interval_s > min_length_s:
+        why = (
+            f" (the spectral stationarity test needs {min_samples()} samples: "
+            f"{(L - 1) * series.interval_s / 60:.0f} min at {series.interval_s:g} s; use "
+            "longer data, a higher sampling rate or the thesis test)"
+        )
+    longest = max((hi - lo for lo, hi in series.arc_bounds()), default=0)
+    return NoDataError(
+        f"no arc is as long as the minimum window length {(L - 1) * series.interval_s:g} s"
+        f"{why}; longest arc after filtering {max(longest - 1, 0) * series.interval_s / 60:.1f}"
+        f" min of {series.n_arcs}"
     )
