@@ -85,7 +85,8 @@ def apply_config(args: argparse.Namespace, argv: Sequence[str]) -> None:
     Parameters
     ----------
     args : argparse.Namespace
-        Parsed by a parser with :func:`add_config_option`.
+        Parsed by a parser with :func:`add_config_option` (a ``psdbound`` command
+        parser, whose ``options()`` lists its arguments).
     argv : sequence of str
         The command line (to know which flags were given).
 
@@ -104,7 +105,7 @@ def apply_config(args: argparse.Namespace, argv: Sequence[str]) -> None:
     data = _table(read_toml(path, what="configuration file"), args.command)
     actions = {
         flag.lstrip("-").replace("-", "_"): a
-        for a in parser._actions
+        for a in parser.options()
         if a.dest not in ("help", "config")
         for flag in a.option_strings
         if flag.startswith("--")

@@ -42,6 +42,10 @@ _COMMANDS = (
 class _Parser(argparse.ArgumentParser):
     """ArgumentParser whose usage errors are one line and exit code 2."""
 
+    def options(self) -> list[argparse.Action]:
+        """Return every argument of this parser (what ``--config`` keys may name)."""
+        return list(self._actions)
+
     def error(self, message: str) -> None:  # type: ignore[override]
         self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message}\n")
 
