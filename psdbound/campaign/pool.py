@@ -53,7 +53,7 @@ def _bound_row(days: list[dict[str, Any]], options: Any) -> dict[str, Any]:
         "confidence_level": b.level,
         "n_groups": sb.limits.n_groups,
         "tau_grid_s": list(b.tau_grid_s),
-        "low_frequency": sb.low_frequency.as_dict(),
+        "low_frequency": sb.low_frequency.to_dict(),
     }
 
 
@@ -125,7 +125,7 @@ def pool_station(
         "station": days[0]["station"],
         "verdict": verdict,
         "verdict_reasons": reasons,
-        "verdict_checks": [c.as_dict() for c in checks],
+        "verdict_checks": [c.to_dict() for c in checks],
         "n_days": len(days),
         "n_pooled": len(pooled),
         "pooled_days": [d["day"] for d in pooled],

@@ -77,7 +77,7 @@ def write_station_outputs(
     tag = file_tag(result.name)
     files = [
         atomic_write_text(out / f"cutoff_{tag}.csv", result.table_csv()),
-        write_json(out / f"cutoff_{tag}.json", result.to_json_dict()),
+        write_json(out / f"cutoff_{tag}.json", result.to_dict()),
     ]
     if figures:
         files += _station_figures(result, out, tag)
@@ -155,7 +155,7 @@ def write_map_outputs(
     out = Path(out_dir)
     files = [
         atomic_write_text(out / "cutoff_map.csv", result.table_csv()),
-        write_json(out / "cutoff_map.json", result.to_json_dict()),
+        write_json(out / "cutoff_map.json", result.to_dict()),
     ]
     if figures:
         rows = result.rows()

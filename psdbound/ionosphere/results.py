@@ -188,7 +188,7 @@ class StationCutoffs:
             w.writerow([_fmt(r[c]) for c in cols])
         return buf.getvalue()
 
-    def to_json_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """Everything as a JSON-ready dict (summary, settings, provenance, rows)."""
         return {
             "summary": self.summary(),
@@ -268,7 +268,7 @@ class CutoffMap:
             w.writerow([_fmt(r[c]) for c in cols])
         return buf.getvalue()
 
-    def to_json_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict: station summaries, settings and provenance."""
         first = self.stations[0] if self.stations else None
         return {

@@ -102,7 +102,7 @@ class BaselineEstimate:
         """Return the term to subtract from double differences with these LOS differences, m."""
         return np.asarray(los_diff, dtype=np.float64) @ self.correction_m
 
-    def as_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary (metres)."""
         return {
             "correction_m": self.correction_m.tolist(),

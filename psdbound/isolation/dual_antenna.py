@@ -684,7 +684,7 @@ def _choose_baseline(
         "used": bool(use),
         "given_baseline_m": inp.baseline_m,
         "given_positions_m": (pos1.tolist(), pos2.tolist()),
-        "estimate": None if est is None else est.as_dict(),
+        "estimate": None if est is None else est.to_dict(),
         "estimated_baseline_m": None
         if est is None
         else float(np.linalg.norm(pos2 + est.correction_m - pos1)),

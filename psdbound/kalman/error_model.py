@@ -93,7 +93,7 @@ class Component:
         """Variance, m^2."""
         return self.sigma_m**2
 
-    def as_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """JSON-ready form."""
         return {
             "name": self.name,
@@ -419,11 +419,11 @@ class ErrorModel:
         )
 
     # ----------------------------------------------------------------- I/O
-    def as_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """JSON-ready form (``error_model`` of result.json)."""
         ss = self.to_state_space(allow_not_bounded=True)
         return {
-            "components": [c.as_dict() for c in self.components],
+            "components": [c.to_dict() for c in self.components],
             "dt_s": self.dt_s,
             "nyquist_hz": self.nyquist_hz,
             "f_min_hz": self.f_min_hz,
@@ -585,6 +585,6 @@ def error_model_section(
         parameter_set=low.get("parameter_set"),
     )
     return {
-        **model.as_dict(),
+        **model.to_dict(),
         "integrity_note": integrity_note(bound.get("confidence_level"), pooled.get("coverage")),
     }

@@ -130,7 +130,7 @@ def _bound_section(res: BoundResults) -> dict[str, Any]:
         ),
         "pooled": _pooled_section(res),
         **_model_set_section(res),
-        "low_frequency": None if res.low_frequency is None else res.low_frequency.as_dict(),
+        "low_frequency": None if res.low_frequency is None else res.low_frequency.to_dict(),
         "gap_db_median": b.gap_db_median,
         "gap_db_p05": b.gap_db_p05,
         "over_data_db": res.over_data_db(),
@@ -187,7 +187,7 @@ def _mapping_section(windowed: Windowed, res: BoundResults, screened: Screened) 
                 "factor_rel_sigma": float(mp.factor_sigma(mid) / mp.factor(mid)),
             }
         )
-    out = mp.as_dict()
+    out = mp.to_dict()
     ok = np.isfinite(el)
     rms_factor = float(np.sqrt(np.mean(mp.factor(el[ok]) ** 2))) if ok.any() else 1.0
     out["rms_factor_over_data"] = rms_factor
@@ -224,7 +224,7 @@ def _model_set_section(res: BoundResults) -> dict[str, Any]:
         "tau_interval_s": list(ms.tau_interval_s),
         "sigma_gm_interval_m": list(ms.sigma_gm_interval_m),
         "sigma_wn_interval_m": list(ms.sigma_wn_interval_m),
-        "model_set": ms.as_dict(),
+        "model_set": ms.to_dict(),
     }
 
 
@@ -334,7 +334,7 @@ def _screening_section(screened: Screened) -> dict[str, Any]:
         "roti_threshold_tecu_min": sc.options.roti_threshold_tecu_min,
         "roti_cap_tecu_min": sc.options.roti_cap_tecu_min,
         "roti_threshold_rule": _roti_rule(sc),
-        "multipath_null": None if sc.null is None else sc.null.as_dict(),
+        "multipath_null": None if sc.null is None else sc.null.to_dict(),
         "false_alarm_per_block": sc.options.false_alarm if sc.null is not None else None,
         "three_frequency": sc.three_frequency,
         "roti": "5-min blocks of ROT sampled at 30 s (Pi et al. 1997)",
@@ -440,7 +440,7 @@ def _verdict_first(doc: dict[str, Any], checks: list[VerdictCheck]) -> dict[str,
         "schema_version": doc.pop("schema_version"),
         "verdict": verdict,
         "verdict_reasons": reasons,
-        "verdict_checks": [c.as_dict() for c in checks],
+        "verdict_checks": [c.to_dict() for c in checks],
         **doc,
     }
     out["headline"] = headline(out)

@@ -543,7 +543,7 @@ def _slow_component(
                 geom,
             )
         if rm is not None:
-            rows.append(rm.as_dict())
+            rows.append(rm.to_dict())
     return sorted(rows, key=lambda r: -r["sigma_m"])
 
 
@@ -684,7 +684,7 @@ def validate(
             "applicable": True,
             "geometries_used": geoms,
             "geometry_note": note,
-            "site_reflection": site.as_dict(),
+            "site_reflection": site.to_dict(),
             "removed": removed,
             "max_removed_rms_m": max(r["removed_rms_m"] for r in removed),
             "slow": slow[0] if slow else None,

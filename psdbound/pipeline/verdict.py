@@ -292,7 +292,7 @@ def verdict_facts(
         sigma_wn_m=b.sigma_wn_m,
         tau_grid_s=tuple(float(t) for t in b.tau_grid_s),
         covered_s=_covered_s(spans, interval_s),
-        low_frequency=None if low is None else to_jsonable(low.as_dict()),
+        low_frequency=None if low is None else to_jsonable(low.to_dict()),
         filter_loss=(details.get("safety") or {}).get("removed_above_fc_median"),
         f_c_hz=None if cutoff is None else cutoff.f_c_hz,
         nyquist_hz=0.5 / interval_s,
@@ -330,9 +330,9 @@ class VerdictCheck:
 
     def line(self) -> str:
         """Return ``rule: measured (limit) pass|FAIL``, the line every output prints."""
-        return check_line(self.as_dict())
+        return check_line(self.to_dict())
 
-    def as_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """JSON-ready form (an entry of ``verdict_checks`` in result.json)."""
         return {
             "rule": self.rule,

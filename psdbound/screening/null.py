@@ -248,7 +248,7 @@ class MultipathNull:
             out[j : j + blocks] |= member[j : j + blocks]
         return out
 
-    def as_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """JSON-ready form."""
         return {
             "elevation_deg": self.elevation_deg.tolist(),

@@ -334,7 +334,7 @@ class RatioNull:
         nu = self.dof
         return q * stats.f.isf(tail, nu, nu) / stats.f.ppf(Q_HI, nu, nu)
 
-    def as_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """JSON-ready form."""
         return {
             "elevation_deg": self.elevation_deg.tolist(),
@@ -451,7 +451,7 @@ def summary(
         "blocks_above_multipath_ratio": int((ratio > RATIO_MAX).sum()),
         "applied": test is not None,
         "false_alarm_per_block": None if test is None else test.false_alarm,
-        "null": None if rnull is None else rnull.as_dict(),
+        "null": None if rnull is None else rnull.to_dict(),
         "named_ionosphere": int((named == "ionosphere").sum()),
         "named_multipath": int((named == "multipath").sum()),
         "added": int(((named == "ionosphere") & ~roti_flag).sum()),

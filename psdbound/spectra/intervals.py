@@ -153,7 +153,7 @@ class ModelSet:
             includes=self.includes + (name,),
         )
 
-    def as_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """JSON-ready form (the ``bound.model_set`` section of result.json)."""
         return {
             "best": dict(self.best),

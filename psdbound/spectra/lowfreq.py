@@ -146,7 +146,7 @@ class LowFrequency:
             f"time constant above at {self.tau_upper_s:.4g} s"
         )
 
-    def as_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """JSON-ready form (``bound.low_frequency`` of result.json)."""
         return {
             "status": self.status,
@@ -290,7 +290,7 @@ def low_frequency_reasons(section: dict[str, Any] | None, policy: str = "prior")
     Parameters
     ----------
     section : dict or None
-        :meth:`LowFrequency.as_dict` (``bound.low_frequency`` of result.json);
+        :meth:`LowFrequency.to_dict` (``bound.low_frequency`` of result.json);
         None: the envelope rule, no check.
     policy : {"prior", "refuse"}, default "prior"
         ``"refuse"``: a statement that rests on the prior ``tau <= tau_max_s``

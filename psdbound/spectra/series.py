@@ -177,7 +177,7 @@ def _verdict(
         reasons.append("no positive bound could be fitted")
     if not np.isfinite(limits.upper_m2_hz).any():
         reasons.append("no frequency band has data")
-    reasons += low_frequency_reasons(low.as_dict(), policy)
+    reasons += low_frequency_reasons(low.to_dict(), policy)
     return tuple(reasons)
 
 

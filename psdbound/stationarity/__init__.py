@@ -19,7 +19,7 @@ if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
         min_samples,
         test_spectral_homogeneity,
     )
-    from psdbound.stationarity.tests import StationarityTest, test_stationarity
+    from psdbound.stationarity.thesis_test import StationarityTest, test_stationarity
     from psdbound.stationarity.windowing import (
         Window,
         WindowSet,
@@ -58,8 +58,8 @@ _EXPORTS = {
     "SpectralHomogeneityTest": ("psdbound.stationarity.spectral", "SpectralHomogeneityTest"),
     "min_samples": ("psdbound.stationarity.spectral", "min_samples"),
     "test_spectral_homogeneity": ("psdbound.stationarity.spectral", "test_spectral_homogeneity"),
-    "StationarityTest": ("psdbound.stationarity.tests", "StationarityTest"),
-    "test_stationarity": ("psdbound.stationarity.tests", "test_stationarity"),
+    "StationarityTest": ("psdbound.stationarity.thesis_test", "StationarityTest"),
+    "test_stationarity": ("psdbound.stationarity.thesis_test", "test_stationarity"),
     "Window": ("psdbound.stationarity.windowing", "Window"),
     "WindowSet": ("psdbound.stationarity.windowing", "WindowSet"),
     "find_stationary_windows": ("psdbound.stationarity.windowing", "find_stationary_windows"),

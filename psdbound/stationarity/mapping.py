@@ -81,7 +81,7 @@ class ElevationMapping:
             raise InputError("elevation mapping needs finite elevations for every sample")
         return np.asarray(value_m, dtype=float) / self.factor(el)
 
-    def as_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """Parameters for result files."""
         d = asdict(self)
         d["function"] = "a + b*exp(-el^2/(2*c^2)), el and c in degrees"

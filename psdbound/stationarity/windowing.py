@@ -35,7 +35,7 @@ from psdbound.isolation.series import MultipathSeries
 from psdbound.stationarity.mapping import THESIS_MAPPING, ElevationMapping
 from psdbound.stationarity.options import STATIONARITY_TESTS
 from psdbound.stationarity.spectral import min_samples, test_spectral_homogeneity
-from psdbound.stationarity.tests import StationarityTest, test_stationarity
+from psdbound.stationarity.thesis_test import StationarityTest, test_stationarity
 
 __all__ = ["STATIONARITY_TESTS", "Window", "WindowSet", "window_arc", "find_stationary_windows"]
 

@@ -210,7 +210,7 @@ class ReflectorHeights:
         lines += [f"  skipped {s}" for s in self.skipped]
         return "\n".join(lines)
 
-    def as_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary: settings, summary values (NaN as None) and every arc."""
         arcs = [{k: _json(getattr(self, k)[i]) for k in _ARC_FIELDS} for i in range(self.n_arcs)]
         return {

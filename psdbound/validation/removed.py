@@ -81,7 +81,7 @@ class RemovedMultipath:
     tau_s: float
     dt_s: float
 
-    def as_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """JSON-ready form (no arrays)."""
         return {
             "geometry": self.geometry,

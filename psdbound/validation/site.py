@@ -86,7 +86,7 @@ class SiteReflection:
     n_accepted: int = 0
     note: str = ""
 
-    def as_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, Any]:
         """JSON-ready form."""
         return {
             "alpha": self.alpha,

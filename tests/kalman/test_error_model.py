@@ -24,7 +24,7 @@ def demo(tmp_path_factory):
 def test_fit_and_loaded_result_give_the_same_model(demo):
     res, path = demo
     em, again = res.error_model, psdbound.load(path).error_model
-    assert [c.as_dict() for c in em.components] == [c.as_dict() for c in again.components]
+    assert [c.to_dict() for c in em.components] == [c.to_dict() for c in again.components]
     assert em.dt_s == again.dt_s == res.bound.dt_s
     assert em["gauss_markov"].sigma_m == res.bound.sigma_gm_m
     assert em["white"].sigma_m == res.bound.sigma_wn_m

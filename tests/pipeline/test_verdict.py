@@ -308,7 +308,7 @@ def test_every_rule_reports_its_two_numbers_and_the_verdict_follows_them():
 def test_headline_says_do_not_use_and_states_nothing_when_not_bounded():
     d = _with("bound.sigma_gm_m", 0.197)
     d["verdict"], d["verdict_reasons"] = judge(d)
-    d["verdict_checks"] = [c.as_dict() for c in verdict_checks(d)]
+    d["verdict_checks"] = [c.to_dict() for c in verdict_checks(d)]
     d["bound"]["covers"] = "with 95 % confidence ..."
     lines = headline(d)
     assert lines[0] == f"VERDICT: NOT-BOUNDED - {DO_NOT_USE}"
@@ -336,4 +336,4 @@ def test_facts_from_products_are_the_document_s():
     )
     loaded = VerdictFacts.from_document(r.document)
     assert typed == loaded
-    assert [c.as_dict() for c in verdict_checks(typed)] == r.document["verdict_checks"]
+    assert [c.to_dict() for c in verdict_checks(typed)] == r.document["verdict_checks"]

@@ -304,7 +304,7 @@ def test_page_one_is_the_same_in_console_html_pdf_and_json(demo_doc, verdict):
         checks = verdict_checks(doc)
         doc["verdict"] = "not-bounded"
         doc["verdict_reasons"] = [c.reason for c in checks if not c.passed]
-        doc["verdict_checks"] = [c.as_dict() for c in checks]
+        doc["verdict_checks"] = [c.to_dict() for c in checks]
         doc["headline"] = headline(doc)
     lines = doc["headline"]
     assert lines == headline(doc)  # the JSON keeps what the document says

@@ -38,7 +38,7 @@ def test_bound_covers_a_gm_truth_at_every_frequency(tau_s, seed):
     res = psdbound.bound_series(_windows(rng, 0.003, tau_s, 0.001, 30, 240), DT)
     assert res.verdict == "bounded"
     ratio = res.bound.sampled_psd(F_ALL) / _truth(0.003, tau_s, 0.001)
-    assert ratio.min() >= 1.0, (res.low_frequency.as_dict(), ratio.min())
+    assert ratio.min() >= 1.0, (res.low_frequency.to_dict(), ratio.min())
     low = res.low_frequency
     if tau_s >= 600.0:  # the data cannot bound tau above: said, and the prior used
         assert low.status == "prior" and low.raised

@@ -279,7 +279,7 @@ def test_reflector_heights_on_a_synthetic_station():
     assert np.all(r.elevation_min_deg >= 5.0) and np.all(r.elevation_max_deg <= 25.0)
     text = r.summary()
     assert "3 of 5 arcs accepted" in text and "median height 2.0" in text
-    d = json.loads(json.dumps(r.as_dict()))
+    d = json.loads(json.dumps(r.to_dict()))
     assert d["n_accepted"] == 3 and len(d["arcs"]) == 5
     assert d["arcs"][0]["sat"] in ("G01", "G02")
     rising = r.select(r.rising)
@@ -305,7 +305,7 @@ def test_no_accepted_arc_gives_nan_with_a_reason():
     assert math.isnan(r.median_alpha)
     assert r.no_result_reason.startswith("no arc passed quality control")
     assert "no height" in r.summary()
-    d = json.loads(json.dumps(r.as_dict()))
+    d = json.loads(json.dumps(r.to_dict()))
     assert d["median_height_m"] is None and d["no_result_reason"]
 
 
@@ -316,7 +316,7 @@ def test_no_arc_at_all_and_skipped_satellites():
     assert r.n_arcs == 0 and math.isnan(r.median_height_m)
     assert "no S1C arc" in r.no_result_reason
     assert any(s.startswith("G01") and "orbit" in s for s in r.skipped)
-    assert json.dumps(r.as_dict())
+    assert json.dumps(r.to_dict())
 
 
 def test_glonass_needs_its_frequency_channel():
@@ -389,7 +389,7 @@ def check_physical(r: ReflectorHeights) -> None:
         one = r.select(r.sat == sat)
         order = np.argsort(one.t_start_gps_s)
         assert np.all(one.t_start_gps_s[order][1:] > one.t_end_gps_s[order][:-1])
-    json.dumps(r.as_dict())
+    json.dumps(r.to_dict())
 
 
 def paired_differences_m(a: ReflectorHeights, b: ReflectorHeights) -> np.ndarray:
