@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 
 from psdbound.campaign.heldout import held_out
-from psdbound.campaign.sidereal import repeat_warnings
+from psdbound.campaign.sidereal import repeat_warnings, sidereal_repeats
 from psdbound.campaign.tasks import station_day_task
 from psdbound.errors import InputError
 
@@ -177,6 +177,11 @@ class CampaignResult:
             )
             lines += [f"    reason: {x}" for x in d["verdict_reasons"]]
         lines += [f"  warning: {w}" for w in repeat_warnings(self.meta.get("sidereal_repeat", []))]
+        lines += [
+            f"  {k['station']} {k['day']}: fitted again keeping {k['n_spans']} span(s) "
+            f"({k['kept_s'] / 60:.0f} min) that repeat with the sidereal day as multipath"
+            for k in self.meta.get("sidereal_kept", [])
+        ]
         for h in self.held_out:
             lines.append(
                 f"  held out {h['station']} {h['day']}: windows covered "
@@ -247,6 +252,7 @@ def run_campaign(
     cache_dir: str | os.PathLike[str] | None = None,
     options: dict[str, dict[str, Any]] | None = None,
     progress: Callable[[int, int], None] | None = None,
+    sidereal_keep: bool = True,
 ) -> CampaignResult:
     """Fit every station-day on Dask, judge it, pool each station's bounded days, test held out.
 
@@ -269,6 +275,11 @@ def run_campaign(
         verdicts the same ``verdict`` options.
     progress : callable, optional
         ``progress(done, total)`` after each computed station-day.
+    sidereal_keep : bool, default True
+        Fit again, keeping them as multipath, the days whose spans screened
+        as ionosphere repeat one sidereal day later on a neighbouring day
+        (:mod:`psdbound.campaign.sidereal`; ``campaign.json``
+        ``sidereal_kept``).
 
     Returns
     -------
@@ -281,32 +292,37 @@ def run_campaign(
         anything is computed).
     """
     from psdbound.campaign.pool import pool_stations
-    from psdbound.campaign.sidereal import sidereal_repeats
     from psdbound.compute import run_tasks
     from psdbound.version import __version__
 
     cfg = _day_options(options)
     plan = plan_campaign(obs, nav, system=cfg.inputs.system)
     items = [_item(sd, options or {}) for sd in plan]
-    run = run_tasks(
-        station_day_task,
-        items,
-        workers=workers,
-        scheduler=scheduler,
-        cache=_cache(cache_dir),
-        progress=progress,
-    )
+
+    def fit_days(todo: list[dict[str, Any]]) -> Any:
+        return run_tasks(
+            station_day_task,
+            todo,
+            workers=workers,
+            scheduler=scheduler,
+            cache=_cache(cache_dir),
+            progress=progress,
+        )
+
+    run = fit_days(items)
     results = list(run.results)
+    first = [r.get("document") for r in results]
+    repeats = sidereal_repeats(items, first)
+    kept, n_again = _keep_repeating_spans(items, results, fit_days) if sidereal_keep else ([], 0)
     stations, pooled = pool_stations(results, bound_options=cfg.bound, verdict_options=cfg.verdict)
     days = [
         _public(r, it, any(r is p for p in pooled)) for r, it in zip(results, items, strict=True)
     ]
-    documents = [r.get("document") for r in results]
     return CampaignResult(
         days=days,
         stations=stations,
         held_out=held_out(pooled, options=cfg.bound),
-        n_computed=run.n_computed,
+        n_computed=run.n_computed + n_again,
         n_cached=run.n_cached,
         meta={
             "files": [
@@ -314,10 +330,51 @@ def run_campaign(
             ],
             "options": options or {},
             "psdbound": __version__,
-            "sidereal_repeat": sidereal_repeats(days, documents),
+            "sidereal_repeat": repeats,
+            "sidereal_kept": kept,
         },
-        documents=documents,
+        documents=[r.get("document") for r in results],
     )
+
+
+def _keep_repeating_spans(
+    items: list[dict[str, Any]], results: list[dict[str, Any]], fit_days: Callable[..., Any]
+) -> tuple[list[dict[str, Any]], int]:
+    """Fit again the days whose ionosphere spans repeat with the sidereal day, keeping them.
+
+    The spans that repeat on a neighbouring day one sidereal day later
+    (:func:`~psdbound.campaign.sidereal.repeating_spans`) are passed as the
+    screening's ``keep_spans``; ``items`` and ``results`` are updated in
+    place. Returns one entry per day fitted again (station, day, spans kept
+    and their time, s) and the number of days computed (not from the cache).
+    """
+    from psdbound.campaign.sidereal import repeating_spans
+
+    keep = repeating_spans(items, [r.get("document") for r in results])
+    if not keep:
+        return [], 0
+    again = {i: _with_keep_spans(items[i], spans) for i, spans in keep.items()}
+    run = fit_days(list(again.values()))
+    out = []
+    for (i, item), result in zip(again.items(), run.results, strict=True):
+        items[i], results[i] = item, result
+        spans = keep[i]
+        out.append(
+            {
+                "station": item["station"],
+                "day": item["day"],
+                "n_spans": len(spans),
+                "kept_s": float(sum(b - a for _, a, b in spans)),
+            }
+        )
+    return out, run.n_computed
+
+
+def _with_keep_spans(item: dict[str, Any], spans: list[tuple[str, float, float]]) -> dict:
+    """Return a station-day item whose screening keeps ``spans`` as multipath."""
+    options = {k: dict(v) for k, v in item["options"].items()}
+    options.setdefault("screening", {})["keep_spans"] = [list(s) for s in spans]
+    return {**item, "options": options}
 
 
 def _item(sd: StationDay, options: dict[str, dict[str, Any]]) -> dict[str, Any]:

@@ -16,7 +16,9 @@ sidereal day (``repeated_s``), and what two independent sets with the same
 amounts would share on average (``expected_s``: each satellite's flagged
 time on the later day times the fraction of the earlier day's time it was
 flagged, widened by the tolerance). ``ratio = repeated_s / expected_s`` far
-above 1 with ``repeated_s`` of tens of minutes is the warning sign.
+above 1 with ``repeated_s`` of tens of minutes is the warning sign; a
+campaign then fits both days again with those spans kept as multipath
+(:func:`repeating_spans`, :attr:`psdbound.screening.ScreeningOptions.keep_spans`).
 
 Caveats: the block length (300 s) is longer than the difference between the
 sidereal and the solar day (236 s), so an ionospheric effect that recurs at
@@ -33,7 +35,7 @@ from typing import Any
 
 from psdbound.constants import SIDEREAL_DAY_S
 
-__all__ = ["DEFAULT_TOLERANCE_S", "repeat_warnings", "sidereal_repeats"]
+__all__ = ["DEFAULT_TOLERANCE_S", "repeat_warnings", "repeating_spans", "sidereal_repeats"]
 
 #: Shift allowed between a span and its repeat, s: one screening block.
 DEFAULT_TOLERANCE_S = 300.0
@@ -155,3 +157,57 @@ def repeat_warnings(
         for r in repeats
         if r["ratio"] >= min_ratio and r["repeated_s"] >= min_repeated_s
     ]
+
+
+def _repeating(spans: Spans, others: Spans, shift_s: float, tolerance_s: float) -> list:
+    """Return the spans of ``spans`` that meet ``others`` shifted by ``shift_s`` (sat, a, b)."""
+    out = []
+    for sat, v in spans.items():
+        moved = [(a + shift_s - tolerance_s, b + shift_s + tolerance_s) for a, b in others[sat]]
+        out += [(sat, a, b) for a, b in v if _overlap([(a, b)], moved) > 0]
+    return out
+
+
+def repeating_spans(
+    days: list[dict[str, Any]],
+    documents: list[dict[str, Any] | None],
+    *,
+    tolerance_s: float = DEFAULT_TOLERANCE_S,
+    min_ratio: float = 3.0,
+    min_repeated_s: float = 600.0,
+) -> dict[int, list[tuple[str, float, float]]]:
+    """Return, per day (its index), the ionosphere spans that repeat on a neighbouring day.
+
+    Only day pairs whose repeat is a warning (:func:`repeat_warnings`:
+    ``min_ratio`` times the chance overlap and ``min_repeated_s``) count;
+    both days of such a pair get their spans that meet the other day's,
+    shifted by one sidereal day forwards or backwards. A campaign fits those
+    days again with the spans kept as multipath
+    (:attr:`psdbound.screening.ScreeningOptions.keep_spans`).
+
+    Parameters
+    ----------
+    days, documents : list
+        As :func:`sidereal_repeats`.
+    tolerance_s, min_ratio, min_repeated_s : float
+        As :func:`sidereal_repeats` and :func:`repeat_warnings`.
+
+    Returns
+    -------
+    dict of int to list of (str, float, float)
+        ``{day index: [(satellite, start_gps_s, stop_gps_s), ...]}``.
+    """
+    flagged = {
+        (r["station"], r["days"][1])
+        for r in sidereal_repeats(days, documents, tolerance_s=tolerance_s)
+        if r["ratio"] >= min_ratio and r["repeated_s"] >= min_repeated_s
+    }
+    index = {(d["station"], d["day"]): i for i, d in enumerate(days)}
+    out: dict[int, list[tuple[str, float, float]]] = defaultdict(list)
+    for station, late in sorted(flagged):
+        early = str(dt.date.fromisoformat(late) - dt.timedelta(days=1))
+        i, j = index[(station, early)], index[(station, late)]
+        s1, s2 = _ionosphere_spans(documents[i]), _ionosphere_spans(documents[j])
+        out[j] += _repeating(s2, s1, SIDEREAL_DAY_S, tolerance_s)
+        out[i] += _repeating(s1, s2, -SIDEREAL_DAY_S, tolerance_s)
+    return {k: sorted(set(v)) for k, v in out.items() if v}

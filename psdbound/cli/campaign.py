@@ -80,6 +80,12 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument("--cache-dir", help="task cache folder (default: the psdbound cache)")
     p.add_argument("--no-pdf", action="store_true", help="skip campaign.pdf")
+    p.add_argument(
+        "--no-sidereal-keep",
+        action="store_true",
+        help="do not fit again, keeping them as multipath, the days whose spans screened as "
+        "ionosphere repeat one sidereal day later on a neighbouring day (default: fit again)",
+    )
     add_day_options(p)
     p.set_defaults(func=run)
 
@@ -156,6 +162,7 @@ def run(args: argparse.Namespace) -> int:
         cache_dir=args.cache_dir,
         options=options,
         progress=counter("station-days computed"),
+        sidereal_keep=not args.no_sidereal_keep,
     )
     files = write_campaign(res, args.out, pdf=not args.no_pdf)
     print(res.summary())

@@ -7,13 +7,41 @@ loading the screening's statistics (scipy).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
-from psdbound.common.options import Boolean, Number, OptionError, check_fields, option
+from psdbound.common.options import (
+    Boolean,
+    Number,
+    OptionError,
+    Spec,
+    Text,
+    Tuple,
+    check_fields,
+    option,
+)
 
 __all__ = ["FALSE_ALARM", "ScreeningOptions"]
 
 #: Default false-alarm probability per 5-min block.
 FALSE_ALARM = 1e-3
+
+
+class _Span(Spec):
+    """A satellite's time span ``[sat, start_gps_s, stop_gps_s]``, GPS seconds."""
+
+    def describe(self) -> str:
+        """Describe what is allowed."""
+        return "a span [satellite, start, stop] in GPS seconds, start < stop"
+
+    def check(self, value: Any) -> Any:
+        """Check and normalise ``value``."""
+        if not isinstance(value, list | tuple) or len(value) != 3:
+            raise ValueError("")
+        sat = Text(what="a satellite id").check(value[0])
+        a, b = (Number(lo=0.0, hi=1e11).check(v) for v in value[1:])
+        if not a < b:
+            raise ValueError("start must be before stop")
+        return (sat, float(a), float(b))
 
 
 @dataclass(frozen=True)
@@ -48,6 +76,12 @@ class ScreeningOptions:
     three_frequency : bool, default True
         Where the series has a third carrier, apply the three-frequency test
         (:mod:`psdbound.screening.threefreq`; with the multipath null only).
+    keep_spans : tuple of (str, float, float), default ()
+        Spans ``(satellite, start_gps_s, stop_gps_s)`` known to hold
+        multipath: blocks the ionosphere tests flag there are kept (counted
+        in the notes). A campaign fills it with the spans that repeat one
+        sidereal day later (:mod:`psdbound.campaign.sidereal`); the physical
+        limit still applies.
 
     Raises
     ------
@@ -70,6 +104,9 @@ class ScreeningOptions:
     multipath_null: bool = option(True, Boolean())
     false_alarm: float = option(FALSE_ALARM, Number(lo=0.0, hi=0.5, lo_open=True))
     three_frequency: bool = option(True, Boolean())
+    keep_spans: tuple[tuple[str, float, float], ...] = option(
+        (), Tuple(_Span(), max_len=100000, what="a list of spans [satellite, start, stop]")
+    )
 
     def __post_init__(self) -> None:
         check_fields(self)

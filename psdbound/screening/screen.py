@@ -342,6 +342,24 @@ def _arc_flags(
     return thr, flagged, persist, tf.decide(flagged, bk["named"])
 
 
+def _keep_known_multipath(
+    iono: NDArray[np.bool_],
+    sats: str,
+    start: NDArray[np.float64],
+    stop: NDArray[np.float64],
+    ctx: dict[str, Any],
+) -> NDArray[np.bool_]:
+    """Unflag the blocks inside spans known to hold multipath (``keep_spans``); count them."""
+    spans = [(a, b) for sat, a, b in ctx["opt"].keep_spans if sat == sats]
+    if not spans or not iono.any():
+        return iono
+    known = np.zeros(iono.size, bool)
+    for a, b in spans:
+        known |= (start < b) & (stop > a)
+    ctx["kept_known"] += int((iono & known).sum())
+    return iono & ~known
+
+
 def _screen_arc(
     series: MultipathSeries,
     lo: int,
@@ -364,6 +382,7 @@ def _screen_arc(
             arc[key] = getattr(series, key)[lo:hi]
     start, stop = bk["start"], bk["stop"]
     thr, flagged, persist, iono = _arc_flags(bk, coherent, ctx)
+    iono = _keep_known_multipath(iono, sats, start, stop, ctx)
     opt = ctx["opt"]
     implaus = (bk["vmax"] > ctx["limit"]) if opt.plausibility else np.zeros(start.size, bool)
     keep = np.ones(t.size, bool)
@@ -494,6 +513,7 @@ def screen_series(
         "guard_s": guard_s,
         "dt": series.interval_s,
         "min_length_s": min_length_s,
+        "kept_known": 0,
     }
     coherent = _coherent(blocks, opt, null, share)
     arcs = [
@@ -508,6 +528,11 @@ def screen_series(
     notes = _notes(m_per_tecu, null, rnull, tf)
     if tf is not None and three_freq is not None:
         notes += (_three_frequency_note(three_freq),)
+    if ctx["kept_known"]:
+        notes += (
+            f"{ctx['kept_known']} block(s) flagged as ionosphere kept as multipath: they lie "
+            "in spans known to repeat one sidereal day later (screening.options.keep_spans)",
+        )
     return Screening(
         out,
         tuple(e for a in arcs for e in a["excluded"]),

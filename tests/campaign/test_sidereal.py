@@ -76,3 +76,33 @@ def test_only_consecutive_days_with_documents_are_paired():
     assert sidereal_repeats(_days(3), docs) == []
     quiet = [_doc(T0, {"G05": [(0.0, 600.0)]}), _doc(T0 + DAY, {})]
     assert sidereal_repeats(_days(2), quiet) == []  # nothing flagged on the later day
+
+
+def test_repeating_spans_of_both_days_are_returned_for_a_warned_pair():
+    from psdbound.campaign.sidereal import repeating_spans
+
+    shift = SIDEREAL_DAY_S - DAY
+    spans = {"G05": [(3600.0, 5400.0)], "G12": [(40000.0, 41200.0)]}
+    later = {s: [(a + shift, b + shift) for a, b in v] for s, v in spans.items()}
+    later["G20"] = [(70000.0, 70600.0)]  # not on the day before: stays ionosphere
+    docs = [_doc(T0, spans), _doc(T0 + DAY, later)]
+    keep = repeating_spans(_days(2), docs)
+    assert sorted(keep) == [0, 1]
+    assert [s[0] for s in keep[0]] == ["G05", "G12"]
+    assert [s[0] for s in keep[1]] == ["G05", "G12"]
+    assert keep[1][0][1] == pytest.approx(T0 + DAY + 3600.0 + shift)
+    # below the warning's amounts (a single 5-minute repeat): nothing is kept
+    small = {"G05": [(3600.0, 3900.0)]}
+    small_later = {"G05": [(3600.0 + shift, 3900.0 + shift)]}
+    assert repeating_spans(_days(2), [_doc(T0, small), _doc(T0 + DAY, small_later)]) == {}
+
+
+def test_keep_spans_reach_the_day_s_screening_options():
+    from psdbound.campaign.run import _with_keep_spans
+    from psdbound.pipeline.config import FitConfig
+
+    item = {"station": "S", "day": "2021-01-02", "options": {"bound": {"coverage": 0.99}}}
+    again = _with_keep_spans(item, [("G05", 1.0, 2.0)])
+    assert item["options"] == {"bound": {"coverage": 0.99}}  # the first pass's item unchanged
+    cfg = FitConfig.from_dict(again["options"])
+    assert cfg.screening.keep_spans == (("G05", 1.0, 2.0),) and cfg.bound.coverage == 0.99

@@ -144,3 +144,17 @@ def test_default_guard_is_half_a_cutoff_period():
     span0 = [e for e in no_guard.excluded if e.kind == "ionosphere"][0]
     assert span.start_gps_s == pytest.approx(span0.start_gps_s - 540.0, abs=30.0)
     assert span.stop_gps_s == pytest.approx(span0.stop_gps_s + 540.0, abs=30.0)
+
+
+def test_spans_known_to_hold_multipath_are_kept():
+    # a campaign passes the spans that repeat one sidereal day later: flagged there, kept
+    s = _series(disturb=[(1, 3600.0, 5400.0), (2, 3600.0, 5400.0)])
+    t1 = s.t_gps_s[s.arc_id == 1][0]
+    keep = (("G02", t1 + 3000.0, t1 + 6000.0),)
+    sc = screen_series(s, ScreeningOptions(guard_s=0.0, keep_spans=keep))
+    iono = [e for e in sc.excluded if e.kind == "ionosphere"]
+    assert [e.sat for e in iono] == ["G03"]  # G02's span kept, G03's still excluded
+    assert any("kept as multipath" in n and "sidereal" in n for n in sc.notes)
+    plain = screen_series(s, ScreeningOptions(guard_s=0.0))
+    assert sorted(e.sat for e in plain.excluded if e.kind == "ionosphere") == ["G02", "G03"]
+    assert sc.excluded_s < plain.excluded_s
