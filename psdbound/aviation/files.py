@@ -97,9 +97,11 @@ def _qq_png(result: OverboundResult) -> bytes:
 def write_overbound(
     result: OverboundResult, out: str | Path, *, extra: dict[str, Any] | None = None
 ) -> list[Path]:
-    """Write ``overbound.json`` and ``overbound_qq.png`` into ``out`` (atomically).
+    """Write ``overbound.json``, ``overbound_qq.png`` and ``overbound.html`` into ``out``.
 
-    ``overbound.json`` follows ``psdbound/results/overbound.schema.json``.
+    Each file is written atomically; ``overbound.json`` follows
+    ``psdbound/results/overbound.schema.json``, ``overbound.html`` shows the
+    table and the figure (:func:`psdbound.reports.page.write_page`).
 
     Parameters
     ----------
@@ -115,8 +117,44 @@ def write_overbound(
     list of Path
         The files written.
     """
+    from psdbound.reports.page import write_page
+
     folder = Path(out)
     doc = {**(extra or {}), "overbound": result.to_dict()}
     j = write_json(folder / "overbound.json", doc)
-    png = atomic_write_bytes(folder / "overbound_qq.png", _qq_png(result))
-    return [Path(j), Path(png)]
+    qq = _qq_png(result)
+    png = atomic_write_bytes(folder / "overbound_qq.png", qq)
+    u = result.unit
+    rows = [
+        [
+            b.label,
+            str(b.n),
+            f"{b.n_eff:.0f}",
+            f"{b.bias:.4g}",
+            f"{b.sigma:.4g}",
+            f"{b.inflation:.2f}",
+            f"{b.sigma_upper:.4g}",
+            f"{b.inflation_upper:.2f}",
+        ]
+        for b in result.bins
+    ]
+    head = [
+        "elevation bin",
+        "n",
+        "n_eff",
+        f"bias [{u}]",
+        f"sigma [{u}]",
+        "inflation",
+        f"sigma at {100 * result.bins[0].confidence:g} % [{u}]" if result.bins else "sigma",
+        "inflation at confidence",
+    ]
+    html = write_page(
+        folder / "overbound.html",
+        command="overbound",
+        title=f"{result.method} Gaussian overbounds per elevation bin",
+        json_name="overbound.json",
+        lines=[result.summary().splitlines()[0]],
+        table=(head, rows),
+        figures=[("Q-Q plot of each bin with its overbound; sigma and sample std per bin.", qq)],
+    )
+    return [Path(j), Path(png), html]

@@ -329,19 +329,30 @@ def vpl_series(
 def write_vpl_series(
     series: VplSeries, out: str | Path, *, val_m: float | None = None
 ) -> list[Path]:
-    """Write ``vpl.json`` and ``vpl.png`` into the folder ``out`` (created), each atomically.
+    """Write ``vpl.json``, ``vpl.png`` and ``vpl.html`` into the folder ``out``, each atomically.
 
     The figure (:func:`psdbound.reports.figures_aviation.fig_vpl`, the
     report's style): VPL_H0, VPL_eph and VPL (m) against time (h) with
     ``val_m``, an optional vertical alert limit in metres (also adds the
     availability to the JSON), and below it, in a panel of its own, the
-    satellites above the mask (count). Returns the two paths.
+    satellites above the mask (count). Returns the three paths.
     """
     from psdbound.reports.figures_aviation import fig_vpl
     from psdbound.reports.render import rasterize
 
     doc = series.to_dict(val_m=val_m)
     png = rasterize("vertical protection level", fig_vpl(doc)).png
+    from psdbound.reports.page import write_page
+
     folder = Path(out)
     png_path = atomic_write_bytes(folder / "vpl.png", png)
-    return [write_json(folder / "vpl.json", {"vpl": doc}), png_path]
+    json_path = write_json(folder / "vpl.json", {"vpl": doc})
+    html = write_page(
+        folder / "vpl.html",
+        command="budget",
+        title="vertical protection level over time",
+        json_name="vpl.json",
+        lines=series.summary(val_m=val_m).splitlines(),
+        figures=[("VPL_H0, VPL_eph and VPL over time; satellites above the mask.", png)],
+    )
+    return [json_path, png_path, html]

@@ -264,7 +264,40 @@ def run(args: argparse.Namespace) -> int:
         doc = budget_document(az, el, **kopts, **_budget_options(args))
         path = write_json(Path(args.out) / "budget.json", {"budget": doc})
         print(f"wrote {path}")
+        print(f"wrote {_budget_page(Path(args.out) / 'budget.html', doc)}")
     return 0
+
+
+def _budget_page(path: Any, doc: dict[str, Any]) -> Any:
+    """Write budget.html: the protection levels, the multipliers and each satellite's budget."""
+    from psdbound.reports.page import write_page
+
+    m = doc["multipliers"]
+    lines = [
+        f"VPL_H0 {doc['vpl_h0_m']:.3f} m, VPL_eph {doc['vpl_eph_m']:.3f} m, "
+        f"VPL {doc['vpl_m']:.3f} m",
+        f"K_ffmd = {m['k_ffmd']['value']:g} ({m['k_ffmd']['source']})",
+        f"K_md_e = {m['k_md_e']['value']:g} ({m['k_md_e']['source']})",
+    ]
+    keys = ("azimuth_deg", "elevation_deg", "ground_m", "air_m", "iono_m", "trop_m", "total_m")
+    head = [
+        "azimuth [deg]",
+        "elevation [deg]",
+        "ground [m]",
+        "air [m]",
+        "iono [m]",
+        "trop [m]",
+        "total [m]",
+    ]
+    rows = [[f"{s[k]:.4g}" for k in keys] for s in doc["satellites"]]
+    return write_page(
+        path,
+        command="budget",
+        title="error budget and vertical protection level",
+        json_name="budget.json",
+        lines=lines,
+        table=(head, rows),
+    )
 
 
 def _position(text: str | None) -> tuple[float, float, float]:

@@ -45,7 +45,6 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import jinja2
 import matplotlib
 
 matplotlib.use("Agg")
@@ -56,6 +55,7 @@ from PIL import Image  # noqa: E402
 
 from psdbound.common.outputs import output_folder  # noqa: E402
 from psdbound.reports.figures import FIGURES  # noqa: E402
+from psdbound.reports.templating import template  # noqa: E402
 from psdbound.results import write_document  # noqa: E402
 from psdbound.results.headline import DO_NOT_USE, headline  # noqa: E402
 
@@ -207,13 +207,8 @@ def render_html(
         {"caption": x.caption, "png": base64.b64encode(x.png).decode()}
         for x in _as_rendered(r, figures, rendered)
     ]
-    env = jinja2.Environment(
-        loader=jinja2.PackageLoader("psdbound.reports", "templates"),
-        autoescape=jinja2.select_autoescape(["html", "j2"]),
-        undefined=jinja2.StrictUndefined,
-    )
     span_h = (r["data_span"]["stop_gps_s"] - r["data_span"]["start_gps_s"]) / 3600.0
-    return env.get_template("report.html.j2").render(
+    return template("report.html.j2").render(
         r=r,
         title=_title(r),
         method_long=_METHOD.get(r["method"], r["method"]),

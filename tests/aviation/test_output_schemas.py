@@ -44,6 +44,8 @@ def test_overbound_json_is_valid(tmp_path, capsys):
     assert main(["overbound", str(csv), "--out", str(out)]) == 0
     doc = json.loads((out / "overbound.json").read_text())
     assert schema_errors(doc, schema="overbound") == []
+    html = (out / "overbound.html").read_text()
+    assert "<table>" in html and "data:image/png;base64," in html and "overbound.json" in html
     doc["overbound"]["bins"][0]["sigma"] = "wide"
     assert any("sigma" in e for e in schema_errors(doc, schema="overbound"))
 
@@ -53,9 +55,12 @@ def test_budget_and_vpl_json_are_valid(tmp_path, capsys):
     assert main(["budget", "--k-md-e", "5", *SATS, "--out", str(out)]) == 0
     doc = json.loads((out / "budget.json").read_text())
     assert schema_errors(doc, schema="budget") == []
+    page = (out / "budget.html").read_text()
+    assert "K_md_e = 5" in page and page.count("<tr>") == 1 + len(SATS) // 2
     out2 = tmp_path / "v"
     args = ["budget", "--k-md-e", "5", "--nominal", "GE", "--position", "55.49,8.46,59"]
     assert main([*args, "--hours", "2", "--val-m", "10", "--out", str(out2)]) == 0
     vpl = json.loads((out2 / "vpl.json").read_text())
     assert schema_errors(vpl, schema="vpl") == []
     assert 0.0 <= vpl["vpl"]["availability"] <= 1.0
+    assert "data:image/png;base64," in (out2 / "vpl.html").read_text()

@@ -240,7 +240,7 @@ def test_unavailable_epochs_are_nan_and_counted():
 def test_write_vpl_series(tmp_path, nominal_ge):
     s = vpl_series(sky_over(nominal_ge, ESBC_XYZ_M, DAY[:12]))
     files = write_vpl_series(s, tmp_path / "new", val_m=12.0)
-    assert [f.name for f in files] == ["vpl.json", "vpl.png"]
+    assert [f.name for f in files] == ["vpl.json", "vpl.png", "vpl.html"]
     d = json.loads(files[0].read_text())["vpl"]
     assert d["n_epochs"] == 12 and d["val_m"] == 12.0 and d["availability"] == 1.0
     assert files[1].read_bytes()[:4] == b"\x89PNG"
