@@ -2,8 +2,9 @@
 
 ``result.schema.json`` beside this module documents every field of a result
 document (type, unit, meaning) and is what the documentation's result.json
-reference is generated from; ``overbound.schema.json``, ``budget.schema.json``
-and ``vpl.schema.json`` document the outputs of ``overbound`` and ``budget``
+reference is generated from; ``overbound.schema.json``, ``budget.schema.json``,
+``vpl.schema.json`` and ``campaign.schema.json`` document the outputs of
+``overbound``, ``budget`` and ``campaign``
 (:data:`SCHEMAS`). :func:`validate` checks a document against it
 with the `jsonschema <https://python-jsonschema.readthedocs.io>`_ library,
 which is an optional dependency (the ``test`` and ``docs`` extras): reading
@@ -29,6 +30,7 @@ SCHEMAS = {
     "overbound": "overbound.schema.json",
     "budget": "budget.schema.json",
     "vpl": "vpl.schema.json",
+    "campaign": "campaign.schema.json",
 }
 
 

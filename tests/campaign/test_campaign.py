@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import importlib.util
 import json
 import shutil
 
@@ -181,6 +182,10 @@ def test_cli_campaign_system_and_bad_output_folder(two_days, tmp_path, capsys):
     text = capsys.readouterr().out
     assert "campaign verdict: BOUNDED" in text and "held out" in text
     doc = json.loads((out / "campaign.json").read_text())
+    if importlib.util.find_spec("jsonschema"):
+        from psdbound.results import schema_errors
+
+        assert schema_errors(doc, schema="campaign") == []
     assert doc["options"] == {"arcs": {"elevation_mask_deg": 12.0}}
     other = tmp_path / "other"
     other.mkdir()

@@ -106,3 +106,33 @@ def test_keep_spans_reach_the_day_s_screening_options():
     assert item["options"] == {"bound": {"coverage": 0.99}}  # the first pass's item unchanged
     cfg = FitConfig.from_dict(again["options"])
     assert cfg.screening.keep_spans == (("G05", 1.0, 2.0),) and cfg.bound.coverage == 0.99
+
+
+def test_campaign_json_schema_describes_the_sidereal_sections():
+    pytest.importorskip("jsonschema")
+    from psdbound.results import load_schema, schema_errors
+
+    schema = load_schema("campaign")
+    props = schema["properties"]
+    assert {"sidereal_repeat", "sidereal_kept"} <= set(props)
+    doc = {
+        "schema": "psdbound-campaign/2",
+        "verdict": "bounded",
+        "stations": [],
+        "days": [],
+        "held_out": [],
+        "sidereal_repeat": [
+            {
+                "station": "S",
+                "days": ["a", "b"],
+                "flagged_s": 1.0,
+                "repeated_s": 1.0,
+                "expected_s": 0.1,
+                "ratio": 10.0,
+            }
+        ],
+        "sidereal_kept": [{"station": "S", "day": "b", "n_spans": 1, "kept_s": 600.0}],
+    }
+    assert schema_errors(doc, schema="campaign") == []
+    doc["sidereal_kept"][0]["n_spans"] = "one"
+    assert schema_errors(doc, schema="campaign")
