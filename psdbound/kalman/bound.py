@@ -338,8 +338,8 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
             warnings.warn(
                 f"{p}: the fit's error model also has a slow component the bound does not "
                 f"carry (multipath the high-pass removed: {1000 * slow[0]['sigma_m']:.2f} mm, "
-                f"tau {slow[0]['tau_s']:.4g} s); psdbound.load(path).error_model exports every "
-                f"component",
+                f"tau {slow[0]['tau_s']:.4g} s); the error model exports every component "
+                "(FitResults.error_model, or psdbound.load(path).error_model for a file)",
                 stacklevel=stacklevel,
             )
         mapping = _read_mapping(doc, p)
