@@ -52,6 +52,13 @@ def _ionosphere_spans(document: dict[str, Any]) -> Spans:
     return out
 
 
+def _shifted(
+    spans: list[tuple[float, float]], shift_s: float, tolerance_s: float
+) -> list[tuple[float, float]]:
+    """Return spans moved by ``shift_s`` and widened by ``tolerance_s`` on each side, s."""
+    return [(a + shift_s - tolerance_s, b + shift_s + tolerance_s) for a, b in spans]
+
+
 def _length(spans: list[tuple[float, float]]) -> float:
     """Total length of possibly overlapping spans, s."""
     total, end = 0.0, -float("inf")
@@ -73,10 +80,7 @@ def _pair(early: dict[str, Any], late: dict[str, Any], tolerance_s: float) -> di
     s1, s2 = _ionosphere_spans(early), _ionosphere_spans(late)
     span = early["data_span"]
     duration = max(float(span["stop_gps_s"]) - float(span["start_gps_s"]), 1.0)
-    shifted = {
-        sat: [(a + SIDEREAL_DAY_S - tolerance_s, b + SIDEREAL_DAY_S + tolerance_s) for a, b in v]
-        for sat, v in s1.items()
-    }
+    shifted = {sat: _shifted(v, SIDEREAL_DAY_S, tolerance_s) for sat, v in s1.items()}
     flagged = sum(_length(v) for v in s2.values())
     repeated = sum(_overlap(v, shifted.get(sat, [])) for sat, v in s2.items())
     expected = sum(
@@ -163,7 +167,7 @@ def _repeating(spans: Spans, others: Spans, shift_s: float, tolerance_s: float) 
     """Return the spans of ``spans`` that meet ``others`` shifted by ``shift_s`` (sat, a, b)."""
     out = []
     for sat, v in spans.items():
-        moved = [(a + shift_s - tolerance_s, b + shift_s + tolerance_s) for a, b in others[sat]]
+        moved = _shifted(others[sat], shift_s, tolerance_s)
         out += [(sat, a, b) for a, b in v if _overlap([(a, b)], moved) > 0]
     return out
 

@@ -503,11 +503,7 @@ def _updated(
             raise
         flag = f"--mapping {exc.name}" if opt.convert is _mapping else opt.flag
         raw = getattr(args, opt.dest)
-        return _raise(exc.relabel(flag, value=exc.value if opt.convert is _mapping else raw))
-
-
-def _raise(exc: Exception) -> Any:
-    raise exc from None
+        raise exc.relabel(flag, value=exc.value if opt.convert is _mapping else raw) from None
 
 
 def build_config(args: argparse.Namespace):

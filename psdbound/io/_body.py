@@ -36,18 +36,9 @@ from psdbound.io._body_fast import Scan, scan_v3
 from psdbound.io._epochs import YEAR_RANGE, check_dates, date_labels, fmt_date
 from psdbound.io._fields import FIELD_WIDTH, FieldError, pad_lines, parse_fields
 from psdbound.io._header import ObsHeader, missing_systems
+from psdbound.io.kepler import PRN_RANGE
 from psdbound.io.timescales import utc_to_gps_s
 
-#: Largest satellite number per system letter (RINEX 3.05 ids; SBAS ids are PRN - 100).
-PRN_RANGE = {
-    "G": (1, 63),
-    "R": (1, 36),
-    "E": (1, 50),
-    "C": (1, 63),
-    "J": (1, 10),
-    "S": (20, 59),
-    "I": (1, 14),
-}
 #: Plausible values per observation type (first letter), in RINEX units; outside them a
 #: column is not what the header says it is.
 VALUE_LIMITS = {

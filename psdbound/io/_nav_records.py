@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from psdbound.errors import InputError
-from psdbound.io.kepler import KeplerEphemerides
+from psdbound.io.kepler import PRN_RANGE, KeplerEphemerides
 from psdbound.io.timescales import SECONDS_PER_WEEK, calendar_to_gps_s
 
 __all__ = [
@@ -29,7 +29,6 @@ __all__ = [
     "FIELD_WIDTH",
     "KEPLER_LINES",
     "OPTIONAL",
-    "PRN_RANGE",
     "REQUIRED",
     "Epoch",
     "RecordParser",
@@ -104,16 +103,6 @@ KEPLER_LINES = 8
 #: Calendar fields of a time of clock: year, month, day, hour, minute, second.
 Epoch = tuple[int, int, int, int, int, float]
 
-#: Satellite numbers per system letter in navigation files (RINEX 3 ids).
-PRN_RANGE = {
-    "G": (1, 63),
-    "R": (1, 36),
-    "E": (1, 50),
-    "C": (1, 63),
-    "J": (1, 10),
-    "S": (20, 59),
-    "I": (1, 14),
-}
 #: Plausible Keplerian elements; a record outside them cannot be a GNSS orbit.
 _PLAUSIBLE = {
     "sqrt_a": (2000.0, 10000.0, "sqrt(A) of 2000-10000 m^0.5"),

@@ -31,8 +31,9 @@ from collections import Counter
 from pathlib import Path
 
 from psdbound.io._nav_glonass import GLONASS_LINES
-from psdbound.io._nav_records import KEPLER_LINES, PRN_RANGE
+from psdbound.io._nav_records import KEPLER_LINES
 from psdbound.io._nav_rinex3 import SKIPPED_LINES, Rinex3Parser
+from psdbound.io.kepler import PRN_RANGE
 
 __all__ = ["COUNTED_MESSAGES", "READ_MESSAGES", "RECORD_TYPES", "Rinex4Parser", "unused_note"]
 

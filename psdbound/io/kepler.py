@@ -16,7 +16,19 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["KeplerEphemerides", "RecordTable", "SAT_ID_RE", "check_sat_id"]
+__all__ = ["KeplerEphemerides", "PRN_RANGE", "RecordTable", "SAT_ID_RE", "check_sat_id"]
+
+#: Satellite numbers per system letter (RINEX 3.05 ids; SBAS ids are PRN - 100), in
+#: observation, navigation and SP3 files alike.
+PRN_RANGE = {
+    "G": (1, 63),
+    "R": (1, 36),
+    "E": (1, 50),
+    "C": (1, 63),
+    "J": (1, 10),
+    "S": (20, 59),
+    "I": (1, 14),
+}
 
 #: A satellite id: system letter and two digits (the first may be blank), e.g. ``'G05'``.
 SAT_ID_RE = re.compile(r"^[A-Z][ 0-9]\d$")

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from psdbound.constants import F_L1_HZ, F_L2_HZ, F_L5_HZ, SPEED_OF_LIGHT_M_S  # noqa: F401
+from psdbound.constants import F_L1_HZ, F_L2_HZ, F_L5_HZ, SPEED_OF_LIGHT_M_S
 from psdbound.errors import InputError
 
 __all__ = [

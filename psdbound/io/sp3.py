@@ -24,8 +24,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from psdbound.errors import InputError
-from psdbound.io._nav_records import PRN_RANGE, valid_calendar
+from psdbound.io._nav_records import valid_calendar
 from psdbound.io._source import read_bytes
+from psdbound.io.kepler import PRN_RANGE
 from psdbound.io.timescales import calendar_to_gps_s, utc_to_gps_s
 
 __all__ = ["PreciseOrbit", "read_sp3", "merge_precise", "INTERPOLATION_NODES"]

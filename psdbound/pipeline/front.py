@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import os
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import fields
 from pathlib import Path
 from typing import Any
@@ -27,13 +27,12 @@ from typing import Any
 from psdbound.errors import InputError
 from psdbound.pipeline.config import FitConfig
 from psdbound.pipeline.document import build_document
+from psdbound.pipeline.inputs import Progress
 from psdbound.pipeline.runner import run_stages
 from psdbound.results import read_document, write_document
 from psdbound.results.headline import headline
 
 __all__ = ["FitResults", "fit", "load"]
-
-Progress = Callable[[str], None]
 
 
 class FitResults:

@@ -23,11 +23,10 @@ from psdbound.errors import InputError
 from psdbound.pipeline import stages
 from psdbound.pipeline.code_stage import code_overbound
 from psdbound.pipeline.config import FitConfig
+from psdbound.pipeline.inputs import Progress
 from psdbound.stationarity.options import MappingOptions
 
 __all__ = ["STAGES", "StageProducts", "run_stages"]
-
-Progress = Callable[[str], None]
 
 
 @dataclass(frozen=True)

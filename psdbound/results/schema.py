@@ -17,7 +17,6 @@ __all__ = [
     "NUMBER_FIELDS",
     "REQUIRED_FIELDS",
     "number_problems",
-    "to_jsonable",
     "get_field",
     "write_document",
     "read_document",

@@ -4,12 +4,11 @@ from __future__ import annotations
 
 import json
 import re
-import shutil
-import subprocess
 from html.parser import HTMLParser
 
 import numpy as np
 import pytest
+from browser import chromium, needs_browser, not_blank
 
 from psdbound.campaign import run_campaign, write_campaign
 from psdbound.campaign.network import day_report_name, station_positions
@@ -109,59 +108,13 @@ def test_rewriting_the_campaign_replaces_the_day_reports(network, tmp_path):
     assert len(list((out / "days").iterdir())) == 4 and files["network"].is_file()
 
 
-def _not_blank(png) -> float:
-    import matplotlib.image as mpimg
-
-    img = mpimg.imread(png)
-    return float(np.std(img[..., :3]))
-
-
-@pytest.mark.skipif(
-    shutil.which("chromium") is None or shutil.which("pdftoppm") is None,
-    reason="needs Debian's chromium and poppler-utils (installed by .ci/run)",
-)
+@needs_browser
 def test_network_page_as_a_person_sees_it(network, tmp_path):
     """Render network.html in headless Chromium: a page with the map, table and figure."""
     _, out, _ = network
     shot = tmp_path / "network.png"
-    subprocess.run(
-        [
-            "chromium",
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-quic",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            f"--user-data-dir={tmp_path / 'ud'}",
-            "--window-size=1200,1800",
-            f"--screenshot={shot}",
-            (out / "network.html").as_uri(),
-        ],
-        capture_output=True,
-        timeout=120,
-        check=True,
-    )
-    assert shot.stat().st_size > 20_000 and _not_blank(shot) > 0.05
-    dom = subprocess.run(
-        [
-            "chromium",
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            f"--user-data-dir={tmp_path / 'ud2'}",
-            "--dump-dom",
-            (out / "network.html").as_uri(),
-        ],
-        capture_output=True,
-        timeout=120,
-        check=True,
-        text=True,
-    ).stdout
+    page = out / "network.html"
+    chromium(page, tmp_path / "ud", "--window-size=1200,1800", f"--screenshot={shot}")
+    assert shot.stat().st_size > 20_000 and not_blank(shot) > 0.05
+    dom = chromium(page, tmp_path / "ud2", "--dump-dom")
     assert all(name in dom for name in STATIONS) and "station-map" in dom

@@ -7,10 +7,10 @@ import os
 import shutil
 import subprocess
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
+from browser import chromium, needs_browser, not_blank
 from conftest import UPC1_OBS, UPC2_OBS, UPC_NAV, shared_file
 
 import psdbound
@@ -198,43 +198,16 @@ def test_fit_real_data(tmp_path, case):
     assert (out / "report.pdf").stat().st_size > 50_000
 
 
-def _not_blank(png: Path) -> float:
-    import matplotlib.image as mpimg
-
-    img = mpimg.imread(png)
-    return float(np.std(img[..., :3]))
-
-
-@pytest.mark.skipif(
-    shutil.which("chromium") is None or shutil.which("pdftoppm") is None,
-    reason="needs Debian's chromium and poppler-utils (installed by .ci/run)",
-)
+@needs_browser
 def test_reports_as_a_person_sees_them(demo_run, tmp_path):
     """Render report.html in headless Chromium and the PDF pages with pdftoppm."""
     work, _ = demo_run
     out = work / "reports" / "demo"
     shot = tmp_path / "report.png"
-    subprocess.run(
-        [
-            "chromium",
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-quic",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            f"--user-data-dir={tmp_path / 'ud'}",
-            "--window-size=1100,2400",
-            f"--screenshot={shot}",
-            (out / "report.html").as_uri(),
-        ],
-        capture_output=True,
-        timeout=120,
-        check=True,
+    chromium(
+        out / "report.html", tmp_path / "ud", "--window-size=1100,2400", f"--screenshot={shot}"
     )
-    assert shot.stat().st_size > 20_000 and _not_blank(shot) > 0.05
+    assert shot.stat().st_size > 20_000 and not_blank(shot) > 0.05
     subprocess.run(
         ["pdftoppm", "-r", "40", "-png", str(out / "report.pdf"), str(tmp_path / "page")],
         check=True,
@@ -243,7 +216,7 @@ def test_reports_as_a_person_sees_them(demo_run, tmp_path):
     pages = sorted(tmp_path.glob("page-*.png"))
     assert len(pages) >= 5
     for p in pages:
-        assert _not_blank(p) > 0.02, p.name
+        assert not_blank(p) > 0.02, p.name
 
 
 def test_cutoff_map_lookup_nearest_station():
