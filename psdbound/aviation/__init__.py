@@ -97,7 +97,7 @@ if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
         samples_in_full_bins,
         two_step_overbound,
     )
-    from psdbound.aviation.paired import paired_overbound
+    from psdbound.aviation.paired import paired_bounding_functions, paired_overbound
     from psdbound.aviation.qq import gaussian_overbound_sigma, qq_ratio
     from psdbound.aviation.sample_size import effective_sample_size
     from psdbound.aviation.smoothing import (
@@ -114,6 +114,7 @@ if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
 
 __all__ = [
     "effective_sample_size",
+    "paired_bounding_functions",
     "paired_overbound",
     "iono_free_factor",
     "sigma_air_m",
@@ -178,6 +179,7 @@ __all__ = [
 #: Where each public name lives (imported on first use: importing the package stays cheap).
 _EXPORTS = {
     "effective_sample_size": ("psdbound.aviation.sample_size", "effective_sample_size"),
+    "paired_bounding_functions": ("psdbound.aviation.paired", "paired_bounding_functions"),
     "paired_overbound": ("psdbound.aviation.paired", "paired_overbound"),
     "iono_free_factor": ("psdbound.aviation.airborne", "iono_free_factor"),
     "sigma_air_m": ("psdbound.aviation.airborne", "sigma_air_m"),

@@ -1,20 +1,25 @@
 """Gaussian overbounds of sample error distributions, per elevation bin.
 
 The default is the paired overbound (:mod:`psdbound.aviation.paired`: a bias
-and a sigma, every point constrained, valid through convolution for any
-independent errors). Two further constructions, both computed from the empirical CDF ``F_n`` of the
-samples of one bin (``n`` samples, sorted ``x_(1) <= ... <= x_(n)``):
+and a sigma whose left and right bounding functions cover the sample on the
+whole line, every point constrained, so that the bound carries through
+convolution for independent errors). Two further constructions, both
+computed from the empirical CDF ``F_n`` of the samples of one bin (``n``
+samples, sorted ``x_(1) <= ... <= x_(n)``):
 
-CDF overbound (DeCleene 2000, [DeCleene2000]_), optionally paired with a bias
-    The Gaussian ``G`` of mean 0 (or the pair ``N(-b, s)``, ``N(+b, s)``,
-    [Rife2006]_) must put at least as much probability in each tail as the
-    samples: ``G(x) >= F_n(x)`` on the left, ``G(x) <= F_n(x^-)`` on the
-    right. At the sample points that is ``Phi((x_(i) + b) / s) >= i / n``
-    for the left tail and ``Phi((x_(i) - b) / s) <= (i - 1) / n`` for the
-    right tail, which gives a lower limit on ``s`` per point; ``s`` is the
-    largest. The empirical CDF is taken at its least favourable side of each
-    jump, so the bound holds for the step function itself, not only at the
-    plotting positions.
+CDF overbound (DeCleene 2000, [DeCleene2000]_), optionally with a bias
+    The Gaussian ``G`` of mean 0 (or ``N(-b, s)`` on the left tail and
+    ``N(+b, s)`` on the right one) must put at least as much probability in
+    each tail as the samples: ``G(x) >= F_n(x)`` on the left, ``G(x) <=
+    F_n(x^-)`` on the right. At the sample points that is ``Phi((x_(i) + b)
+    / s) >= i / n`` for the left tail and ``Phi((x_(i) - b) / s) <= (i - 1)
+    / n`` for the right tail, which gives a lower limit on ``s`` per point;
+    ``s`` is the largest. The empirical CDF is taken at its least favourable
+    side of each jump, so the bound holds for the step function itself, not
+    only at the plotting positions. Each tail is checked on its own half of
+    the line only: with a bias this is not the paired overbound of
+    [Rife2006]_ (:mod:`psdbound.aviation.paired`), and carrying it through a
+    convolution needs DeCleene's symmetric-unimodal condition.
 
 Two-step overbound (named in seed 000, which cites [BlanchWalterEnge2019]_ for it)
     Step 1 centres the samples on their median ``m`` (the bias of the
@@ -152,14 +157,14 @@ def cdf_overbound_sigma(
     min_samples: int = 2,
     tail_map: TailMap | None = None,
 ) -> float:
-    """Sigma of the smallest CDF (paired, if ``bias > 0``) Gaussian overbound.
+    """Sigma of the smallest CDF Gaussian overbound, zero-mean or with a bias on each tail.
 
     Parameters
     ----------
     samples : array_like
         Errors, any unit (the sigma comes out in the same unit).
     bias : float, default 0
-        Paired-overbound bias ``b >= 0`` (same unit): the left bound is
+        Bias ``b >= 0`` (same unit): the left tail is bounded by
         ``N(-b, s)``, the right ``N(+b, s)``. 0 is DeCleene's zero-mean bound.
     min_abs_z : float, default 0.25
         Only points whose empirical tail has ``Phi^-1(1 - tail) >= min_abs_z``

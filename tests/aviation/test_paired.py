@@ -11,6 +11,7 @@ from psdbound.aviation import (
     effective_sample_size,
     los_from_az_el,
     overbound_by_elevation,
+    paired_bounding_functions,
     paired_overbound,
     projection_matrix,
     vpl,
@@ -70,11 +71,10 @@ CASES = {
 
 
 def _holds(cdf, x, b, s):
-    """Both covering sides of the pair N(-b, s), N(+b, s) against a CDF at the points x."""
+    """Both conditions of the pair ``(b, s)`` against a CDF at the points x (whole line)."""
+    g_left, g_right = paired_bounding_functions(x, b, s)
     f = cdf(x)
-    left = f <= stats.norm.cdf((x + b) / s) + 1e-12
-    right = (1 - f) <= stats.norm.sf((x - b) / s) + 1e-12
-    return left, right
+    return f <= g_left + 1e-12, (1.0 - f) <= g_right + 1e-12
 
 
 @pytest.mark.parametrize("case", sorted(CASES))
@@ -84,14 +84,72 @@ def test_paired_overbound_holds_against_the_true_cdf(case):
     (bin_,) = res.bins
     assert res.method == "paired" and res.min_abs_z == 0.0
     assert bin_.n_eff == pytest.approx(N, rel=0.1)  # independent draws
-    # the bound at 95 % confidence holds wherever the sample had support (tails >= 1/n)
-    grid = np.linspace(-12.0, 12.0, 4001)
+    # the bound at 95 % confidence holds on both sides of the whole line wherever the
+    # sample had support (probabilities >= 1/n on either side)
+    grid = np.linspace(-40.0, 40.0, 8001)
     f = cdf(grid)
     inside = (f >= 1.0 / N) & (f <= 1.0 - 1.0 / N)
     left, right = _holds(cdf, grid, bin_.bias_upper, bin_.sigma_upper)
-    med = grid[np.argmin(np.abs(f - 0.5))]
-    assert left[inside & (grid <= med)].all() and right[inside & (grid >= med)].all()
+    assert left[inside].all() and right[inside].all()
+    # a plain Gaussian pair with the same numbers does not: its CDFs never reach 0 or 1
+    plain_left = f <= stats.norm.cdf((grid + bin_.bias_upper) / bin_.sigma_upper)
+    assert not plain_left[inside].all()
     assert bin_.sigma_upper >= bin_.sigma and bin_.inflation_upper >= bin_.inflation > 1.0
+
+
+def _half_gaussian_atom(rng, n, scale):
+    """Half the probability at 0, half a left half-Gaussian ``-|Z| scale``."""
+    return np.where(rng.random(n) < 0.5, 0.0, -scale * np.abs(rng.normal(size=n)))
+
+
+def _half_gaussian_atom_cdf(x, scale):
+    return np.where(x < 0.0, stats.norm.cdf(x / scale), 1.0)
+
+
+def _mc_exceeds(y, bias, sigma, probs=(1e-2, 1e-3, 1e-4, 1e-5)):
+    """Tail levels at which a Monte Carlo sample ``y`` is significantly beyond the pair.
+
+    At each probability ``p`` (resolved: ``p n >= 10``) the left threshold of
+    ``N(-bias, sigma)`` and the right one of ``N(+bias, sigma)`` are counted; a count
+    above the binomial 1 - 1e-6 quantile means the convolved pair does not bound ``y``.
+    """
+    n = y.size
+    bad = []
+    for p in probs:
+        if p * n < 10:
+            continue
+        limit = stats.binom.ppf(1.0 - 1e-6, n, p)
+        low = np.count_nonzero(y <= -bias + sigma * stats.norm.ppf(p))
+        high = np.count_nonzero(y >= bias + sigma * stats.norm.isf(p))
+        bad += [("left", p)] * int(low > limit) + [("right", p)] * int(high > limit)
+    return bad
+
+
+@pytest.mark.parametrize("sign", [1.0, -1.0])
+def test_half_gaussian_with_point_mass_survives_convolution(sign):
+    # an error with half its probability at 0 and a left half-Gaussian: checked on half the
+    # line, the pair (0, sigma) passes, and the sum of two such errors is not bounded by the
+    # convolved pair; checked on the whole line, the point mass needs a plateau wide enough
+    rng = np.random.default_rng(33)
+    scales = (1.0, 0.3)
+    pairs = [paired_overbound(_half_gaussian_atom(rng, N, s)) for s in scales]
+    for (b, s), scale in zip(pairs, scales, strict=True):
+        assert b >= s / (2.0 * stats.norm.pdf(0.0)) * (1.0 - 1e-9)  # G_L(0) = 1 needs it
+        grid = np.linspace(-6.0 * scale, 1.0, 2001)
+        left, right = _holds(lambda x, sc=scale: _half_gaussian_atom_cdf(x, sc), grid, b, s)
+        f = _half_gaussian_atom_cdf(grid, scale)
+        assert left[f >= 1.0 / N].all() and right.all()
+    m = 1_000_000
+    y = _half_gaussian_atom(rng, m, scales[0]) + sign * _half_gaussian_atom(rng, m, scales[1])
+    bias = pairs[0][0] + pairs[1][0]
+    sigma = float(np.hypot(pairs[0][1], pairs[1][1]))
+    assert _mc_exceeds(y, bias, sigma) == []
+    if sign > 0:
+        # the half-line pair of the exact distribution, (0, scale), fails the same check
+        assert ("left", 1e-2) in _mc_exceeds(y, 0.0, float(np.hypot(*scales)))
+        # and the whole-line conditions reject it: F(0) = 1 but G_L(0) = 1/2
+        left, _ = _holds(lambda x: _half_gaussian_atom_cdf(x, 1.0), np.array([0.0]), 0.0, 1.0)
+        assert not left.all()
 
 
 def test_paired_overbound_survives_convolution_monte_carlo():
@@ -100,19 +158,22 @@ def test_paired_overbound_survives_convolution_monte_carlo():
     up = {}
     for name, draw in (("t", t_draw), ("m", m_draw)):
         (b,) = overbound_by_elevation(draw(rng, N), min_samples=10).bins
-        up[name] = (b.bias_upper, b.sigma_upper)
+        up[name] = (b.bias, b.sigma)
     bias = up["t"][0] + up["m"][0]
     sigma = float(np.hypot(up["t"][1], up["m"][1]))
-    n = 400_000
+    n = 1_000_000
     for sign in (1.0, -1.0):  # a sum and a difference (a negative projection coefficient)
-        y = np.sort(t_draw(rng, n) + sign * m_draw(rng, n))
-        f_emp = np.arange(1, n + 1) / n
-        med = np.median(y)
-        tails = (f_emp >= 1e-3) & (f_emp <= 1 - 1e-3)  # where the Monte Carlo CDF is precise
-        lo = tails & (y <= med)
-        hi = tails & (y >= med)
-        assert (f_emp[lo] <= stats.norm.cdf((y[lo] + bias) / sigma)).all()
-        assert ((1 - f_emp[hi] + 1 / n) <= stats.norm.sf((y[hi] - bias) / sigma)).all()
+        assert _mc_exceeds(t_draw(rng, n) + sign * m_draw(rng, n), bias, sigma) == []
+
+
+@pytest.mark.parametrize("m0", [-0.7, 0.4])
+def test_shifted_sample_bias_grows_by_the_shift(m0):
+    base = 0.5 * np.random.default_rng(4).standard_t(4, N)
+    base -= np.median(base)
+    b0, s0 = paired_overbound(base)
+    b1, s1 = paired_overbound(base + m0)
+    assert b1 == pytest.approx(b0 + abs(m0), abs=1e-9)
+    assert s1 == pytest.approx(s0, rel=1e-9)
 
 
 def test_biased_samples_move_the_vpl_by_sum_abs_s_abs_m():
