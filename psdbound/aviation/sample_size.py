@@ -17,6 +17,17 @@ a join. For an AR(1) series of lag-one correlation ``phi`` the closed form is
 one-sided upper confidence bound (Clopper-Pearson, the beta quantile) with
 ``n_eff`` trials in place of ``n``: the tail probability the overbound must
 cover at that confidence.
+
+Does that hold for correlated samples? Checked by simulation (issue 33):
+stationary Gaussian AR(1) series with ``phi`` = 0.9 and 0.98, ``n`` = 5000
+and 20 000 samples, 1000-4000 series each; the 95 % bound from the count
+above the true ``1e-2`` or ``1e-3`` quantile covered the true tail in 99.9-
+100 % of the series (the bound at the ``k``-th largest sample covered it in
+99.5-100 %). It errs on the safe side: an exceedance of a high threshold is
+less correlated than the series itself, so the count's variance is only
+0.2-0.3 of the binomial variance with ``n_eff`` trials. Counting the ``n``
+samples as independent instead covers in only 42-79 % of the series.
+``tests/aviation/test_paired.py`` keeps this check.
 """
 
 from __future__ import annotations

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from scipy import stats
+from scipy import signal, stats
 
 from psdbound.aviation import (
     bias_bound_response,
@@ -16,6 +16,7 @@ from psdbound.aviation import (
     projection_matrix,
     vpl,
 )
+from psdbound.aviation.sample_size import upper_tail
 from psdbound.errors import InputError
 
 N = 20_000
@@ -48,6 +49,35 @@ def test_effective_sample_size_never_crosses_segments():
     assert n_seg == pytest.approx(20_000 * 0.2 / 1.8, rel=0.15)
     n_one, _ = effective_sample_size(x)  # joined: the offsets look like a long correlation
     assert n_one < 0.2 * n_seg
+
+
+def _ar1_batch(rng, phi, n, m):
+    """``m`` stationary AR(1) series of ``n`` unit-variance Gaussian samples (rows)."""
+    e = rng.normal(size=(m, n))
+    e[:, 0] /= np.sqrt(1.0 - phi**2)
+    return signal.lfilter([1.0], [1.0, -phi], e, axis=1) * np.sqrt(1.0 - phi**2)
+
+
+@pytest.mark.parametrize("phi", [0.9, 0.98])
+def test_upper_tail_with_n_eff_covers_the_true_tail_of_ar1_series(phi):
+    # coverage of the 95 % upper bound of a tail probability t from n correlated samples:
+    # with n_eff it must cover t at least 95 % of the time; counting the n samples as
+    # independent must not (the check can fail)
+    rng = np.random.default_rng(int(1000 * phi))
+    n, draws = 5000, 1000
+    hit = {t: [] for t in (1e-2, 1e-3)}
+    naive = {t: [] for t in hit}
+    for _ in range(draws // 100):
+        for x in _ar1_batch(rng, phi, n, 100):
+            n_eff, _ = effective_sample_size(x)
+            for t in hit:
+                k = np.count_nonzero(x > stats.norm.isf(t)) / n
+                hit[t].append(upper_tail(k, n_eff, 0.95) >= t)
+                naive[t].append(upper_tail(k, n, 0.95) >= t)
+    slack = 3.0 * np.sqrt(0.95 * 0.05 / draws)
+    for t in hit:
+        assert np.mean(hit[t]) >= 0.95 - slack
+        assert np.mean(naive[t]) < 0.9
 
 
 MIXTURE = (0.9, 1.0, 0.1, 3.0)  # weight, sigma of a narrow and a wide zero-mean component
