@@ -77,7 +77,9 @@ K_TABLE_SOURCE = (
     "entered from memory when the budget was written (issue 21); not verified against the "
     "standard: the K_ffmd / K_md table belongs to the protection levels of ICAO Annex 10 "
     "Vol. I App. B sec. 3.6.5.5 (section located, table not seen) and RTCA DO-253; "
-    "seed 004 prints no value. Check it against the edition you certify to, or pass k_ffmd"
+    "seed 004 prints no value, and a search of public copies of Annex 10, DO-245/DO-253 "
+    "extracts and papers for issue 33 found no table to quote. Check it against the "
+    "edition you certify to, or pass k_ffmd"
 )
 K_MD_E_SOURCE = (
     "user-supplied: K_md_e is broadcast by the ground station in the Type 2 message "
