@@ -251,7 +251,6 @@ JSON_ENCODERS = {
     "psdbound.simulate.scenario": "canonical text of a scenario for its digest and CLI echo",
     "psdbound.simulate.simulator": "truth.json beside the simulated files: sorted keys, so "
     "a simulation is byte-identical run to run",
-    "psdbound.ionosphere.outputs": "the shipped cutoff world map (package data, one line)",
     "psdbound.validation.outputs": "a list inside one CSV cell",
 }
 

@@ -155,6 +155,12 @@ def write_overbound(
         json_name="overbound.json",
         lines=[result.summary().splitlines()[0]],
         table=(head, rows),
-        figures=[("Q-Q plot of each bin with its overbound; sigma and sample std per bin.", qq)],
+        figures=[
+            (
+                "Q-Q plot of each bin with its overbound; sigma and sample std per bin.",
+                qq,
+                "overbound_qq.png",
+            )
+        ],
     )
     return [Path(j), Path(png), html]

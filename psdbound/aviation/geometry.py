@@ -353,6 +353,6 @@ def write_vpl_series(
         title="vertical protection level over time",
         json_name="vpl.json",
         lines=series.summary(val_m=val_m).splitlines(),
-        figures=[("VPL_H0, VPL_eph and VPL over time; satellites above the mask.", png)],
+        figures=[("VPL_H0, VPL_eph and VPL over time; satellites above the mask.", png, "vpl.png")],
     )
     return [json_path, png_path, html]

@@ -2,10 +2,10 @@
 
 ``fit``, ``export`` and ``campaign`` read their TOML into
 :class:`psdbound.pipeline.FitConfig` (sections by stage). The other commands
-that take options (``cutoff``, ``validate``, ``overbound``, ``budget``) read
-a TOML file whose keys are their long flags without the dashes
-(``min_samples = 50`` for ``--min-samples 50``), at the top level or in a
-table named after the command (``[overbound]``). Each value goes through
+that take options (``cutoff``, ``validate``, ``overbound``, ``budget``,
+``simulate``) read a TOML file whose keys are their long flags without the
+dashes (``min_samples = 50`` for ``--min-samples 50``), at the top level or
+in a table named after the command (``[overbound]``). Each value goes through
 the same conversion and checks as the flag (its type, its choices, its
 number of values), so a file and a command line cannot mean different
 things; a flag given on the command line wins over the file; an unknown key

@@ -9,12 +9,16 @@ Examples::
     python -m psdbound cutoff --lat 41.84 --lon -87.63 --days 2020-01-06 --almanac a.yuma
 
 A station run calls :func:`psdbound.ionosphere.run_cutoff`, which writes,
-into ``--out``, a CSV table, a JSON file (summary, settings, orbit source,
-per-series rows) and PNG figures, each atomically; then prints the summary.
-``--map`` calls :func:`psdbound.ionosphere.workflow.run_world_map`: the
-world map (20 reference stations and a grid, a solar-minimum and a
+into ``--out``, ``cutoff_<name>.csv`` (one row per series),
+``cutoff_<name>.json`` (summary, settings, orbit source, per-series rows;
+schema ``cutoff.schema.json``), PNG figures and ``cutoff_<name>.html`` (the
+recommended cutoff, tables and figures), each atomically; then prints the
+summary. ``--map`` calls :func:`psdbound.ionosphere.workflow.run_world_map`:
+the world map (20 reference stations and a grid, a solar-minimum and a
 solar-maximum layer) on a local Dask cluster or ``--scheduler``, written to
-``--out`` and, with ``--install``, over the shipped package data. Options
+``--out`` (``cutoff_map.json``, schema ``cutoff_map.schema.json``,
+``cutoff_map.csv``, ``cutoff_map.png``, ``cutoff_map.html``) and, with
+``--install``, over the shipped package data. Options
 named like a :class:`~psdbound.ionosphere.CutoffSettings` field (``dest``)
 are the run's settings (:meth:`~psdbound.ionosphere.CutoffSettings.from_mapping`;
 not given = the default, or the issue-#4 settings with ``--legacy``). Bad
@@ -183,8 +187,15 @@ def add_parser(subparsers: Any) -> None:
         "--cache-dir", help="cache directory (default: $PSDBOUND_CACHE or ~/.cache/...)"
     )
     run_.add_argument("--no-cache", action="store_true", help="neither read nor write the cache")
-    run_.add_argument("--out", default=".", help="output directory (default: .)")
-    run_.add_argument("--no-figures", action="store_true", help="write no PNG")
+    run_.add_argument(
+        "--out",
+        default=".",
+        help="output directory for the CSV table, the JSON document, the PNG figures and "
+        "the HTML page (default: .)",
+    )
+    run_.add_argument(
+        "--no-figures", action="store_true", help="write no PNG (the page has no figures)"
+    )
     add_config_option(p)
     p.set_defaults(func=run)
 

@@ -1,4 +1,10 @@
-"""``psdbound simulate``: write a simulated data set (RINEX 3 obs + nav + truth)."""
+"""``psdbound simulate``: write a simulated data set (RINEX 3 obs + nav + truth).
+
+Its options are its flags, so ``--config FILE.toml`` sets them as for the
+other such commands (:mod:`psdbound.cli.config_file`); ``--scenario
+FILE.toml`` is something else, the scenario's own fields (a ``[multipath]``
+table, durations in s), layered over the preset before the flags.
+"""
 
 from __future__ import annotations
 
@@ -7,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from psdbound.cli.actions import Once
+from psdbound.cli.config_file import add_config_option
 
 __all__ = ["add_parser", "run"]
 
@@ -19,7 +26,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         description="Simulate carrier-phase and code observations with known multipath and "
         "write RINEX 3 observation/navigation files and the ground truth. "
         "'--preset demo' regenerates the embedded demo data set in its cache. "
-        "Parameters are layered: the preset, then --scenario FILE.toml, then the other flags.",
+        "Parameters are layered: the preset, then --scenario FILE.toml (the scenario's "
+        "fields, in its units), then the other flags; --config FILE.toml sets those flags "
+        "(keys are the long flags, e.g. preset, duration_h, single_antenna, scenario, out).",
         epilog="example: psdbound simulate --preset demo --duration-h 6 --single-antenna "
         "--multipath sigma_gm_m=0.003,tau_s=120,sigma_wn_m=0.001,mapping=1,12,10 --out sim/",
     )
@@ -58,6 +67,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         type=float,
         help="white receiver phase noise per signal, metres (default: the preset's)",
     )
+    add_config_option(p)
     p.set_defaults(func=run)
 
 

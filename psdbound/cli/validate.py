@@ -2,9 +2,11 @@
 
 Registered by :mod:`psdbound.cli.main` through :func:`add_parser`; the
 command checks the options, runs :func:`psdbound.validation.run_validation`
-(which, with ``--out``, writes ``validation.csv``, ``validation.json`` and
-the figures ``validation_expansion.png`` and, when a direct simulation ran,
-``validation_direct.png``, each atomically) and prints the table. A failing
+(which, with ``--out``, writes ``validation.csv``, ``validation.json``
+(schema ``validation.schema.json``), the figures
+``validation_expansion.png`` and, when a direct simulation ran,
+``validation_direct.png``, and ``validation.html`` (the verdict, tables and
+figures), each atomically) and prints the table. A failing
 verdict is a result, not an error: the exit code is 0 unless the input is
 bad (2).
 """
@@ -131,9 +133,14 @@ def add_parser(subparsers: Any) -> None:
     p.add_argument(
         "--out",
         metavar="DIR",
-        help="write table (CSV, JSON) and PNG figures here (default: print only)",
+        help="write the table (CSV), the document (JSON), the PNG figures and the HTML page "
+        "here (default: print only)",
     )
-    p.add_argument("--no-figures", action="store_true", help="with --out: skip the PNG figures")
+    p.add_argument(
+        "--no-figures",
+        action="store_true",
+        help="with --out: skip the PNG figures (the page has no figures)",
+    )
     add_config_option(p)
     p.set_defaults(func=run)
 

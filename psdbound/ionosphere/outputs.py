@@ -1,24 +1,28 @@
-"""Output files of cutoff runs: CSV table, JSON document and PNG figures.
+"""Output files of cutoff runs: CSV table, JSON document, HTML page and PNG figures.
 
 For a station (:class:`~psdbound.ionosphere.results.StationCutoffs`), in
 ``out_dir``: ``cutoff_<name>.csv`` (one row per series),
-``cutoff_<name>.json`` (summary, settings, orbit source, rows) and, with
+``cutoff_<name>.json`` (summary, settings, orbit source, rows; schema
+``psdbound/results/cutoff.schema.json``), ``cutoff_<name>.html`` (the
+recommended cutoff, per-day and per-margin tables and the figures,
+:func:`psdbound.reports.command_pages.write_cutoff_page`) and, with
 figures, for the residual criterion ``cutoff_<name>_residual.png`` (every
 series' residual against the cutoff), for a periodogram criterion
 ``cutoff_<name>_psd.png`` (the series with the largest f_c: PSD, envelope,
 criterion) and ``cutoff_<name>_envelopes.png`` (every envelope).
 For the 20-station map of one year
-(:class:`~psdbound.ionosphere.results.CutoffMap`): ``cutoff_map.csv``,
-``cutoff_map.json`` and ``cutoff_map.png``. For the world map document
-(:mod:`~psdbound.ionosphere.worldmap`, :func:`write_world_map_outputs`):
-``cutoff_map.json`` (the document), ``cutoff_map.csv`` (one row per site and
-layer) and ``cutoff_map.png``. Every file is written atomically
-(:mod:`psdbound.common`).
+(:class:`~psdbound.ionosphere.results.CutoffMap`, library only):
+``cutoff_map.csv``, ``cutoff_map.json`` and ``cutoff_map.png``. For the
+world map document (:mod:`~psdbound.ionosphere.worldmap`,
+:func:`write_world_map_outputs`): ``cutoff_map.json`` (the document, schema
+``psdbound/results/cutoff_map.schema.json``), ``cutoff_map.csv`` (one row per
+site and layer), ``cutoff_map.html`` and ``cutoff_map.png``. Every JSON file
+goes through :func:`psdbound.results.write_json`; every file is written
+atomically (:mod:`psdbound.common`).
 """
 
 from __future__ import annotations
 
-import json
 import os
 from pathlib import Path
 from typing import Any
@@ -57,7 +61,7 @@ def file_tag(name: str) -> str:
 def write_station_outputs(
     result: StationCutoffs, out_dir: str | os.PathLike[str], *, figures: bool = True
 ) -> list[Path]:
-    """Write a station's table, JSON document and (optionally) figures.
+    """Write a station's table, JSON document, HTML page and (optionally) figures.
 
     Parameters
     ----------
@@ -66,25 +70,30 @@ def write_station_outputs(
     out_dir : str or path-like
         Output folder (created if missing).
     figures : bool, default True
-        Also write the PNG figures.
+        Also write the PNG figures (and show them on the page).
 
     Returns
     -------
     list of Path
-        The files written, in order.
+        The files written, in order: CSV, JSON, the figures, HTML.
     """
+    from psdbound.reports.command_pages import write_cutoff_page
+
     out = Path(out_dir)
     tag = file_tag(result.name)
+    doc = result.to_dict()
     files = [
         atomic_write_text(out / f"cutoff_{tag}.csv", result.table_csv()),
-        write_json(out / f"cutoff_{tag}.json", result.to_dict()),
+        write_json(out / f"cutoff_{tag}.json", doc),
     ]
-    if figures:
-        files += _station_figures(result, out, tag)
+    drawn = _station_figures(result, out, tag) if figures else []
+    files += [p for _, p in drawn]
+    files.append(write_cutoff_page(out / f"cutoff_{tag}.html", doc, drawn))
     return files
 
 
-def _station_figures(res: StationCutoffs, out: Path, tag: str) -> list[Path]:
+def _station_figures(res: StationCutoffs, out: Path, tag: str) -> list[tuple[str, Path]]:
+    """Draw a station's figures into ``out``; return (caption, file) of each."""
     rows = res.rows
     if res.settings.criterion == "residual":
         path = plot_residual_curves(
@@ -96,7 +105,11 @@ def _station_figures(res: StationCutoffs, out: Path, tag: str) -> list[Path]:
             title=f"{res.name}: residual ionosphere after the fit's high-pass, {len(rows)} "
             f"series on {len(res.days)} days",
         )
-        return [path]
+        caption = (
+            "Residual ionosphere RMS (mm) the fit's high-pass leaves against its cutoff (Hz), "
+            "every series, with the threshold and the mean and largest (recommended) cutoff."
+        )
+        return [(caption, path)]
     files = []
     top = max(rows, key=lambda r: r["f_c_hz"])
     series = res.series_by_date.get(top["date"])
@@ -109,27 +122,29 @@ def _station_figures(res: StationCutoffs, out: Path, tag: str) -> list[Path]:
             min_arc_s=s.min_arc_s,
         )
         r = series_cutoff(t, y, **s.series_options(), keep_spectrum=True)
-        files.append(
-            plot_series_psd(
-                r,
-                out / f"cutoff_{tag}_psd.png",
-                title=f"{res.name} {top['sat']} {top['date']}: LS PSD, envelope, f_c "
-                "(largest f_c of the run)",
-            )
+        path = plot_series_psd(
+            r,
+            out / f"cutoff_{tag}_psd.png",
+            title=f"{res.name} {top['sat']} {top['date']}: LS PSD, envelope, f_c "
+            "(largest f_c of the run)",
         )
+        caption = (
+            f"Lomb-Scargle PSD (m^2/Hz) of the series with the largest cutoff ({top['sat']} "
+            f"{top['date']}), its envelope, the criterion's threshold and f_c."
+        )
+        files.append((caption, path))
     envs = res.envelopes
     f_lo = min(e.f_min_hz for e in envs) / 3.0
     f_hi = max(e.f_max_hz for e in envs)
-    files.append(
-        plot_station_envelopes(
-            envs,
-            res.f_c_hz,
-            out / f"cutoff_{tag}_envelopes.png",
-            f_range_hz=(f_lo, f_hi),
-            reference_m2_hz=[r["reference_m2_hz"] for r in rows],
-            title=f"{res.name}: envelopes of {len(envs)} series on {len(res.days)} days",
-        )
+    path = plot_station_envelopes(
+        envs,
+        res.f_c_hz,
+        out / f"cutoff_{tag}_envelopes.png",
+        f_range_hz=(f_lo, f_hi),
+        reference_m2_hz=[r["reference_m2_hz"] for r in rows],
+        title=f"{res.name}: envelopes of {len(envs)} series on {len(res.days)} days",
     )
+    files.append(("PSD envelopes (m^2/Hz) of every series with the mean and largest f_c.", path))
     return files
 
 
@@ -226,7 +241,7 @@ def write_world_map_outputs(
     figures: bool = True,
     install_path: str | os.PathLike[str] | None = None,
 ) -> list[Path]:
-    """Write the world map document, its table and (optionally) its figure.
+    """Write the world map document, its table, its HTML page and (optionally) its figure.
 
     Parameters
     ----------
@@ -235,23 +250,32 @@ def write_world_map_outputs(
     out_dir : str or path-like
         Output folder (created if missing).
     figures : bool, default True
-        Also write ``cutoff_map.png``.
+        Also write ``cutoff_map.png`` (and show it on the page).
     install_path : str or path-like, optional
         Also write the document there (e.g. the package data file).
 
     Returns
     -------
     list of Path
-        The files written, in order.
+        The files written, in order: JSON, CSV, the figure, HTML, the installed copy.
     """
+    from psdbound.reports.command_pages import write_cutoff_map_page
+
     out = Path(out_dir)
-    text = json.dumps(doc, separators=(",", ":")) + "\n"
+    sections = frozenset(doc)  # one line per top-level section
     files = [
-        atomic_write_text(out / "cutoff_map.json", text),
+        write_json(out / "cutoff_map.json", doc, compact=sections),
         atomic_write_text(out / "cutoff_map.csv", world_map_csv(doc)),
     ]
+    drawn = []
     if figures:
-        files.append(plot_world_map(doc, out / "cutoff_map.png"))
+        caption = (
+            "Recommended cutoff (Hz) of every grid node (shaded) and reference station "
+            "(marked), one panel per solar-activity layer."
+        )
+        drawn.append((caption, plot_world_map(doc, out / "cutoff_map.png")))
+    files += [p for _, p in drawn]
+    files.append(write_cutoff_map_page(out / "cutoff_map.html", doc, drawn))
     if install_path is not None:
-        files.append(atomic_write_text(Path(install_path), text))
+        files.append(write_json(Path(install_path), doc, compact=sections))
     return files

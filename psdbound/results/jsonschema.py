@@ -3,9 +3,11 @@
 ``result.schema.json`` beside this module documents every field of a result
 document (type, unit, meaning) and is what the documentation's result.json
 reference is generated from; ``overbound.schema.json``, ``budget.schema.json``,
-``vpl.schema.json`` and ``campaign.schema.json`` document the outputs of
-``overbound``, ``budget`` and ``campaign``
-(:data:`SCHEMAS`). :func:`validate` checks a document against it
+``vpl.schema.json``, ``campaign.schema.json``, ``cutoff.schema.json``,
+``cutoff_map.schema.json`` and ``validation.schema.json`` document the
+outputs of ``overbound``, ``budget``, ``campaign``, ``cutoff`` (a station's
+``cutoff_<name>.json``; ``--map``: ``cutoff_map.json``) and ``validate``
+(``validation.json``) (:data:`SCHEMAS`). :func:`validate` checks a document against it
 with the `jsonschema <https://python-jsonschema.readthedocs.io>`_ library,
 which is an optional dependency (the ``test`` and ``docs`` extras): reading
 and writing results (:mod:`psdbound.results.schema`) does not need it.
@@ -31,6 +33,9 @@ SCHEMAS = {
     "budget": "budget.schema.json",
     "vpl": "vpl.schema.json",
     "campaign": "campaign.schema.json",
+    "cutoff": "cutoff.schema.json",
+    "cutoff_map": "cutoff_map.schema.json",
+    "validation": "validation.schema.json",
 }
 
 
@@ -48,7 +53,8 @@ def load_schema(name: str = "result") -> dict[str, Any]:
     ----------
     name : str, default "result"
         A key of :data:`SCHEMAS`: ``result`` (``result.json``), ``overbound``,
-        ``budget`` or ``vpl``.
+        ``budget``, ``vpl``, ``campaign``, ``cutoff`` (``cutoff_<name>.json``),
+        ``cutoff_map`` or ``validation``.
 
     Returns
     -------

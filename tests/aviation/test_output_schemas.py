@@ -46,6 +46,7 @@ def test_overbound_json_is_valid(tmp_path, capsys):
     assert schema_errors(doc, schema="overbound") == []
     html = (out / "overbound.html").read_text()
     assert "<table>" in html and "data:image/png;base64," in html and "overbound.json" in html
+    assert 'href="overbound_qq.png"' in html
     doc["overbound"]["bins"][0]["sigma"] = "wide"
     assert any("sigma" in e for e in schema_errors(doc, schema="overbound"))
 
@@ -63,4 +64,5 @@ def test_budget_and_vpl_json_are_valid(tmp_path, capsys):
     vpl = json.loads((out2 / "vpl.json").read_text())
     assert schema_errors(vpl, schema="vpl") == []
     assert 0.0 <= vpl["vpl"]["availability"] <= 1.0
-    assert "data:image/png;base64," in (out2 / "vpl.html").read_text()
+    page = (out2 / "vpl.html").read_text()
+    assert "data:image/png;base64," in page and 'href="vpl.png"' in page

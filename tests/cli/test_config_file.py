@@ -16,6 +16,7 @@ BASE = {
     "validate": ["validate", "--cutoff-hz", "1e-3"],
     "overbound": ["overbound", "samples.csv"],
     "budget": ["budget"],
+    "simulate": ["simulate"],
 }
 
 

@@ -49,7 +49,12 @@ def test_cli_station_writes_table_json_and_figures(tmp_path, capsys):
     assert "recommended f_c =" in printed
     names = sorted(p.name for p in out.iterdir())
     assert "residual criterion" in printed
-    assert names == ["cutoff_CHICAGO.csv", "cutoff_CHICAGO.json", "cutoff_CHICAGO_residual.png"]
+    assert names == [
+        "cutoff_CHICAGO.csv",
+        "cutoff_CHICAGO.html",
+        "cutoff_CHICAGO.json",
+        "cutoff_CHICAGO_residual.png",
+    ]
     data = json.loads((out / "cutoff_CHICAGO.json").read_text())
     assert data["orbit_source"] == "nominal:G:24"
     assert data["settings"]["f107_sfu"] == 70.0 and data["settings"]["criterion"] == "residual"
@@ -145,3 +150,10 @@ def test_cli_world_map_through_dask(tmp_path, capsys):
         assert [s["name"] for s in layer["stations"]] == [s.name for s in MAP_STATIONS]
         assert all(s["n_series"] > 10 and s["recommended_f_c_hz"] > 0 for s in layer["stations"])
     assert (out / "cutoff_map.png").read_bytes()[:4] == b"\x89PNG"
+    pytest.importorskip("jsonschema")
+    from psdbound.results import schema_errors
+
+    assert schema_errors(data, schema="cutoff_map") == []
+    html = (out / "cutoff_map.html").read_text()
+    assert "World cutoff map: 20 reference stations and a 2 x 2 grid" in html
+    assert 'href="cutoff_map.png"' in html

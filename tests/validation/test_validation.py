@@ -474,7 +474,12 @@ def test_cli_writes_table_and_figures(tmp_path, capsys):
     text = capsys.readouterr().out
     assert "wall:d=25" in text and "FAIL" in text and "physical" in text
     names = sorted(p.name for p in out.iterdir())
-    assert names == ["validation.csv", "validation.json", "validation_expansion.png"]
+    assert names == [
+        "validation.csv",
+        "validation.html",
+        "validation.json",
+        "validation_expansion.png",
+    ]
     assert (out / "validation_expansion.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     doc = json.loads((out / "validation.json").read_text())
     assert doc["passed"] is False and doc["threshold"] == 0.1 and doc["alpha"] == 0.2
@@ -514,6 +519,8 @@ def test_cli_aircraft_mode_with_user_modes(tmp_path, capsys):
     (direct,) = doc["direct"]
     assert abs(direct["fraction_below_cutoff"] - direct["expansion_fraction"]) < 0.02
     assert (out / "validation_direct.png").is_file()
+    html = (out / "validation.html").read_text()
+    assert 'href="validation_direct.png"' in html and "Direct simulation" in html
     assert not [p for p in out.iterdir() if p.name.startswith(".")]  # no temporary files left
 
 
