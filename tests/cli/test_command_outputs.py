@@ -16,6 +16,7 @@ import pytest
 
 from psdbound.cli.main import build_parser, main
 from psdbound.results import load_schema, schema_errors
+from psdbound.results.jsonschema import SCHEMAS
 
 pytest.importorskip("jsonschema")
 
@@ -35,7 +36,7 @@ def _undescribed(spec: dict, where: str = "") -> list[str]:
     return out
 
 
-@pytest.mark.parametrize("name", ["cutoff", "cutoff_map", "validation"])
+@pytest.mark.parametrize("name", sorted(SCHEMAS))
 def test_every_field_is_described(name):
     schema = load_schema(name)
     assert schema["description"] and _undescribed(schema) == []
