@@ -188,9 +188,10 @@ def merge_bands(
     min_width_hz : float, default 0
         Smallest band width, Hz. With the estimator's smoothing width (for
         multitaper ``2W``) the merged band averages of one window are nearly
-        independent of each other, and each merged band's degrees of freedom
-        are recomputed from its width (``2 T df``, at least ``nu_0``, at most
-        the sum of its parts), not summed over parts that share ordinates.
+        independent of each other. Given (> 0), each merged band's degrees of
+        freedom, and those ``min_window_dof`` is judged on, come from its
+        width (``2 T df``, at least ``nu_0``, at most the sum of its parts),
+        not summed over parts that share ordinates.
 
     Returns
     -------
@@ -198,12 +199,16 @@ def merge_bands(
     """
     groups: list[list[int]] = []
     cur: list[int] = []
+    by_width = min_width_hz > 0 and bands.duration_s is not None and bands.nu0 is not None
     for j in range(bands.centres_hz.size):
         if not cur and not (bands.dof[:, j] > 0).any():
             continue  # no window reaches this band: drop it rather than widen the next one
         cur.append(j)
+        width = bands.edges_hz[cur[-1] + 1] - bands.edges_hz[cur[0]]
         d = bands.dof[:, cur].sum(axis=1)
-        wide = bands.edges_hz[cur[-1] + 1] - bands.edges_hz[cur[0]] >= min_width_hz
+        if by_width:  # adjacent narrow bands share ordinates: their dof do not add up
+            d = np.minimum(d, np.maximum(2.0 * bands.duration_s * width, bands.nu0))
+        wide = width >= min_width_hz
         if wide and (np.median(d[d > 0]) >= min_window_dof if (d > 0).any() else False):
             groups.append(cur)
             cur = []

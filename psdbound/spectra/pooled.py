@@ -19,10 +19,12 @@ as data grow, and it states no confidence. The pooled rule states instead
    ``shape_alpha / M``) is moved to the next group, treated the same way.
 3. **Limits**: per group and band, the exact chi-square upper limit of the
    group's common level given the windows' deviations
-   (:func:`psdbound.spectra.limits.mean_upper_limit`, at ``a_mean / (G B)``
-   for ``G`` groups and ``B`` bands), times the largest simultaneous upper
-   deviation of the windows that must be covered (all but
-   ``floor((1 - coverage) M)`` of them, at ``a_window / M``). The two error
+   (:func:`psdbound.spectra.limits.mean_upper_limit`, at ``a_mean / (G B_g)``
+   for ``G`` groups and the group's ``B_g`` bands; a small group's bands are
+   merged until it has :data:`MIN_GROUP_DOF` in each, :func:`group_bands`),
+   times the largest simultaneous upper deviation of the windows that must be
+   covered (all but ``floor((1 - coverage) M)`` of them, at ``a_window /
+   M``). The two error
    probabilities add up to ``1 - confidence_level`` (Bonferroni), so the
    statement holds whatever the windows' levels and however they are
    distributed.
@@ -67,10 +69,12 @@ from psdbound.spectra.limits import (
 )
 
 __all__ = [
+    "MIN_GROUP_DOF",
     "PooledLimits",
     "excess_statistic",
     "fit_limits",
     "fit_pooled_bound",
+    "group_bands",
     "pool_bands",
     "random_effects_mean",
 ]
@@ -82,6 +86,11 @@ MEAN_SHARE = 0.5
 DEVIATION_MODEL = "auto"
 #: Window looseness above which a band limit is explained: limit over the largest window, dB.
 LOOSE_DB = 10.0
+#: Least pooled degrees of freedom of a group's band: a small group's bands are merged until
+#: its windows together have this many in each. One window of 14 degrees of freedom in a band
+#: has an exact upper limit 4.6 times its estimate at the Bonferroni level of 24 bands; merged
+#: to 40, 2.0 times (the in-band slope costs at most sqrt(f_hi / f_lo) instead).
+MIN_GROUP_DOF = 40.0
 
 
 def random_effects_mean(z: NDArray, v: NDArray, tau2: float) -> tuple[float, float, float]:
@@ -152,6 +161,10 @@ class PooledLimits:
         window, with the reason.
     shape_alpha : float
         Level of the shape tests that formed the groups.
+    band_span_hz : ndarray, shape (G, B, 2), optional
+        The band each limit holds for, Hz (lower and upper edge): the common
+        band, or for a small group the merged band it lies in
+        (:func:`group_bands`); NaN where the group has no data.
     """
 
     f_hz: NDArray[np.float64]
@@ -172,6 +185,7 @@ class PooledLimits:
     effective_dof: NDArray[np.float64] | None = None
     notes: tuple[str, ...] = ()
     shape_alpha: float = 0.05
+    band_span_hz: NDArray[np.float64] | None = None
 
     @property
     def n_groups(self) -> int:
@@ -247,6 +261,8 @@ def _cochran_p(z: NDArray, v: NDArray, ok: NDArray) -> NDArray[np.float64]:
 
 @dataclass(frozen=True)
 class _GroupLimits:
+    """One group's limits on the common bands (a merged band's values repeated on its parts)."""
+
     mean_upper: NDArray[np.float64]
     tau2: NDArray[np.float64]
     p_hom: NDArray[np.float64]
@@ -255,6 +271,109 @@ class _GroupLimits:
     spread_upper: float
     z_star: float
     max_term: NDArray[np.float64]
+    span_hz: NDArray[np.float64]
+
+
+def group_bands(bands: BandSpectra, rows: NDArray[np.intp]) -> tuple[BandSpectra, NDArray[np.intp]]:
+    """Return a group's band averages, merged until its windows have :data:`MIN_GROUP_DOF`.
+
+    Parameters
+    ----------
+    bands : BandSpectra
+        The common bands of every window.
+    rows : ndarray of int
+        The group's windows.
+
+    Returns
+    -------
+    group_bands : BandSpectra
+        The group's windows on its own bands: the common ones where the group's
+        pooled degrees of freedom reach :data:`MIN_GROUP_DOF`, adjacent ones merged
+        from the lowest up where they do not
+        (:func:`~psdbound.spectra.bands.merge_bands`).
+    index : ndarray of int, shape (B,)
+        The group band of each common band (-1: the group has no data there).
+    """
+    sub = BandSpectra(
+        bands.edges_hz,
+        bands.centres_hz,
+        bands.psd_m2_hz[rows],
+        bands.dof[rows],
+        None if bands.duration_s is None else bands.duration_s[rows],
+        None if bands.nu0 is None else bands.nu0[rows],
+    )
+    pooled = sub.dof.sum(axis=0)
+    if np.all(pooled[pooled > 0] >= MIN_GROUP_DOF):
+        return sub, np.where(pooled > 0, np.arange(pooled.size), -1)
+    # degrees of freedom from the merged width: narrow bands share multitaper ordinates
+    merged = merge_bands(sub, min_window_dof=MIN_GROUP_DOF / rows.size, min_width_hz=1e-300)
+    lo = bands.edges_hz[:-1]
+    index = np.searchsorted(merged.edges_hz, lo * (1.0 + 1e-12), side="right") - 1
+    index[(index < 0) | (index >= merged.centres_hz.size)] = -1
+    have = merged.dof.sum(axis=0) > 0
+    index[index >= 0] = np.where(have[index[index >= 0]], index[index >= 0], -1)
+    return merged, index
+
+
+def _deviations(
+    test_bands: BandSpectra,
+    rows: NDArray[np.intp],
+    model: str,
+) -> tuple[WindowDeviations, WindowDeviations | None, NDArray[np.bool_]]:
+    """Return the windows' levels, their levels and tilts, and which windows take the tilt."""
+    zt, vt = test_bands.log_unbiased()
+    okt = np.isfinite(zt[rows])
+    x_test = log_frequency(test_bands.centres_hz)
+    dof = test_bands.dof[rows]
+    dev = window_deviations(zt[rows], vt[rows], okt, x_test, model="level", dof=dof)
+    if model == "level":
+        return dev, None, np.zeros(rows.size, dtype=bool)
+    tilt = window_deviations(zt[rows], vt[rows], okt, x_test, model="tilt", dof=dof)
+    use = np.ones(rows.size, dtype=bool) if model == "tilt" else tilted(tilt)
+    return dev, tilt, use
+
+
+def _at(
+    dev: WindowDeviations, tilt: WindowDeviations | None, use: NDArray[np.bool_], x: NDArray
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Each window's deviation and its standard error at ``x`` (its tilt where it takes one)."""
+    d, se = dev.at(x)
+    if tilt is not None and use.any():
+        d_t, se_t = tilt.at(x)
+        d[use], se[use] = d_t[use], se_t[use]
+    return d, se
+
+
+def _window_term(own: NDArray[np.float64], allowed: int) -> NDArray[np.float64]:
+    """Return the largest own upper deviation of the windows kept (all but ``allowed``)."""
+    m = own.shape[0]
+    if m == 1:
+        return np.zeros(own.shape[1])
+    keep = np.argsort(np.max(own, axis=1))[: m - allowed]
+    return np.max(own[keep], axis=0)
+
+
+def _level_limits(
+    gb: BandSpectra,
+    d: NDArray[np.float64],
+    a_mean: float,
+    clusters: NDArray[np.int64] | None,
+    rho: float,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Exact upper limits of the group's common level per band, and their degrees of freedom."""
+    s, nu = gb.psd_m2_hz, gb.dof
+    ok = np.isfinite(s) & (nu > 0)
+    n_b = s.shape[1]
+    a_band = a_mean / max(int(ok.any(axis=0).sum()), 1)  # Bonferroni over the group's bands
+    mean_up, eff = np.full(n_b, np.nan), np.full(n_b, np.nan)
+    for b in np.flatnonzero(ok.any(axis=0)):
+        use = ok[:, b]
+        cl = clusters[use] if clusters is not None else None
+        eff[b] = design_effect_dof(nu[use, b], cl, rho)
+        mean_up[b] = mean_upper_limit(
+            s[use, b] * np.exp(-d[use, b]), nu[use, b], a_band, effective_dof=eff[b]
+        )
+    return mean_up, eff
 
 
 def _group_limits(
@@ -270,55 +389,45 @@ def _group_limits(
     """Exact group levels per band, the windows' spread limit and its quantile factor.
 
     The windows' levels come from ``test_bands`` (bands at least the estimator's smoothing
-    wide, whose averages are nearly independent); the limits are stated on ``bands``.
+    wide, whose averages are nearly independent); the limits are stated on the group's
+    bands (:func:`group_bands`) and returned on the common ``bands``.
     """
     a_mean, a_window = levels
     a_spread = a_count = a_window / 2.0  # the tolerance diagnostics (no share of their own)
-    zt, vt = test_bands.log_unbiased()
-    okt = np.isfinite(zt[rows])
-    x_test = log_frequency(test_bands.centres_hz)
-    x_fine = log_frequency(bands.centres_hz, test_bands.centres_hz)
-    dev = window_deviations(
-        zt[rows], vt[rows], okt, x_test, model="level", dof=test_bands.dof[rows]
-    )
-    d_fine, se_fine = dev.at(x_fine)
+    gb, index = group_bands(bands, rows)
+    dev, tilt, use = _deviations(test_bands, rows, model)
     m = rows.size
-    k = np.full(m, simultaneous_factor(a_window, m))
-    if model != "level":
-        tilt = window_deviations(
-            zt[rows], vt[rows], okt, x_test, model="tilt", dof=test_bands.dof[rows]
-        )
-        use = np.ones(m, dtype=bool) if model == "tilt" else tilted(tilt)
-        if use.any():
-            d_t, se_t = tilt.at(x_fine)
-            d_fine[use], se_fine[use] = d_t[use], se_t[use]
-            k[use] = simultaneous_factor(a_window, m, n_params=2)
-    z, v = bands.log_unbiased()
-    z, v = z[rows], v[rows]
-    ok = np.isfinite(z)
-    s, nu = bands.psd_m2_hz[rows], bands.dof[rows]
-    n_b = z.shape[1]
-    mean_up, eff, tau2 = np.full(n_b, np.nan), np.full(n_b, np.nan), np.full(n_b, np.nan)
-    for b in range(n_b):
-        use = ok[:, b]
-        if not use.any():
-            continue
-        cl = clusters[rows][use] if clusters is not None else None
-        eff[b] = design_effect_dof(nu[use, b], cl, rho)
-        mean_up[b] = mean_upper_limit(
-            s[use, b] * np.exp(-d_fine[use, b]), nu[use, b], a_mean, effective_dof=eff[b]
-        )
-    level, level_se = dev.coef[:, 0], np.sqrt(dev.cov[:, 0, 0])
-    spread = spread_upper_limit(level, level_se, a_spread)
-    tau2[np.isfinite(mean_up)] = max(0.0, float(np.var(level)) - float(np.mean(level_se**2)))
     allowed = int(np.floor((1.0 - coverage) * m + 1e-9))
-    z_star = tolerance_factor(m, allowed, a_count)
-    # distribution-free: every window's own upper deviation at every band (simultaneous over
-    # the bands for a tilt: Scheffe), all but `allowed` of the windows covered
-    own = d_fine + k[:, None] * se_fine
-    keep = np.argsort(np.max(own, axis=1))[: m - allowed] if m > 1 else np.arange(m)
-    term = np.max(own[keep], axis=0) if m > 1 else np.zeros(n_b)
-    return _GroupLimits(mean_up, tau2, _cochran_p(z, v, ok), eff, dev, spread, z_star, term)
+    k = np.where(
+        use, simultaneous_factor(a_window, m, n_params=2), simultaneous_factor(a_window, m)
+    )[:, None]
+    ref = test_bands.centres_hz
+    d_c, se_c = _at(dev, tilt, use, log_frequency(gb.centres_hz, ref))
+    cl = clusters[rows] if clusters is not None else None
+    mean_up, eff = _level_limits(gb, d_c, a_mean, cl, rho)
+    term = _window_term(d_c + k * se_c, allowed)
+    level, level_se = dev.coef[:, 0], np.sqrt(dev.cov[:, 0, 0])
+    tau2 = np.where(
+        np.isfinite(mean_up), max(0.0, float(np.var(level)) - float(np.mean(level_se**2))), np.nan
+    )
+    z, v = gb.log_unbiased()
+    p_hom = _cochran_p(z, v, np.isfinite(z))
+    span = np.column_stack([gb.edges_hz[:-1], gb.edges_hz[1:]])
+
+    def common(x: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.where(index >= 0, x[np.maximum(index, 0)], np.nan)
+
+    return _GroupLimits(
+        common(mean_up),
+        common(tau2),
+        common(p_hom),
+        common(eff),
+        dev,
+        spread_upper_limit(level, level_se, a_spread),
+        tolerance_factor(m, allowed, a_count),
+        np.where(index >= 0, term[np.maximum(index, 0)], 0.0),
+        np.where((index >= 0)[:, None], span[np.maximum(index, 0)], np.nan),
+    )
 
 
 def _loose_notes(
@@ -385,11 +494,11 @@ def _shape_groups(
     return test_bands, labels
 
 
-def _error_levels(confidence_level: float, n_g: int, n_b: int) -> tuple[float, float]:
-    """Split ``1 - confidence_level``: per group level and band, and per group's windows."""
+def _error_levels(confidence_level: float, n_g: int) -> tuple[float, float]:
+    """Split ``1 - confidence_level`` per group: its levels (over its bands), its windows."""
     alpha = 1.0 - confidence_level
     a_win = (1.0 - MEAN_SHARE) * alpha / n_g  # per group: the windows' own upper levels
-    return (MEAN_SHARE * alpha / (n_g * n_b), a_win)
+    return (MEAN_SHARE * alpha / n_g, a_win)
 
 
 @dataclass(frozen=True)
@@ -408,6 +517,7 @@ class _Pooled:
     spread: NDArray[np.float64]
     z_star: NDArray[np.float64]
     window_term: NDArray[np.float64]
+    span_hz: NDArray[np.float64]
 
 
 def _pool_groups(
@@ -428,6 +538,7 @@ def _pool_groups(
     out = {k: np.full((n_g, n_b), np.nan) for k in keys}
     level, level_se, shape_p = np.full(n_w, np.nan), np.full(n_w, np.nan), np.ones(n_w)
     spread, z_star, window_term = np.zeros(n_g), np.zeros(n_g), np.zeros((n_g, n_b))
+    span = np.full((n_g, n_b, 2), np.nan)
     for g in range(n_g):
         rows = np.flatnonzero(labels == g)
         gl = _group_limits(bands, test_bands, rows, levels, coverage, clusters, rho, model)
@@ -438,7 +549,7 @@ def _pool_groups(
             gl.eff_dof,
         )
         spread[g], z_star[g] = np.sqrt(gl.spread_upper), gl.z_star
-        window_term[g] = gl.max_term
+        window_term[g], span[g] = gl.max_term, gl.span_hz
         out["upper"][g] = gl.mean_upper * np.exp(window_term[g])
         out["window_max"][g] = np.where(ok[rows], bands.psd_m2_hz[rows], -np.inf).max(axis=0)
         out["window_max"][g][~np.isfinite(out["window_max"][g])] = np.nan
@@ -452,6 +563,7 @@ def _pool_groups(
         spread=spread,
         z_star=z_star,
         window_term=window_term,
+        span_hz=span,
     )
 
 
@@ -535,7 +647,7 @@ def pool_bands(
     _check_pool_data(ok, clusters, n_w)
     test_bands, labels = _shape_groups(bands, smoothing_hz, shape_alpha, max_groups)
     n_g = int(labels.max()) + 1
-    levels = _error_levels(confidence_level, n_g, n_b)
+    levels = _error_levels(confidence_level, n_g)
     pooled = _pool_groups(
         bands,
         test_bands,
@@ -569,6 +681,7 @@ def pool_bands(
             pooled.upper, pooled.window_max, bands.centres_hz, sizes, pooled.eff_dof
         ),
         shape_alpha=shape_alpha,
+        band_span_hz=pooled.span_hz,
     )
 
 
@@ -672,6 +785,15 @@ def fit_pooled_bound(
     return fit, bands, limits
 
 
+def _spans(
+    limits: PooledLimits, bands: BandSpectra, g: int
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Lower and upper edges of the band each of group ``g``'s limits holds for, Hz."""
+    if limits.band_span_hz is None:
+        return bands.edges_hz[:-1].copy(), bands.edges_hz[1:].copy()
+    return limits.band_span_hz[g, :, 0], limits.band_span_hz[g, :, 1]
+
+
 def fit_limits(
     limits: PooledLimits,
     bands: BandSpectra,
@@ -711,12 +833,14 @@ def fit_limits(
         ``target="pooled"``, ``level`` the limits' confidence level, stated
         from the lowest band edge to Nyquist; ``margins`` per group.
     """
-    lo, hi = bands.edges_hz[:-1], np.minimum(bands.edges_hz[1:], 0.5 / dt_s)
     target = []
-    for row in limits.upper_m2_hz:
-        have = np.isfinite(row)
-        f = np.concatenate([lo[have], limits.f_hz[have], hi[have]])
-        u = np.concatenate([row[have] * np.sqrt(hi[have] / lo[have]), row[have], row[have]])
+    for g, row in enumerate(limits.upper_m2_hz):
+        lo, hi = _spans(limits, bands, g)
+        hi = np.minimum(hi, 0.5 / dt_s)
+        have = np.isfinite(row) & np.isfinite(lo)
+        lo, hi, row = lo[have], hi[have], row[have]
+        f = np.concatenate([lo, np.sqrt(lo * hi), hi])
+        u = np.concatenate([row * np.sqrt(hi / lo), row, row])
         target.append(_BandLimits(f, u))
     fit = fit_bound(
         target,

@@ -37,7 +37,7 @@ from psdbound.spectra.bound import BoundFit
 from psdbound.spectra.estimators import PSDEstimate
 from psdbound.spectra.intervals import ModelSet, model_set
 from psdbound.spectra.lowfreq import TAU_MAX_S, LowFrequency, bound_below
-from psdbound.spectra.pooled import PooledLimits, fit_pooled_bound, smoothing_hz
+from psdbound.spectra.pooled import MIN_GROUP_DOF, PooledLimits, fit_pooled_bound, smoothing_hz
 
 __all__ = ["StatedBound", "fit_stated_bound", "identification_bands", "statement"]
 
@@ -197,6 +197,18 @@ def identification_bands(
     )
 
 
+def _merged_groups(limits: PooledLimits, bands: BandSpectra) -> list[int]:
+    """Return the groups whose limits hold on merged bands (wider than the common ones)."""
+    if limits.band_span_hz is None:
+        return []
+    lo = limits.band_span_hz[:, :, 0]
+    have = np.isfinite(lo)
+    common = np.broadcast_to(bands.edges_hz[:-1], lo.shape)
+    return [
+        g for g in range(lo.shape[0]) if np.any(have[g] & ~np.isclose(lo[g], common[g], rtol=1e-9))
+    ]
+
+
 def statement(limits: PooledLimits, bands: BandSpectra, low: LowFrequency | None = None) -> str:
     """Return what a bound above ``limits`` covers, in words (result.json ``bound.covers``).
 
@@ -215,6 +227,7 @@ def statement(limits: PooledLimits, bands: BandSpectra, low: LowFrequency | None
     """
     n_w = int(limits.groups.size)
     allowed = int(np.floor((1.0 - limits.coverage) * n_w + 1e-9))
+    merged = _merged_groups(limits, bands)
     text = (
         f"with {100 * limits.confidence_level:g} % confidence the bound lies above the true "
         f"PSD of at least {100 * limits.coverage:g} % of the {n_w} windows (all but {allowed}) "
@@ -224,4 +237,9 @@ def statement(limits: PooledLimits, bands: BandSpectra, low: LowFrequency | None
         f"every covered window's own upper deviation from its group (a level, and a tilt in "
         f"log frequency where significant); no distribution of the windows is assumed"
     )
+    if merged:
+        text += (
+            f"; group(s) {', '.join(map(str, merged))} on merged bands of at least "
+            f"{MIN_GROUP_DOF:g} pooled degrees of freedom"
+        )
     return text if low is None else f"{text}; {low.sentence()}"
