@@ -242,6 +242,7 @@ def _pooled_section(res: BoundResults) -> dict[str, Any] | None:
         "shape_alpha": res.bound.meta.get("shape_alpha"),
         "band_edges_hz": res.bands.edges_hz,
         "band_centres_hz": pl.f_hz,
+        "band_span_hz": pl.band_span_hz,
         "n_groups": pl.n_groups,
         "group_sizes": pl.sizes(),
         "upper_m2_hz": pl.upper_m2_hz,
