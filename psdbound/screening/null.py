@@ -193,6 +193,26 @@ class MultipathNull:
             self.scale2(elevation_deg) * stats.chi2.isf(false_alarm, self.dof) / self.dof
         )
 
+    def exceedance(self, roti_tecu_min: ArrayLike, elevation_deg: ArrayLike) -> NDArray[np.float64]:
+        """Return the probability that a block of multipath alone exceeds ``roti_tecu_min``.
+
+        The inverse of :meth:`threshold`: ``exceedance(threshold(el, p), el) == p``.
+
+        Parameters
+        ----------
+        roti_tecu_min : array_like
+            ROTI levels, TECU/min.
+        elevation_deg : array_like
+            Mean elevation of the blocks, degrees.
+
+        Returns
+        -------
+        ndarray
+            Probability per block under the null (dimensionless, 0-1).
+        """
+        r = np.asarray(roti_tecu_min, dtype=float)
+        return stats.chi2.sf(self.dof * r**2 / self.scale2(elevation_deg), self.dof)
+
     def persistent(
         self,
         roti_tecu_min: ArrayLike,

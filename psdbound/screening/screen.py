@@ -176,6 +176,7 @@ class Screening:
     guard_s: float = 0.0
     null: MultipathNull | None = None
     three_frequency: dict[str, Any] | None = None
+    block_test: dict[str, Any] | None = None
 
     @property
     def excluded_fraction(self) -> float:
@@ -275,6 +276,44 @@ def _threshold(
         return scaled
     thr = np.maximum(base, null.threshold(el_mean, share))
     return thr if null.trusted else np.minimum(thr, np.maximum(base, scaled))
+
+
+def _block_test(
+    null: MultipathNull | None, opt: ScreeningOptions, mapping: Any, share: float
+) -> dict[str, Any] | None:
+    """Return the single-block test along the null's elevations: threshold and false alarm.
+
+    Parameters
+    ----------
+    null : MultipathNull or None
+        The series' multipath null (None: the fixed threshold, no probability).
+    opt : ScreeningOptions
+    mapping : ElevationMapping or None
+        The provisional multipath mapping (the untrusted null's fixed threshold).
+    share : float
+        The block test's false-alarm probability (its share of ``opt.false_alarm``).
+
+    Returns
+    -------
+    dict or None
+        ``elevation_deg`` (the null's grid, deg), ``threshold_tecu_min`` (the
+        threshold applied there, TECU/min), ``false_alarm`` (``share``),
+        ``false_alarm_at_threshold`` (the probability under the null that a
+        block of multipath alone exceeds that threshold: ``share`` where the
+        null's quantile sets it, less where the significance level does) and
+        ``by_significance`` (whether ``roti_threshold_tecu_min`` sets it).
+    """
+    if null is None:
+        return None
+    el = null.elevation_deg
+    thr = _threshold(el, opt, mapping, null, share)
+    return {
+        "elevation_deg": el,
+        "threshold_tecu_min": thr,
+        "false_alarm": share,
+        "false_alarm_at_threshold": null.exceedance(thr, el),
+        "by_significance": thr <= opt.roti_threshold_tecu_min,
+    }
 
 
 def _series_null(blocks: list[dict[str, Any]], opt: ScreeningOptions) -> MultipathNull | None:
@@ -545,6 +584,7 @@ def screen_series(
         guard_s,
         null,
         three_freq,
+        _block_test(null, opt, mapping, share),
     )
 
 
