@@ -325,10 +325,11 @@ def local_scale(
     Returns
     -------
     tuple of ndarray or None
-        The elevations of the tabulated scale (deg, increasing), the local
-        quantile there (the unit of ``values``) and every usable block's
-        value over its interpolated local quantile; None with fewer than
-        ``min_blocks`` usable blocks.
+        The elevations of the tabulated scale (deg, increasing: the median
+        elevation of each window), the local quantile there (the unit of
+        ``values``) and every usable block's value over its interpolated
+        local quantile (constant beyond the first and last window's median);
+        None with fewer than ``min_blocks`` usable blocks.
     """
     x = np.asarray(values, dtype=float)
     el = np.asarray(elevation_deg, dtype=float)
@@ -340,8 +341,12 @@ def local_scale(
     e_s, x_s = el[ok][order], x[ok][order]
     half = max(min_blocks, n // 12) // 2  # a local quantile of >= 40 blocks, 1/12 of them
     centres = np.unique(np.linspace(0, n - 1, min(_N_GRID, n)).astype(int))
-    q = np.array([np.quantile(x_s[max(0, c - half) : min(n, c + half + 1)], Q_HI) for c in centres])
-    grid = e_s[centres]
+    windows = [slice(max(0, c - half), min(n, c + half + 1)) for c in centres]
+    q = np.array([np.quantile(x_s[w], Q_HI) for w in windows])
+    # each quantile belongs to its window's median elevation: at the ends of the elevation range
+    # the window is one-sided, and placing its quantile at the end block biased the scale there
+    # (low where the multipath grows towards the horizon)
+    grid = np.array([np.median(e_s[w]) for w in windows])
     grid, first = np.unique(grid, return_index=True)
     q = q[first]
     return grid, q, x_s / np.interp(e_s, grid, q)
