@@ -310,11 +310,19 @@ def _windows_section(windowed: Windowed, res: BoundResults, screened: Screened) 
 
 def _roti_rule(sc: Any) -> str:
     """Return how the ROTI threshold of a block was set, in words."""
+    if sc.null is not None and sc.null.trusted:
+        return (
+            "max(threshold, the 1 - p quantile of the ROTI the series' own multipath produces "
+            "at the block's elevation: a scaled chi-square fitted to the lower part of the "
+            "blocks nearest in elevation) per 5-min block, p the block test's share of "
+            "false_alarm_per_block (block_test.false_alarm); threshold is the ionospheric "
+            "significance level, below which no block is called ionosphere"
+        )
     if sc.null is not None:
         return (
-            f"max(threshold, the {1 - sc.options.false_alarm:g} quantile of the ROTI the "
-            f"series' own multipath produces in the block's elevation band: a scaled "
-            f"chi-square fitted to the band's lower half) per 5-min block"
+            "min(max(threshold, the null's 1 - p quantile), max(threshold, threshold x m(el))) "
+            "per 5-min block: the null is heavy-tailed (much of the day disturbed) and the "
+            "elevation-scaled fixed threshold applies as well"
         )
     if sc.options.elevation_scaled:
         return "min(threshold x m(el), cap) per 5-min block, m the elevation mapping"
@@ -337,6 +345,7 @@ def _screening_section(screened: Screened) -> dict[str, Any]:
         "roti_threshold_rule": _roti_rule(sc),
         "multipath_null": None if sc.null is None else sc.null.to_dict(),
         "false_alarm_per_block": sc.options.false_alarm if sc.null is not None else None,
+        "block_test": sc.block_test,
         "three_frequency": sc.three_frequency,
         "roti": "5-min blocks of ROT sampled at 30 s (Pi et al. 1997)",
         "options": {

@@ -52,7 +52,7 @@ FIGURES = (
         fig_windows,
     ),
     ("df_filter", "Dual-frequency difference before and after filtering", fig_df_filter),
-    ("screening", "Ionosphere screening (ROTI) and excluded spans", fig_screening),
+    ("screening", "Screening per satellite: ROTI vs threshold, cuts by test", fig_screening),
     ("sky", "Sky view: multipath RMS by azimuth and elevation", fig_sky),
     ("mapped", "Elevation-mapped residuals", fig_mapped),
     (

@@ -13,10 +13,12 @@ from typing import Any
 
 import numpy as np
 from matplotlib.collections import PolyCollection
+from matplotlib.colors import LogNorm
 from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
-from psdbound.reports.figures_base import HALF_PAGE_H_IN, finish, new_figure, t0_gps_s
+from psdbound.reports.figures_base import finish, new_figure, t0_gps_s
+from psdbound.screening.rot import ROTI_BLOCK_S
 
 __all__ = ["fig_df_filter", "fig_mapped", "fig_screening", "fig_windows"]
 
@@ -201,65 +203,168 @@ def fig_mapped(r: dict[str, Any]) -> Figure | None:
     return finish(fig)
 
 
-def fig_screening(r: dict[str, Any]) -> Figure | None:
-    """Screening: normalised ROTI and the largest isolated value per 5-min block.
+#: Outline colour and legend text of an excluded span by the test that flagged it
+#: (``screening.excluded[].test``; "ionosphere": a document from before the field existed).
+_TESTS = {
+    "block": ("#d62728", "one block's ROTI above its threshold"),
+    "persistence": ("#ff7f0e", "15 min improbable (persistence)"),
+    "coherence": ("#e377c2", "several satellites in one 5 min (coherence)"),
+    "three-frequency": ("#17becf", "three carriers"),
+    "ionosphere": ("#d62728", "ionosphere"),
+    "limit": ("#9467bd", "beyond the carrier-multipath limit"),
+    "length": ("0.3", "short remainder"),
+}
+_KIND_TEST = {"implausible": "limit", "short remainder": "length"}
 
-    Top: ROTI over its threshold (1 = the threshold); bottom: the largest
-    absolute isolated value of each block against the carrier-multipath
-    limit. Excluded blocks are orange, kept blocks blue; time in hours from
-    the data start.
+
+def _arr(x: Any) -> np.ndarray:
+    """Return a JSON list as a float array (None -> NaN)."""
+    return np.asarray([np.nan if v is None else v for v in x], dtype=float)
+
+
+def _block_ratios(d: dict[str, Any]) -> tuple[list[tuple[str, float, float]], np.ndarray, bool]:
+    """Every block as (lane, start, stop), its statistic over its threshold, and which one.
+
+    The statistic is ROTI over its threshold where the series has ROTI (DF),
+    else the block's largest absolute value over the carrier-multipath limit.
+    """
+    items, ratio = [], []
+    has_roti = any(np.isfinite(_arr(a["roti_tecu_min"])).any() for a in d["roti"])
+    half = 0.5 * ROTI_BLOCK_S
+    for a in d["roti"]:
+        mid = _arr(a["t_gps_s"])
+        items += [(a["sats"], m - half, m + half) for m in mid]
+        if has_roti:
+            ratio.append(_arr(a["roti_tecu_min"]) / _arr(a["threshold_tecu_min"]))
+        else:
+            ratio.append(_arr(a.get("value_max_m", [np.nan] * mid.size)) / d["limit_m"])
+    return items, np.concatenate(ratio) if ratio else np.zeros(0), has_roti
+
+
+def _excluded_by_test(excl: list[dict[str, Any]]) -> dict[str, list[tuple[str, float, float]]]:
+    """Group the excluded spans (lane, start, stop) by the test that flagged them."""
+    out: dict[str, list[tuple[str, float, float]]] = {}
+    for e in excl:
+        test = e.get("test") or _KIND_TEST.get(e.get("kind", ""), "ionosphere")
+        out.setdefault(test, []).append((e["sat"], e["start_gps_s"], e["stop_gps_s"]))
+    return out
+
+
+def _test_label(test: str, n: int, spans: list[dict[str, Any]]) -> str:
+    """Legend text of one test: what it is, its span count and false-alarm probability."""
+    text = _TESTS.get(test, ("", test))[1]
+    p = [e.get("false_alarm") for e in spans if e.get("false_alarm") is not None]
+    return f"{text} ({n}" + (f"; p = {max(p):.2g})" if p else ")")
+
+
+def _lanes_axis(ax: Any, r: dict[str, Any], d: dict[str, Any]) -> Any:
+    """Draw the blocks (coloured by statistic / threshold) and the cut spans (by test) in lanes."""
+    t0 = t0_gps_s(r)
+    excl = [e for e in r.get("screening", {}).get("excluded", []) if "sat" in e]
+    items, ratio, has_roti = _block_ratios(d)
+    by_test = _excluded_by_test(excl)
+    lanes = sorted({s for s, _, _ in items} | {e["sat"] for e in excl}, key=_lane_key)
+    lane = {s: k for k, s in enumerate(lanes)}
+    verts, _ = _spans(items, lane, t0, 0.3)
+    norm = LogNorm(0.1, 10.0)
+    blocks = PolyCollection(verts, cmap="coolwarm", norm=norm, linewidths=0)
+    blocks.set_array(np.clip(np.where(np.isfinite(ratio), ratio, 1e-3), 0.1, 10.0))
+    ax.add_collection(blocks)
+    handles = []
+    for test, spans in by_test.items():
+        colour = _TESTS.get(test, ("0.3", test))[0]
+        v, _ = _spans(spans, lane, t0, 0.45)
+        ax.add_collection(PolyCollection(v, facecolors="none", edgecolors=colour, linewidths=1.0))
+        rows = [e for e in excl if (e.get("test") or "") == test]
+        text = _test_label(test, len(spans), rows)
+        handles.append(Patch(facecolor="none", edgecolor=colour, label=text))
+    ax.set_ylim(len(lanes) - 0.5, -0.5)
+    size = float(np.clip(520.0 / max(len(lanes), 1), 4.5, 8.0))
+    ax.set_yticks(range(len(lanes)), lanes, fontsize=size)
+    ax.tick_params(axis="y", length=0)
+    ax.set_ylabel("satellite pair [PRN-PRN]" if r.get("method") == "DA" else "satellite [PRN]")
+    ax.grid(alpha=0.3, axis="x")
+    if handles:
+        ax.figure.legend(
+            handles=handles,
+            fontsize=6.5,
+            loc="outside lower center",
+            ncol=min(len(handles), 3),
+            title="excluded spans by the test that flagged them (count; false-alarm probability)",
+            title_fontsize=7,
+        )
+    label = "ROTI / threshold [-]" if has_roti else "largest |value| / limit [-]"
+    return blocks, label
+
+
+def fig_screening(r: dict[str, Any]) -> Figure | None:
+    """Screening per satellite: each block's statistic against its threshold, what was cut and why.
+
+    Top: one lane per satellite (pair for dual-antenna), every 5-min block
+    coloured by its ROTI over its threshold (blue below, red above; for a
+    series without ROTI, the largest absolute value over the carrier-multipath
+    limit); the excluded spans outlined in the colour of the test that flagged
+    them, the legend giving each test's span count and false-alarm
+    probability (``screening.excluded[].test`` and ``false_alarm``). Blocks
+    cut below their own threshold were flagged by a test that pools blocks
+    (15 min of one satellite, or several satellites in one slot) or lie in a
+    span's guard. Bottom: the largest absolute isolated value of each block
+    against the carrier-multipath limit. Time in hours from the data start.
     """
     d = r["figures"].get("screening")
     if not d or not d.get("roti"):
         return None
-
-    def arr(x: Any) -> np.ndarray:
-        return np.asarray([np.nan if v is None else v for v in x], dtype=float)
-
-    t0 = t0_gps_s(r)
-    t = np.concatenate([arr(a["t_gps_s"]) for a in d["roti"]])
-    t = (t - t0) / 3600.0
-    ratio = np.concatenate(
-        [arr(a["roti_tecu_min"]) / arr(a["threshold_tecu_min"]) for a in d["roti"]]
+    n_lanes = len({a["sats"] for a in d["roti"]})
+    fig = new_figure(2.6 + LANE_IN * n_lanes)
+    ax, ax_v = fig.subplots(
+        2, 1, sharex=True, height_ratios=[LANE_IN * n_lanes + 0.9, 1.4], squeeze=True
     )
-    vmax = np.concatenate([arr(a.get("value_max_m", [])) for a in d["roti"]])
+    blocks, label = _lanes_axis(ax, r, d)
+    fig.colorbar(blocks, ax=ax, label=label, fraction=0.03, pad=0.01, extend="both")
+    _limit_axis(ax_v, r, d)
+    t0 = t0_gps_s(r)
+    ax.set_xlim(
+        min(0.0, (r["data_span"]["start_gps_s"] - t0) / 3600.0),
+        (r["data_span"]["stop_gps_s"] - t0) / 3600.0,
+    )
+    scr = r.get("screening", {})
+    fig.suptitle(
+        f"Screening per satellite and 5-min block: {len(scr.get('excluded', []))} excluded "
+        f"spans ({scr.get('excluded_s', 0.0) / 3600:.2f} h)\nthreshold {_threshold_words(r, d)}",
+        fontsize=8,
+    )
+    return finish(fig)
+
+
+def _threshold_words(r: dict[str, Any], d: dict[str, Any]) -> str:
+    """Say what the block threshold is, in a few words, for the title."""
+    scr = r.get("screening", {})
+    null = scr.get("multipath_null")
+    base = d.get("threshold_tecu_min")
+    if null and null.get("trusted", True):
+        p = (scr.get("block_test") or {}).get("false_alarm", scr.get("false_alarm_per_block"))
+        return f"max({base:g} TECU/min, multipath null at p = {p:.2g} per block)"
+    if null:
+        return f"the multipath null (disturbed) capped by {base:g} TECU/min x m(el)"
+    return f"{base:g} TECU/min x m(el)"
+
+
+def _limit_axis(ax: Any, r: dict[str, Any], d: dict[str, Any]) -> None:
+    """Draw the largest absolute isolated value per block against the carrier-multipath limit."""
+    t0 = t0_gps_s(r)
+    t = (np.concatenate([_arr(a["t_gps_s"]) for a in d["roti"]]) - t0) / 3600.0
+    vmax = np.concatenate([_arr(a.get("value_max_m", [])) for a in d["roti"]])
     exc = np.concatenate([np.asarray(a.get("excluded", []), dtype=bool) for a in d["roti"]])
-    has_roti = bool(np.any(np.isfinite(ratio)))
-    fig = new_figure(HALF_PAGE_H_IN - 0.5 if has_roti else 2.6)
-    axes = np.atleast_1d(fig.subplots(2 if has_roti else 1, 1, sharex=True, squeeze=False)[:, 0])
-    if has_roti:
-        ax = axes[0]
-        ax.semilogy(t[~exc], ratio[~exc], ".", ms=2.5, color="tab:blue", label="kept")
-        ax.semilogy(t[exc], ratio[exc], ".", ms=2.5, color="tab:orange", label="excluded")
-        scr = r.get("screening", {})
-        what = (
-            f"max({d['threshold_tecu_min']:g} TECU/min, multipath null at p = "
-            f"{scr.get('false_alarm_per_block'):g} per block)"
-            if scr.get("multipath_null")
-            else f"{d['threshold_tecu_min']:g} TECU/min x m(el)"
-        )
-        ax.axhline(1.0, color="tab:red", lw=1, label=f"threshold {what}")
-        ax.set_ylabel("ROTI / threshold [-]")
-        ax.legend(fontsize=7, loc="upper right", ncol=3)
-        ax.grid(alpha=0.3, which="both")
-    ax = axes[-1]
-    if vmax.size:
-        ax.semilogy(t[~exc], 100 * vmax[~exc], ".", ms=2.5, color="tab:blue")
-        ax.semilogy(t[exc], 100 * vmax[exc], ".", ms=2.5, color="tab:orange")
+    if vmax.size == t.size and exc.size == t.size:
+        ax.semilogy(t[~exc], 100 * vmax[~exc], ".", ms=2, color="tab:blue", label="kept")
+        ax.semilogy(t[exc], 100 * vmax[exc], ".", ms=2, color="tab:orange", label="excluded")
     ax.axhline(
         100 * d["limit_m"],
         color="tab:red",
         lw=1,
         label=f"carrier-multipath limit {100 * d['limit_m']:.2f} cm",
     )
-    ax.set_ylabel("largest |isolated value| [cm]")
+    ax.set_ylabel("largest |value| [cm]")
     ax.set_xlabel("time since data start [h]")
-    ax.legend(fontsize=7, loc="lower right")
+    ax.legend(fontsize=6.5, loc="lower right", ncol=3)
     ax.grid(alpha=0.3, which="both")
-    n_exc = len(r.get("screening", {}).get("excluded", d["excluded"]))
-    axes[0].set_title(
-        f"Screening per satellite and 5-min block: {n_exc} excluded spans "
-        f"({r.get('screening', {}).get('excluded_s', 0.0) / 3600:.2f} h)",
-        fontsize=9,
-    )
-    return finish(fig)

@@ -51,8 +51,11 @@ class ScreeningOptions:
     Parameters
     ----------
     roti_threshold_tecu_min : float, default 0.15
-        Blocks with a larger ROTI are ionosphere (dual-frequency), TECU/min;
-        multiplied by the elevation mapping when ``elevation_scaled``.
+        With the multipath null, the ionospheric significance level: no block
+        with a smaller ROTI is called ionosphere, whatever the null says
+        (dual-frequency), TECU/min. For the fixed threshold (and as well
+        under an untrusted null), the level multiplied by the elevation
+        mapping when ``elevation_scaled``.
     roti_cap_tecu_min : float or None, default None
         Largest threshold after the elevation scaling, TECU/min (None: no cap).
     elevation_scaled : bool, default True

@@ -17,7 +17,10 @@ from numpy.typing import NDArray
 
 from psdbound.screening.threefreq import ThreeFrequencyTest
 
-__all__ = ["ExcludedSpan", "block_spans", "excluded_span", "kept_pieces"]
+__all__ = ["TESTS", "ExcludedSpan", "block_spans", "excluded_span", "kept_pieces"]
+
+#: The tests a span can be excluded by (``ExcludedSpan.test``).
+TESTS = ("block", "persistence", "coherence", "three-frequency", "limit", "length")
 
 
 @dataclass(frozen=True)
@@ -38,6 +41,26 @@ class ExcludedSpan:
         remainder's length (s).
     threshold : float
         The limit it was compared with, same unit.
+    test : str
+        The test that flagged the span (:data:`TESTS`): ``"block"`` (one
+        block's ROTI against its threshold), ``"persistence"`` (15 min of
+        blocks), ``"coherence"`` (several satellites in one 5-min slot),
+        ``"three-frequency"``, ``"limit"`` (the carrier-multipath limit) or
+        ``"length"`` (a short remainder).
+    false_alarm : float or None
+        Stated false-alarm probability of that test under the series'
+        multipath null: its share of ``ScreeningOptions.false_alarm`` (per
+        block, per 15-min run or per 5-min slot); None where no probability
+        applies (``"limit"``, ``"length"``, the fixed threshold without a
+        null).
+    false_alarm_at_threshold : float or None
+        For the ``"block"`` test: the probability that a block of multipath
+        alone at that elevation exceeds the threshold the statistic was
+        compared with, under the fitted null. Equal to ``false_alarm`` where
+        the null's quantile sets the threshold, smaller where the ionospheric
+        significance level (``roti_threshold_tecu_min``) lies above it,
+        larger where an untrusted null's threshold is lowered to the
+        elevation-scaled fixed one. None for the other tests.
     """
 
     sat: str
@@ -47,6 +70,9 @@ class ExcludedSpan:
     kind: str
     statistic: float
     threshold: float
+    test: str = ""
+    false_alarm: float | None = None
+    false_alarm_at_threshold: float | None = None
 
     @property
     def duration_s(self) -> float:
@@ -63,6 +89,9 @@ class ExcludedSpan:
             "kind": self.kind,
             "statistic": self.statistic,
             "threshold": self.threshold,
+            "test": self.test,
+            "false_alarm": self.false_alarm,
+            "false_alarm_at_threshold": self.false_alarm_at_threshold,
         }
 
 
@@ -78,32 +107,31 @@ def block_spans(flags: NDArray[np.bool_], start: NDArray[np.float64], stop: NDAr
 
 
 def _iono_reason(
-    roti: NDArray, thr: NDArray, persist: NDArray, opt: Any, b0: int, b1: int
-) -> tuple[str, float, float]:
-    """Why a span of blocks is ionosphere: the test that flagged it, its statistic and limit."""
+    roti: NDArray, thr: NDArray, persist: NDArray, share: float, b0: int, b1: int
+) -> tuple[str, float, float, str, int]:
+    """Why a span of blocks is ionosphere: the reason, statistic, limit, test and its block.
+
+    The block whose ROTI is highest over its threshold names the span: above
+    the threshold, the single-block test; below it, the persistence test when
+    it flagged a block of the span, else the coherence test.
+    """
     ratio = roti[b0 : b1 + 1] / thr[b0 : b1 + 1]
     j = b0 + int(np.nanargmax(ratio))
     stat, th = float(roti[j]), float(thr[j])
     if stat > th:
-        return f"ROTI {stat:.2f} TECU/min > {th:.2f}", stat, th
+        return f"ROTI {stat:.2f} TECU/min > {th:.2f}", stat, th, "block", j
     if np.any(persist[b0 : b1 + 1]):
-        return (
-            (
-                f"ROTI up to {stat:.2f} TECU/min over 15 min, improbable under this series' "
-                f"multipath (false-alarm probability {opt.false_alarm:g})"
-            ),
-            stat,
-            th,
+        why = (
+            f"ROTI up to {stat:.2f} TECU/min over 15 min, improbable under this series' "
+            f"multipath (false-alarm probability {share:.2g} per 15-min run)"
         )
-    return (
-        (
-            f"ROTI up to {stat:.2f} TECU/min on several satellites in the same 5 min, "
-            f"improbable under this series' multipath, which is satellite-specific "
-            f"(false-alarm probability {opt.false_alarm:g})"
-        ),
-        stat,
-        th,
+        return why, stat, th, "persistence", j
+    why = (
+        f"ROTI up to {stat:.2f} TECU/min on several satellites in the same 5 min, "
+        f"improbable under this series' multipath, which is satellite-specific "
+        f"(false-alarm probability {share:.2g} per 5-min slot)"
     )
+    return why, stat, th, "coherence", j
 
 
 def _three_reason(
@@ -130,10 +158,27 @@ def _three_reason(
     stat = float(np.nanmax(bk["roti"][sel]))
     return (
         f"ROTI up to {stat:.2f} TECU/min with {what}, improbable under this series' "
-        f"multipath (false-alarm probability {opt.false_alarm:g})",
+        f"multipath (false-alarm probability {tf.false_alarm:.2g} per block)",
         stat,
         opt.roti_threshold_tecu_min,
     )
+
+
+def _block_false_alarm(
+    ctx: Mapping[str, Any], test: str, threshold: float, elevation_deg: float
+) -> tuple[float | None, float | None]:
+    """Return a span's stated false-alarm probability and, for one block, that at its threshold.
+
+    None without a multipath null (the fixed threshold states no probability).
+    """
+    null = ctx["null"]
+    if null is None:
+        return None, None
+    if test == "three-frequency":
+        return float(ctx["tf"].false_alarm), None
+    if test != "block":
+        return float(ctx["share"]), None
+    return float(ctx["share"]), float(null.exceedance(threshold, elevation_deg))
 
 
 def excluded_span(
@@ -146,7 +191,7 @@ def excluded_span(
     b1: int,
     ctx: Mapping[str, Any],
 ) -> ExcludedSpan:
-    """Return the excluded span of blocks ``b0..b1`` of one arc, with its reason."""
+    """Return the excluded span of blocks ``b0..b1`` of one arc, with its reason and test."""
     thr, flagged, persist, iono, implaus = flags
     limit, opt, vmax = ctx["limit"], ctx["opt"], bk["vmax"]
     t_a, t_b = float(t[sel][0]), float(t[sel][-1])
@@ -160,20 +205,24 @@ def excluded_span(
             "implausible",
             stat,
             limit,
+            "limit",
         )
     by_roti = flagged & (bk["named"] != "multipath")
     three = None if ctx["tf"] is None else _three_reason(bk, by_roti, ctx["tf"], opt, b0, b1)
     if three is not None and not np.any(by_roti[b0 : b1 + 1]):
-        why, stat, th = three
+        (why, stat, th), test, j = three, "three-frequency", b0
     else:
-        why, stat, th = _iono_reason(bk["roti"], thr, persist, opt, b0, b1)
+        why, stat, th, test, j = _iono_reason(bk["roti"], thr, persist, ctx["share"], b0, b1)
         why += "" if three is None else three[0]
     if np.any(implaus[b0 : b1 + 1]):  # a disturbance drives the series off limits too
         why += (
             f"; values up to {100 * float(vmax[b0 : b1 + 1].max()):.1f} cm beyond "
             f"the {100 * limit:.1f} cm carrier-multipath limit"
         )
-    return ExcludedSpan(sats, t_a, t_b, f"ionosphere: {why}", "ionosphere", stat, th)
+    fa, fa_thr = _block_false_alarm(ctx, test, th, float(bk["el"][j]))
+    return ExcludedSpan(
+        sats, t_a, t_b, f"ionosphere: {why}", "ionosphere", stat, th, test, fa, fa_thr
+    )
 
 
 def kept_pieces(
@@ -204,6 +253,7 @@ def kept_pieces(
                     "short remainder",
                     dur,
                     min_length_s,
+                    "length",
                 )
             )
     return kept, excluded, used

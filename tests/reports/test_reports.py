@@ -359,3 +359,94 @@ def test_results_return_their_figures(demo_doc):
     assert res.plot_windows() is not None and res.plot_screening() is not None
     with pytest.raises(psdbound.InputError, match="choose from"):
         res.plot("skyline")
+
+
+def _screening_doc():
+    """Three satellites of 2 h in 5-min blocks; one span cut per test, with its probability."""
+    t0 = 1.3e9
+    mids = t0 + 150.0 + 300.0 * np.arange(24)
+    roti = {"G02": np.full(24, 0.05), "G10": np.full(24, 0.05), "G07": np.full(24, 0.05)}
+    roti["G10"][4:7] = 0.6  # above its threshold of 0.3: the single-block test
+    roti["G07"][10:13] = 0.25  # below it: cut by the 15-min persistence test
+    entries = [
+        {
+            "sats": s,
+            "t_gps_s": mids.tolist(),
+            "roti_tecu_min": r.tolist(),
+            "threshold_tecu_min": [0.3] * 24,
+            "value_max_m": [0.004] * 24,
+            "excluded": [False] * 24,
+        }
+        for s, r in roti.items()
+    ]
+    excluded = [
+        {
+            "sat": "G10",
+            "start_gps_s": t0 + 1200.0,
+            "stop_gps_s": t0 + 2100.0,
+            "kind": "ionosphere",
+            "test": "block",
+            "false_alarm": 1e-3 / 3,
+            "false_alarm_at_threshold": 1e-3 / 3,
+        },
+        {
+            "sat": "G07",
+            "start_gps_s": t0 + 3000.0,
+            "stop_gps_s": t0 + 3900.0,
+            "kind": "ionosphere",
+            "test": "persistence",
+            "false_alarm": 1e-3 / 3,
+            "false_alarm_at_threshold": None,
+        },
+        {
+            "sat": "G07",
+            "start_gps_s": t0 + 3900.0,
+            "stop_gps_s": t0 + 4200.0,
+            "kind": "short remainder",
+            "test": "length",
+            "false_alarm": None,
+            "false_alarm_at_threshold": None,
+        },
+    ]
+    return {
+        "method": "DF",
+        "data_span": {"start_gps_s": t0, "stop_gps_s": t0 + 7200.0, "n_arcs": 3},
+        "screening": {
+            "excluded": excluded,
+            "excluded_s": 2100.0,
+            "multipath_null": {"trusted": True},
+            "false_alarm_per_block": 1e-3,
+            "block_test": {"false_alarm": 1e-3 / 3},
+        },
+        "figures": {
+            "t_ref_gps_s": t0,
+            "screening": {"roti": entries, "threshold_tecu_min": 0.15, "limit_m": 0.077},
+        },
+    }
+
+
+def test_screening_figure_shows_per_satellite_what_was_cut_and_why():
+    """Issue 29 item 4: lanes per satellite, blocks by statistic / threshold, spans by test."""
+    from psdbound.reports.figures_time import fig_screening
+
+    fig = fig_screening(_screening_doc())
+    ax = fig.axes[0]
+    assert [x.get_text() for x in ax.get_yticklabels()] == ["G02", "G07", "G10"]
+    polys = [c for c in ax.collections if isinstance(c, PolyCollection)]
+    blocks = polys[0]
+    assert len(blocks.get_paths()) == 72  # every block of every satellite
+    ratio = np.asarray(blocks.get_array()).reshape(3, 24)  # G02, G10, G07 in document order
+    assert ratio[1, 5] == pytest.approx(2.0) and ratio[2, 11] == pytest.approx(0.25 / 0.3)
+    # one outline collection per test, in the test's colour, in the satellite's lane
+    outlines = {tuple(np.round(c.get_edgecolor()[0][:3], 3)): c for c in polys[1:]}
+    assert len(outlines) == 3
+    red = outlines[(0.839, 0.153, 0.157)]  # the single-block test
+    y = red.get_paths()[0].vertices[:, 1]
+    assert 2 - 0.5 < y.min() and y.max() < 2 + 0.5  # G10's lane
+    legend = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert "one block's ROTI above its threshold (1; p = 0.00033)" in legend
+    assert "15 min improbable (persistence) (1; p = 0.00033)" in legend
+    assert "short remainder (1)" in legend
+    colorbar = [a for a in fig.axes if a.get_ylabel() == "ROTI / threshold [-]"]
+    assert len(colorbar) == 1
+    assert "multipath null at p = 0.00033 per block" in fig._suptitle.get_text()

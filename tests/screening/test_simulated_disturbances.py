@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import psdbound
+from psdbound.screening.spans import TESTS
 from psdbound.simulate import IonoDisturbance, MultipathModel, preset, simulate
 
 F_C_HZ = 9.55e-4
@@ -90,3 +91,15 @@ def test_disturbed_time_is_excluded_and_the_bound_is_unchanged(pair):
     assert fit.verdict == clean.verdict == "bounded"
     reasons = {e["kind"] for e in fit.document["screening"]["excluded"]}
     assert "ionosphere" in reasons
+    # every entry names its test; the ionosphere ones carry the false-alarm probability used
+    scr = fit.document["screening"]
+    share = scr["block_test"]["false_alarm"]
+    assert share == pytest.approx(scr["false_alarm_per_block"] / 3)
+    for e in scr["excluded"]:
+        assert e["test"] in TESTS
+        if e["kind"] == "ionosphere":
+            assert e["false_alarm"] == pytest.approx(share)
+            if e["test"] == "block":
+                assert 0.0 <= e["false_alarm_at_threshold"] <= share * (1 + 1e-9)
+        else:
+            assert e["false_alarm"] is None
