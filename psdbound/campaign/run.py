@@ -292,28 +292,33 @@ def run_campaign(
         anything is computed).
     """
     from psdbound.campaign.pool import pool_stations
-    from psdbound.compute import run_tasks
+    from psdbound.compute import lazy_client, run_tasks
     from psdbound.version import __version__
 
     cfg = _day_options(options)
     plan = plan_campaign(obs, nav, system=cfg.inputs.system)
     items = [_item(sd, options or {}) for sd in plan]
+    # one client for both passes (a second local cluster, forked after the first, can hang)
+    with lazy_client(workers=workers, scheduler=scheduler) as client:
 
-    def fit_days(todo: list[dict[str, Any]]) -> Any:
-        return run_tasks(
-            station_day_task,
-            todo,
-            workers=workers,
-            scheduler=scheduler,
-            cache=_cache(cache_dir),
-            progress=progress,
+        def fit_days(todo: list[dict[str, Any]]) -> Any:
+            return run_tasks(
+                station_day_task,
+                todo,
+                workers=workers,
+                scheduler=scheduler,
+                cache=_cache(cache_dir),
+                progress=progress,
+                client=None if workers == 0 and scheduler is None else client,
+            )
+
+        run = fit_days(items)
+        results = list(run.results)
+        first = [r.get("document") for r in results]
+        repeats = sidereal_repeats(items, first)
+        kept, n_again = (
+            _keep_repeating_spans(items, results, fit_days) if sidereal_keep else ([], 0)
         )
-
-    run = fit_days(items)
-    results = list(run.results)
-    first = [r.get("document") for r in results]
-    repeats = sidereal_repeats(items, first)
-    kept, n_again = _keep_repeating_spans(items, results, fit_days) if sidereal_keep else ([], 0)
     stations, pooled = pool_stations(results, bound_options=cfg.bound, verdict_options=cfg.verdict)
     days = [
         _public(r, it, any(r is p for p in pooled)) for r, it in zip(results, items, strict=True)

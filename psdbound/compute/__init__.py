@@ -36,7 +36,12 @@ if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
         cache_key,
         default_cache_dir,
     )
-    from psdbound.compute.cluster import START_METHODS, dask_client, default_start_method
+    from psdbound.compute.cluster import (
+        START_METHODS,
+        dask_client,
+        default_start_method,
+        lazy_client,
+    )
     from psdbound.compute.runner import TaskRun, run_tasks
 
 __all__ = [
@@ -50,6 +55,7 @@ __all__ = [
     "dask_client",
     "default_cache_dir",
     "default_start_method",
+    "lazy_client",
     "run_tasks",
 ]
 
@@ -63,6 +69,7 @@ _EXPORTS = {
     "default_cache_dir": ("psdbound.compute.cache", "default_cache_dir"),
     "START_METHODS": ("psdbound.compute.cluster", "START_METHODS"),
     "dask_client": ("psdbound.compute.cluster", "dask_client"),
+    "lazy_client": ("psdbound.compute.cluster", "lazy_client"),
     "default_start_method": ("psdbound.compute.cluster", "default_start_method"),
     "TaskRun": ("psdbound.compute.runner", "TaskRun"),
     "run_tasks": ("psdbound.compute.runner", "run_tasks"),

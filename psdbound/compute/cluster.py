@@ -19,12 +19,12 @@ from __future__ import annotations
 import contextlib
 import logging
 import sys
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from typing import Any
 
 from psdbound.errors import InputError
 
-__all__ = ["START_METHODS", "dask_client", "default_start_method"]
+__all__ = ["START_METHODS", "dask_client", "default_start_method", "lazy_client"]
 
 #: How local worker processes start: forked from this process, or fresh interpreters.
 START_METHODS = ("fork", "spawn", "forkserver")
@@ -98,3 +98,39 @@ def dask_client(
         client.close()
         if cluster is not None:
             cluster.close()
+
+
+@contextlib.contextmanager
+def lazy_client(*, workers: int = 2, scheduler: str | None = None) -> Iterator[Callable[[], Any]]:
+    """Yield a function that opens one Dask client at its first call, closed on exit.
+
+    For a run of several passes (a campaign's fits, then the days fitted
+    again): every pass uses the same client, and none is opened when every
+    result comes from the cache. A second local cluster would fork its
+    workers from a process whose first client left threads running (its
+    event loop), and a fork taken while another thread holds a lock can
+    deadlock the child: a campaign stalled at 0 % CPU after its first pass.
+
+    Parameters
+    ----------
+    workers : int, default 2
+        Workers of the local cluster (:func:`dask_client`).
+    scheduler : str, optional
+        Address of a running scheduler instead.
+
+    Yields
+    ------
+    callable
+        ``get() -> dask.distributed.Client``.
+    """
+    with contextlib.ExitStack() as stack:
+        opened: list[Any] = []
+
+        def get() -> Any:
+            if not opened:
+                opened.append(
+                    stack.enter_context(dask_client(workers=workers, scheduler=scheduler))
+                )
+            return opened[0]
+
+        yield get

@@ -63,6 +63,7 @@ def run_tasks(
     scheduler: str | None = None,
     cache: TaskCache | None = None,
     progress: Callable[[int, int], None] | None = None,
+    client: Callable[[], Any] | None = None,
 ) -> TaskRun:
     """Compute ``func(item)`` for every item, reading cached results instead.
 
@@ -83,6 +84,11 @@ def run_tasks(
     progress : callable, optional
         ``progress(done, total)`` after each computed task (``total`` counts
         the tasks to compute, not the cached ones).
+    client : callable, optional
+        ``client() -> dask.distributed.Client`` to submit to (e.g. from
+        :func:`~psdbound.compute.cluster.lazy_client`, shared by the passes
+        of one run) instead of opening a cluster for this call; ``workers``
+        and ``scheduler`` are then not used.
 
     Returns
     -------
@@ -116,7 +122,7 @@ def run_tasks(
         if progress:
             progress(n_done, len(todo))
 
-    _compute(func, [todo_items[i] for i in todo], workers, scheduler, done)
+    _compute(func, [todo_items[i] for i in todo], workers, scheduler, done, client)
     return TaskRun(results=results, from_cache=cached, elapsed_s=time.perf_counter() - t0)
 
 
@@ -126,18 +132,29 @@ def _compute(
     workers: int,
     scheduler: str | None,
     done: Callable[[int, Any, int], None],
+    client: Callable[[], Any] | None = None,
 ) -> None:
     """Compute ``func`` over ``items``; call ``done(index, result, n_done)`` as each ends."""
     if not items:
         return
-    if scheduler is None and workers == 0:
+    if client is None and scheduler is None and workers == 0:
         for j, item in enumerate(items):
             done(j, func(item), j + 1)
         return
+    if client is not None:
+        _submit(client(), func, items, done)
+        return
+    with dask_client(workers=workers, scheduler=scheduler) as opened:
+        _submit(opened, func, items, done)
+
+
+def _submit(
+    client: Any, func: Callable[[Any], Any], items: list[Any], done: Callable[[int, Any, int], None]
+) -> None:
+    """Map ``func`` over ``items`` on ``client``; call ``done`` as each result arrives."""
     from dask.distributed import as_completed
 
-    with dask_client(workers=workers, scheduler=scheduler) as client:
-        futures = client.map(func, items, pure=False)
-        index = {f.key: j for j, f in enumerate(futures)}
-        for n_done, fut in enumerate(as_completed(futures), start=1):
-            done(index[fut.key], fut.result(), n_done)
+    futures = client.map(func, items, pure=False)
+    index = {f.key: j for j, f in enumerate(futures)}
+    for n_done, fut in enumerate(as_completed(futures), start=1):
+        done(index[fut.key], fut.result(), n_done)

@@ -129,3 +129,38 @@ def test_code_digest_keys_results_to_the_code_that_computed_them():
 
     d = code_digest()
     assert re.fullmatch("[0-9a-f]{16}", d) and d == code_digest()
+
+
+def test_passes_share_one_lazy_client(tmp_path, monkeypatch):
+    """Two passes, one cluster; every result cached: no cluster at all.
+
+    A campaign fits its days, then fits some again: a second local cluster forked after
+    the first one's threads started could hang (seen: 0 % CPU after the first pass).
+    """
+    import contextlib
+
+    from dask.distributed import LocalCluster
+
+    import psdbound.compute.cluster as cluster_mod
+
+    opened = []
+    with LocalCluster(
+        n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None
+    ) as cluster:
+
+        @contextlib.contextmanager
+        def counting(**kw):
+            opened.append(kw)
+            with dask_client(scheduler=cluster.scheduler_address) as c:
+                yield c
+
+        monkeypatch.setattr(cluster_mod, "dask_client", counting)
+        cache = DiskCache(tmp_path, key=_key)
+        with cluster_mod.lazy_client(workers=2) as client:
+            first = run_tasks(square, [{"x": 1.0}, {"x": 2.0}], cache=cache, client=client)
+            second = run_tasks(square, [{"x": 3.0}], cache=cache, client=client)
+        assert [r["y"] for r in first.results + second.results] == [1.0, 4.0, 9.0]
+        assert len(opened) == 1
+        with cluster_mod.lazy_client(workers=2) as client:
+            again = run_tasks(square, [{"x": 3.0}], cache=cache, client=client)
+        assert again.from_cache == [True] and len(opened) == 1
