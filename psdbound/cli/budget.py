@@ -23,26 +23,184 @@ from __future__ import annotations
 import argparse
 import datetime as dt
 import math
+from dataclasses import dataclass
 from typing import Any
 
 from psdbound.cli.actions import Once
 from psdbound.cli.config_file import add_config_option
+from psdbound.cli.schema import CliOption, Schema, SchemaHelpFormatter, add_options, read_options
+from psdbound.common.options import Choice, Number, check_fields, option
 from psdbound.errors import InputError
 
-__all__ = ["add_parser", "run"]
+__all__ = ["OPTIONS", "SCHEMA", "BudgetOptions", "add_parser", "run"]
 
 #: Most epochs one run evaluates (--hours * 3600 / --step-s).
 MAX_EPOCHS = 100_000
-_SERIES_OPTIONS = {
-    "position": "--position",
-    "start": "--start",
-    "hours": "--hours",
-    "step_s": "--step-s",
-    "mask_deg": "--mask-deg",
-    "val_m": "--val-m",
-    "systems": "--systems",
-}
+#: The options of the VPL over time (an error naming them with --sat).
+_SERIES_OPTIONS = ("position", "start", "hours", "step_s", "mask_deg", "val_m", "systems")
 _SYSTEM_NAMES = {"G": "GPS (G)", "E": "Galileo (E)"}
+_SYSTEMS = ("G", "E", "GE")
+
+
+@dataclass(frozen=True)
+class BudgetOptions:
+    """The options of ``psdbound budget``.
+
+    The model's names and defaults are the keywords of
+    :func:`psdbound.aviation.error_budget` (seed 004 Table 4; a test keeps
+    them equal) and of :func:`psdbound.aviation.multipliers`; the geometry
+    is ``sats`` (one epoch) or ``nominal`` / ``nav`` over time, with the
+    options of :func:`psdbound.aviation.sky_over`.
+    """
+
+    sats: tuple[str, ...] = ()
+    nominal: str | None = option(None, Choice(_SYSTEMS, optional=True, noun="constellation"))
+    nav: str | None = None
+    process: str = option("SF", Choice(("SF", "DF", "IF"), noun="smoothing process"))
+    base_frequency: str = option("L1", Choice(("L1", "L5"), noun="frequency"))
+    tau_gnd_s: float = option(100.0, Number(unit="s"))
+    tau_air_s: float = option(100.0, Number(unit="s"))
+    gad: str = option("B", Choice(("A", "B", "C"), noun="ground designator"))
+    n_receivers: int = option(3, Number(integer=True))
+    rho: float = option(0.1, Number())
+    x_air_m: float = option(5000.0, Number(unit="m"))
+    k_md_e: float | None = option(None, Number(optional=True))
+    k_ffmd: float | None = option(None, Number(optional=True))
+    xi_formula: str = option("exact", Choice(("exact", "seed", "steady_state"), noun="formula"))
+    out: str | None = None
+    position: str | None = None
+    systems: str | None = option(None, Choice(_SYSTEMS, optional=True, noun="systems"))
+    start: str | None = None
+    hours: float = option(24.0, Number(unit="h"))
+    step_s: float = option(300.0, Number(unit="s"))
+    mask_deg: float = option(5.0, Number(unit="deg"))
+    val_m: float | None = option(None, Number(unit="m", optional=True))
+
+    def __post_init__(self) -> None:
+        check_fields(self)
+
+    def budget_options(self) -> dict[str, Any]:
+        """Return the keywords of :func:`psdbound.aviation.error_budget` these options set."""
+        names = ("process", "base_frequency", "tau_gnd_s", "tau_air_s", "gad", "rho")
+        return {
+            **{n: getattr(self, n) for n in names},
+            "x_air_m": self.x_air_m,
+            "xi_formula": self.xi_formula,
+        }
+
+
+#: The schema of ``budget``'s options.
+SCHEMA = Schema({"budget": "psdbound.cli.budget:BudgetOptions"})
+
+_O = CliOption
+_B = "budget"
+_G_TIME = "over time (--nominal, --nav)"
+#: Every ``budget`` option: its schema field, flag, help and group (None: ``options``).
+OPTIONS: tuple[CliOption, ...] = (
+    _O(
+        _B,
+        "sats",
+        ("--sat",),
+        "satellite azimuth,elevation in deg, repeatable (required, at least 4, "
+        "unless --nominal or --nav)",
+        None,
+        {"action": "append", "metavar": "AZ,EL"},
+        exclusive="geometry",
+    ),
+    _O(
+        _B,
+        "nominal",
+        ("--nominal",),
+        "VPL over time for the nominal GPS 24-slot / Galileo Walker 24/3/1 "
+        "constellations (default: none)",
+        None,
+        exclusive="geometry",
+    ),
+    _O(
+        _B,
+        "nav",
+        ("--nav",),
+        "VPL over time for the orbits of a RINEX navigation or SP3 file (default: none)",
+        None,
+        {"action": Once, "metavar": "FILE"},
+        exclusive="geometry",
+    ),
+    _O(_B, "process", ("--process",), "smoothing process", None),
+    _O(_B, "base_frequency", ("--frequency",), "base frequency of SF/DF", None),
+    _O(_B, "tau_gnd_s", ("--tau-gnd",), "ground smoothing, s", None),
+    _O(_B, "tau_air_s", ("--tau-air",), "airborne smoothing, s", None),
+    _O(_B, "gad", ("--gad",), "ground designator", None),
+    _O(_B, "n_receivers", ("--receivers",), "reference receivers M, count", None),
+    _O(_B, "rho", ("--rho",), "ground multipath correlation, dimensionless", None),
+    _O(_B, "x_air_m", ("--x-air-km",), "distance to reference, km", None, scale=1000.0, unit="km"),
+    _O(
+        _B,
+        "k_md_e",
+        ("--k-md-e",),
+        "ephemeris missed-detection multiplier K_md_e of VPL_eph, dimensionless "
+        "(required: broadcast by the ground station in Message Type 2; no standard value)",
+        None,
+    ),
+    _O(
+        _B,
+        "k_ffmd",
+        ("--k-ffmd",),
+        "fault-free multiplier K_ffmd, dimensionless (default: the table for --receivers, "
+        "entered from memory and not verified against the standard; its source is printed)",
+        None,
+    ),
+    _O(
+        _B,
+        "xi_formula",
+        ("--xi-formula",),
+        "smoothing-time ratio xi: exact variance of seed 004's smoother, the seed's "
+        "printed eq. A6 (reproduces its Table 1), or the converged Hatch filter",
+        None,
+    ),
+    _O(
+        _B,
+        "out",
+        ("--out",),
+        "folder for budget.json (--sat) or vpl.json and vpl.png (--nominal, --nav) (default: none)",
+        None,
+    ),
+    _O(
+        _B,
+        "position",
+        ("--position",),
+        "user position: geodetic latitude and longitude in deg, WGS84 height in m "
+        "(required with --nominal/--nav)",
+        _G_TIME,
+        {"metavar": "LAT,LON,H"},
+    ),
+    _O(
+        _B,
+        "systems",
+        ("--systems",),
+        "systems of the --nav file to use (default: GE; --nominal names its own)",
+        _G_TIME,
+    ),
+    _O(
+        _B,
+        "start",
+        ("--start",),
+        "first epoch, ISO date-time in GPS time (default: 2009-01-01T00:00:00, seed "
+        "004's, for --nominal; for --nav 00:00 of the first whole day the file covers, "
+        "else its first record time)",
+        _G_TIME,
+        {"metavar": "ISO"},
+    ),
+    _O(_B, "hours", ("--hours",), "duration, h", _G_TIME),
+    _O(_B, "step_s", ("--step-s",), "time between epochs, s", _G_TIME),
+    _O(_B, "mask_deg", ("--mask-deg",), "elevation mask, deg", _G_TIME),
+    _O(
+        _B,
+        "val_m",
+        ("--val-m",),
+        "vertical alert limit, m: prints the availability (default: none)",
+        _G_TIME,
+    ),
+)
 
 
 def add_parser(subparsers: Any) -> None:
@@ -55,6 +213,7 @@ def add_parser(subparsers: Any) -> None:
     """
     p = subparsers.add_parser(
         "budget",
+        formatter_class=SchemaHelpFormatter,
         help="LADGNSS error budget and vertical protection level for a geometry",
         description="Error budget of a local-area differential GNSS user (ground "
         "reference receivers of accuracy class GAD, an airborne receiver of class AAD-A, "
@@ -68,147 +227,45 @@ def add_parser(subparsers: Any) -> None:
         "--sat 200,47 --sat 260,60 --tau-gnd 30 --tau-air 30; "
         "psdbound budget --nominal GE --position 55.49,8.46,59 --val-m 10 --out vpl/",
     )
-    mode = p.add_mutually_exclusive_group()
-    mode.add_argument(
-        "--sat",
-        action="append",
-        default=[],
-        metavar="AZ,EL",
-        help="satellite azimuth,elevation in deg, repeatable (required, at least 4, "
-        "unless --nominal or --nav)",
-    )
-    mode.add_argument(
-        "--nominal",
-        choices=("G", "E", "GE"),
-        help="VPL over time for the nominal GPS 24-slot / Galileo Walker 24/3/1 "
-        "constellations (default: none)",
-    )
-    mode.add_argument(
-        "--nav",
-        action=Once,
-        metavar="FILE",
-        help="VPL over time for the orbits of a RINEX navigation or SP3 file (default: none)",
-    )
-    p.add_argument(
-        "--process",
-        choices=("SF", "DF", "IF"),
-        default="SF",
-        help="smoothing process (default: SF)",
-    )
-    p.add_argument(
-        "--frequency",
-        choices=("L1", "L5"),
-        default="L1",
-        help="base frequency of SF/DF (default: L1)",
-    )
-    p.add_argument(
-        "--tau-gnd", type=float, default=100.0, help="ground smoothing, s (default: 100)"
-    )
-    p.add_argument(
-        "--tau-air", type=float, default=100.0, help="airborne smoothing, s (default: 100)"
-    )
-    p.add_argument(
-        "--gad", choices=("A", "B", "C"), default="B", help="ground designator (default: B)"
-    )
-    p.add_argument(
-        "--receivers", type=int, default=3, help="reference receivers M, count (default: 3)"
-    )
-    p.add_argument(
-        "--rho",
-        type=float,
-        default=0.1,
-        help="ground multipath correlation, dimensionless (default: 0.1)",
-    )
-    p.add_argument(
-        "--x-air-km", type=float, default=5.0, help="distance to reference, km (default: 5)"
-    )
-    p.add_argument(
-        "--k-md-e",
-        type=float,
-        help="ephemeris missed-detection multiplier K_md_e of VPL_eph, dimensionless "
-        "(required: broadcast by the ground station in Message Type 2; no standard value)",
-    )
-    p.add_argument(
-        "--k-ffmd",
-        type=float,
-        help="fault-free multiplier K_ffmd, dimensionless (default: the table for --receivers, "
-        "entered from memory and not verified against the standard; its source is printed)",
-    )
-    p.add_argument(
-        "--xi-formula",
-        choices=("exact", "seed", "steady_state"),
-        default="exact",
-        help="smoothing-time ratio xi: exact variance of seed 004's smoother, the seed's "
-        "printed eq. A6 (reproduces its Table 1), or the converged Hatch filter "
-        "(default: exact)",
-    )
-    p.add_argument(
-        "--out",
-        help="folder for budget.json (--sat) or vpl.json and vpl.png (--nominal, --nav) "
-        "(default: none)",
-    )
-    s = p.add_argument_group("over time (--nominal, --nav)")
-    s.add_argument(
-        "--position",
-        metavar="LAT,LON,H",
-        help="user position: geodetic latitude and longitude in deg, WGS84 height in m "
-        "(required with --nominal/--nav)",
-    )
-    s.add_argument(
-        "--systems",
-        choices=("G", "E", "GE"),
-        help="systems of the --nav file to use (default: GE; --nominal names its own)",
-    )
-    s.add_argument(
-        "--start",
-        metavar="ISO",
-        help="first epoch, ISO date-time in GPS time (default: 2009-01-01T00:00:00, seed "
-        "004's, for --nominal; for --nav 00:00 of the first whole day the file covers, "
-        "else its first record time)",
-    )
-    s.add_argument("--hours", type=float, help="duration, h (default: 24)")
-    s.add_argument("--step-s", type=float, help="time between epochs, s (default: 300)")
-    s.add_argument("--mask-deg", type=float, help="elevation mask, deg (default: 5)")
-    s.add_argument(
-        "--val-m",
-        type=float,
-        help="vertical alert limit, m: prints the availability (default: none)",
-    )
+    add_options(p, OPTIONS, SCHEMA.spec, groups=(None, _G_TIME), defaults=SCHEMA.default)
     add_config_option(p)
     p.set_defaults(func=run)
 
 
-def _budget_options(args: argparse.Namespace) -> dict[str, Any]:
-    return {
-        "process": args.process,
-        "base_frequency": args.frequency,
-        "tau_gnd_s": args.tau_gnd,
-        "tau_air_s": args.tau_air,
-        "gad": args.gad,
-        "rho": args.rho,
-        "x_air_m": 1000.0 * args.x_air_km,
-        "xi_formula": args.xi_formula,
-    }
-
-
-def _k_options(args: argparse.Namespace) -> dict[str, Any]:
+def _k_options(opts: BudgetOptions) -> dict[str, Any]:
     """``k_md_e``, ``k_ffmd``, ``n_receivers`` checked once (exit 2 naming the option)."""
     from psdbound.aviation import multipliers
 
-    if args.k_md_e is None:
+    if opts.k_md_e is None:
         raise InputError(
             "--k-md-e is required: the ephemeris missed-detection multiplier K_md_e of VPL_eph "
             "is broadcast by the ground station (Message Type 2) and no standard fixes its "
             "value; give the one of the station you analyse (e.g. --k-md-e 5.0)"
         )
-    if args.receivers < 1:
-        raise InputError(f"--receivers must be >= 1, got {args.receivers}")
+    if opts.n_receivers < 1:
+        raise InputError(f"--receivers must be >= 1, got {opts.n_receivers}")
     try:
-        multipliers(n_receivers=args.receivers, k_ffmd=args.k_ffmd, k_md_e=args.k_md_e)
+        multipliers(n_receivers=opts.n_receivers, k_ffmd=opts.k_ffmd, k_md_e=opts.k_md_e)
     except InputError as exc:
         msg = exc.reason.replace("k_md_e", "--k-md-e").replace("k_ffmd", "--k-ffmd")
         raise InputError(msg.replace("M = ", "--receivers ")) from None
-    return {"k_md_e": args.k_md_e, "k_ffmd": args.k_ffmd, "n_receivers": args.receivers}
+    return {"k_md_e": opts.k_md_e, "k_ffmd": opts.k_ffmd, "n_receivers": opts.n_receivers}
+
+
+def _sats(opts: BudgetOptions) -> tuple[list[float], list[float]]:
+    """``--sat AZ,EL`` (at least 4) -> azimuths and elevations, degrees."""
+    az, el = [], []
+    for s in opts.sats:
+        try:
+            a, e = (float(v) for v in s.split(","))
+        except ValueError:
+            raise InputError(f"--sat {s!r}: expected AZ,EL in degrees, e.g. 80,25") from None
+        az.append(a)
+        el.append(e)
+    if len(el) < 4:
+        more = "" if el else ", or --nominal / --nav with --position for the VPL over time"
+        raise InputError(f"give at least 4 --sat AZ,EL (got {len(el)}){more}")
+    return az, el
 
 
 def run(args: argparse.Namespace) -> int:
@@ -231,40 +288,32 @@ def run(args: argparse.Namespace) -> int:
         ``--nav`` file without the systems or a ``--start`` outside its span,
         bad options or geometry.
     """
-    if getattr(args, "nominal", None) or getattr(args, "nav", None):
-        return _run_series(args)
-    given = [f for name, f in _SERIES_OPTIONS.items() if getattr(args, name, None) is not None]
-    if given:
-        verb = "applies" if len(given) == 1 else "apply"
-        raise InputError(f"{', '.join(given)} {verb} only to --nominal / --nav, not to --sat")
+    given = read_options(args, OPTIONS, SCHEMA.spec).get(_B, {})
+    opts = SCHEMA.build(_B, given)
+    if opts.nominal or opts.nav:
+        return _run_series(opts)
+    series = [o.flag for o in OPTIONS if o.name in _SERIES_OPTIONS and o.name in given]
+    if series:
+        verb = "applies" if len(series) == 1 else "apply"
+        raise InputError(f"{', '.join(series)} {verb} only to --nominal / --nav, not to --sat")
     from psdbound.aviation import budget_document, budget_report
 
-    az, el = [], []
-    for s in args.sat:
-        try:
-            a, e = (float(v) for v in s.split(","))
-        except ValueError:
-            raise InputError(f"--sat {s!r}: expected AZ,EL in degrees, e.g. 80,25") from None
-        az.append(a)
-        el.append(e)
-    if len(el) < 4:
-        more = "" if el else ", or --nominal / --nav with --position for the VPL over time"
-        raise InputError(f"give at least 4 --sat AZ,EL (got {len(el)}){more}")
-    kopts = _k_options(args)
-    if args.out:
+    az, el = _sats(opts)
+    kopts = _k_options(opts)
+    if opts.out:
         from psdbound.common.outputs import check_writable_folder
 
-        check_writable_folder(args.out, option="--out")
-    print(budget_report(az, el, **kopts, **_budget_options(args)))
-    if args.out:
+        check_writable_folder(opts.out, option="--out")
+    print(budget_report(az, el, **kopts, **opts.budget_options()))
+    if opts.out:
         from pathlib import Path
 
         from psdbound.results import write_json
 
-        doc = budget_document(az, el, **kopts, **_budget_options(args))
-        path = write_json(Path(args.out) / "budget.json", {"budget": doc})
+        doc = budget_document(az, el, **kopts, **opts.budget_options())
+        path = write_json(Path(opts.out) / "budget.json", {"budget": doc})
         print(f"wrote {path}")
-        print(f"wrote {_budget_page(Path(args.out) / 'budget.html', doc)}")
+        print(f"wrote {_budget_page(Path(opts.out) / 'budget.html', doc)}")
     return 0
 
 
@@ -342,12 +391,11 @@ def _label(t_gps_s: float) -> str:
     return str(gps_s_to_datetime64(t_gps_s).astype("datetime64[s]")).replace("T", " ")
 
 
-def _positive(value: float | None, default: float, flag: str, unit: str) -> float:
-    """``value`` (or the default when None) if finite and > 0, else an error naming ``flag``."""
-    v = default if value is None else value
-    if not (math.isfinite(v) and v > 0):
-        raise InputError(f"{flag} must be > 0 {unit}, got {v:g}")
-    return v
+def _positive(value: float, flag: str, unit: str) -> float:
+    """``value`` if finite and > 0, else an error naming ``flag``."""
+    if not (math.isfinite(value) and value > 0):
+        raise InputError(f"{flag} must be > 0 {unit}, got {value:g}")
+    return value
 
 
 def _nav_orbit(path: str, systems: str, start: str | None) -> tuple[Any, tuple[float, float]]:
@@ -386,65 +434,72 @@ def _nav_orbit(path: str, systems: str, start: str | None) -> tuple[Any, tuple[f
     return orbit, (t0, hi)
 
 
-def _run_series(args: argparse.Namespace) -> int:
+def _epochs(opts: BudgetOptions) -> int:
+    """Check ``--hours``, ``--step-s``, ``--mask-deg``, ``--val-m``; return the number of epochs."""
+    _positive(opts.hours, "--hours", "h")
+    _positive(opts.step_s, "--step-s", "s")
+    if not 0.0 <= opts.mask_deg < 90.0:
+        raise InputError(f"--mask-deg must be in [0, 90) deg, got {opts.mask_deg:g}")
+    if opts.val_m is not None:
+        _positive(opts.val_m, "--val-m", "m")
+    n_epochs = math.ceil(opts.hours * 3600.0 / opts.step_s)
+    if n_epochs > MAX_EPOCHS:
+        raise InputError(
+            f"--hours {opts.hours:g} at --step-s {opts.step_s:g} gives {n_epochs} epochs; at "
+            f"most {MAX_EPOCHS} (raise --step-s)"
+        )
+    return n_epochs
+
+
+def _orbit(opts: BudgetOptions) -> tuple[Any, str, float, float]:
+    """Return the orbit of ``--nominal`` or ``--nav``, its systems, first epoch and span end."""
+    from psdbound.aviation import SEED004_START_GPS_S, nominal_orbit
+
+    if opts.nominal:
+        if opts.systems:
+            raise InputError("--systems applies to --nav; --nominal names the constellations")
+        t0 = SEED004_START_GPS_S if opts.start is None else _start(opts.start)
+        duration_s = opts.hours * 3600.0
+        orbit = nominal_orbit(opts.nominal, start_gps_s=t0, duration_s=duration_s)
+        return orbit, opts.nominal, t0, math.inf
+    systems = opts.systems or "GE"
+    orbit, (t0, end) = _nav_orbit(opts.nav, systems, opts.start)
+    return orbit, systems, t0, end
+
+
+def _run_series(opts: BudgetOptions) -> int:
     """``--nominal`` / ``--nav``: the VPL over time."""
-    from psdbound.aviation import (
-        SEED004_START_GPS_S,
-        nominal_orbit,
-        sky_over,
-        vpl_series,
-        write_vpl_series,
-    )
+    from psdbound.aviation import sky_over, vpl_series, write_vpl_series
     from psdbound.common.notices import warn
     from psdbound.common.outputs import check_writable_folder
     from psdbound.io.geometry import geodetic_to_ecef
 
-    lat, lon, h = _position(args.position)
-    kopts = _k_options(args)
-    hours = _positive(args.hours, 24.0, "--hours", "h")
-    step = _positive(args.step_s, 300.0, "--step-s", "s")
-    mask = 5.0 if args.mask_deg is None else args.mask_deg
-    if not 0.0 <= mask < 90.0:
-        raise InputError(f"--mask-deg must be in [0, 90) deg, got {mask:g}")
-    if args.val_m is not None:
-        _positive(args.val_m, 0.0, "--val-m", "m")
-    n_epochs = math.ceil(hours * 3600.0 / step)
-    if n_epochs > MAX_EPOCHS:
-        raise InputError(
-            f"--hours {hours:g} at --step-s {step:g} gives {n_epochs} epochs; at most "
-            f"{MAX_EPOCHS} (raise --step-s)"
-        )
-    if args.out:
-        check_writable_folder(args.out, option="--out")
-    if args.nominal:
-        if args.systems:
-            raise InputError("--systems applies to --nav; --nominal names the constellations")
-        systems = args.nominal
-        t0 = SEED004_START_GPS_S if args.start is None else _start(args.start)
-        orbit, end = nominal_orbit(systems, start_gps_s=t0, duration_s=hours * 3600.0), math.inf
-    else:
-        systems = args.systems or "GE"
-        orbit, (t0, end) = _nav_orbit(args.nav, systems, args.start)
-    t = [t0 + step * k for k in range(n_epochs)]
+    lat, lon, h = _position(opts.position)
+    kopts = _k_options(opts)
+    n_epochs = _epochs(opts)
+    if opts.out:
+        check_writable_folder(opts.out, option="--out")
+    orbit, systems, t0, end = _orbit(opts)
+    t = [t0 + opts.step_s * k for k in range(n_epochs)]
     if t[-1] > end:
         warn(
             f"epochs after {_label(end)} GPS are beyond the --nav file's span: no orbit, "
             f"they count as unavailable"
         )
     rx = geodetic_to_ecef(lat, lon, h)
-    sky = sky_over(orbit, rx, t, systems=systems, elevation_mask_deg=mask)
-    series = vpl_series(sky, **kopts, **_budget_options(args))
+    sky = sky_over(orbit, rx, t, systems=systems, elevation_mask_deg=opts.mask_deg)
+    series = vpl_series(sky, **kopts, **opts.budget_options())
     print(
-        f"user at {lat:.4f} deg N, {lon:.4f} deg E, {h:g} m; {args.process} "
-        f"{args.frequency}, tau {args.tau_gnd:g}/{args.tau_air:g} s, GAD-{args.gad}, "
-        f"M = {args.receivers}, rho = {args.rho:g}, x_air = {args.x_air_km:g} km, "
-        f"xi {args.xi_formula}"
+        f"user at {lat:.4f} deg N, {lon:.4f} deg E, {h:g} m; {opts.process} "
+        f"{opts.base_frequency}, tau {opts.tau_gnd_s:g}/{opts.tau_air_s:g} s, GAD-{opts.gad}, "
+        f"M = {opts.n_receivers}, rho = {opts.rho:g}, x_air = {opts.x_air_m / 1000.0:g} km, "
+        f"xi {opts.xi_formula}"
     )
     k = series.options["multipliers"]
     print(f"K_ffmd = {k['k_ffmd']['value']:.3f} ({k['k_ffmd']['source']})")
     print(f"K_md_e = {k['k_md_e']['value']:.3f} ({k['k_md_e']['source']})")
-    print(series.summary(val_m=args.val_m))
-    if args.out:
-        for f in write_vpl_series(series, args.out, val_m=args.val_m):
+    print(series.summary(val_m=opts.val_m))
+    if opts.out:
+        for f in write_vpl_series(series, opts.out, val_m=opts.val_m):
             print(f"wrote {f}")
     return 0

@@ -7,9 +7,11 @@ that take options (``cutoff``, ``validate``, ``overbound``, ``budget``,
 dashes (``min_samples = 50`` for ``--min-samples 50``), at the top level or
 in a table named after the command (``[overbound]``). Each value goes through
 the same conversion and checks as the flag (its type, its choices, its
-number of values), so a file and a command line cannot mean different
-things; a flag given on the command line wins over the file; an unknown key
-or a value of the wrong kind is an error naming the file and the key.
+number of values here; its range when the command reads its options from
+its schema, :func:`psdbound.cli.schema.read_options`), so a file and a
+command line cannot mean different things; a flag given on the command line
+wins over the file; an unknown key or a value of the wrong kind is an error
+naming the file and the key.
 """
 
 from __future__ import annotations

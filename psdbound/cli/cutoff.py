@@ -29,18 +29,276 @@ turns into exit code 2.
 from __future__ import annotations
 
 import argparse
+from dataclasses import dataclass
 from typing import Any
 
 from psdbound.cli.actions import Once
 from psdbound.cli.config_file import add_config_option
-from psdbound.common.progress import counter
+from psdbound.cli.schema import CliOption, Schema, SchemaHelpFormatter, add_options, read_options
+from psdbound.common.options import Number, check_fields, option
 from psdbound.errors import InputError
 
-__all__ = ["add_parser", "run"]
+__all__ = ["OPTIONS", "SCHEMA", "CutoffOptions", "add_parser", "run"]
 
 _DAYS_HELP = (
     "days: first-monday-each-month (default), first-monday-of-MM[,MM...], "
     "first-monday-quarterly, or YYYY-MM-DD[,YYYY-MM-DD...]"
+)
+
+
+@dataclass(frozen=True)
+class CutoffOptions:
+    """The options of ``psdbound cutoff`` besides the run's settings.
+
+    The settings are :class:`~psdbound.ionosphere.CutoffSettings`' fields
+    (section ``settings`` of :data:`SCHEMA`). These are the station, days,
+    orbit source, execution and outputs: the keywords of
+    :func:`psdbound.ionosphere.run_cutoff` and
+    :func:`psdbound.ionosphere.workflow.run_world_map` (the station's
+    position is checked there, with its own messages).
+    """
+
+    lat_deg: float | None = option(None, Number(unit="deg", optional=True))
+    lon_deg: float | None = option(None, Number(unit="deg", optional=True))
+    height_m: float = option(0.0, Number(unit="m"))
+    name: str = ""
+    map: bool = False
+    grid_step: str | None = None
+    install: bool = False
+    year: int = option(2020, Number(integer=True))
+    days: str | None = None
+    nav: str | None = None
+    sp3: str | None = None
+    almanac: str | None = None
+    legacy: bool = False
+    workers: int = option(2, Number(lo=0, integer=True))
+    scheduler: str | None = None
+    cache_dir: str | None = None
+    use_cache: bool = True
+    out: str = "."
+    figures: bool = True
+
+    def __post_init__(self) -> None:
+        check_fields(self)
+
+
+#: The schema of ``cutoff``'s options: its own, and the run's settings (CutoffSettings).
+SCHEMA = Schema(
+    {
+        "command": "psdbound.cli.cutoff:CutoffOptions",
+        "settings": "psdbound.ionosphere.settings:CutoffSettings",
+    }
+)
+
+_O = CliOption
+_C, _S = "command", "settings"
+_G_WHERE, _G_DAYS, _G_SIM = "station or map", "days", "simulation"
+_G_CRIT, _G_RUN = "criterion", "execution and output"
+_GROUPS = (_G_WHERE, _G_DAYS, _G_SIM, _G_CRIT, _G_RUN)
+#: Every ``cutoff`` option: its schema field, flag, help and group. Options of section
+#: ``settings`` are CutoffSettings fields (``carrier``: its ``from_mapping`` name).
+OPTIONS: tuple[CliOption, ...] = (
+    _O(
+        _C,
+        "lat_deg",
+        ("--lat",),
+        "station latitude, degrees, -90 to 90 (required without --map)",
+        _G_WHERE,
+    ),
+    _O(
+        _C,
+        "lon_deg",
+        ("--lon",),
+        "station longitude, degrees east (required without --map)",
+        _G_WHERE,
+    ),
+    _O(_C, "height_m", ("--height-m",), "station height, m", _G_WHERE),
+    _O(_C, "name", ("--name",), "station name for outputs (default: none)", _G_WHERE),
+    _O(
+        _C,
+        "map",
+        ("--map",),
+        "compute the world cutoff map (20 reference stations + grid, solar-minimum "
+        "2020 and solar-maximum 2024 layers); with --lat/--lon also print its cutoff there",
+        _G_WHERE,
+        {"action": "store_true"},
+    ),
+    _O(
+        _C,
+        "grid_step",
+        ("--grid-step",),
+        "map grid steps, degrees (default: 20,90)",
+        _G_WHERE,
+        {"metavar": "LAT,LON"},
+    ),
+    _O(
+        _C,
+        "install",
+        ("--install",),
+        "with --map: also replace the shipped map (psdbound/ionosphere/data/cutoff_map.json)",
+        _G_WHERE,
+        {"action": "store_true"},
+    ),
+    _O(_C, "year", ("--year",), "year of the day selection, count", _G_DAYS),
+    _O(_C, "days", ("--days",), _DAYS_HELP + " (--map: first-monday-quarterly)", _G_DAYS),
+    _O(
+        _S,
+        "f107_sfu",
+        ("--f107",),
+        "F10.7 solar flux, sfu",
+        _G_SIM,
+        {"dest": "f107_sfu", "metavar": "F107"},
+        note="the map uses each layer's year",
+    ),
+    _O(
+        _S,
+        "elevation_mask_deg",
+        ("--mask-deg",),
+        "elevation mask, deg",
+        _G_SIM,
+        {"dest": "elevation_mask_deg", "metavar": "MASK_DEG"},
+    ),
+    _O(
+        _S,
+        "method",
+        ("--method",),
+        "slant TEC by line-of-sight integral or thin shell at 350 km",
+        _G_SIM,
+    ),
+    _O(_S, "iri_model", ("--iri-model",), "PyIRI model", _G_SIM),
+    _O(
+        _S,
+        "carrier",
+        ("--frequency",),
+        "carrier: L1, L2, L5, E1, E5a, E5b, a value in MHz, or a pair like L1-L2 "
+        "for the dual-frequency difference (default: L1-L2, what the fit filters; --legacy: L1)",
+        _G_SIM,
+        {"dest": "carrier", "metavar": "FREQUENCY"},
+    ),
+    _O(
+        _C,
+        "nav",
+        ("--nav",),
+        "RINEX navigation file covering the days (default: none)",
+        _G_SIM,
+        {"action": Once},
+        exclusive="orbit",
+    ),
+    _O(
+        _C,
+        "sp3",
+        ("--sp3",),
+        "SP3 precise orbit file covering the days (default: none)",
+        _G_SIM,
+        {"action": Once},
+        exclusive="orbit",
+    ),
+    _O(
+        _C,
+        "almanac",
+        ("--almanac",),
+        "YUMA almanac file (default: none; nominal constellation)",
+        _G_SIM,
+        exclusive="orbit",
+    ),
+    _O(
+        _S,
+        "sampling_s",
+        ("--sampling-s",),
+        "sampling interval of the simulated delays, s",
+        _G_SIM,
+        note="--legacy: 12",
+    ),
+    _O(
+        _S,
+        "systems",
+        ("--systems",),
+        "nominal constellation when no orbit file: G (GPS 24-slot), E (Galileo "
+        "Walker 24/3/1) or GE",
+        _G_SIM,
+    ),
+    _O(
+        _S,
+        "criterion",
+        ("--criterion",),
+        "residual: the ionosphere the fit's high-pass leaves, MARGIN_DB below "
+        "MP_SIGMA_M; relative/absolute: the thesis's Lomb-Scargle criteria",
+        _G_CRIT,
+    ),
+    _O(
+        _C,
+        "legacy",
+        ("--legacy",),
+        "the issue-#4 settings: 40 dB Lomb-Scargle criterion at L1, 12 s, fine grids",
+        _G_CRIT,
+        {"action": "store_true"},
+    ),
+    _O(
+        _S,
+        "mp_sigma_m",
+        ("--mp-sigma-m",),
+        "residual criterion: reference multipath sigma, m",
+        _G_CRIT,
+    ),
+    _O(_S, "margin_db", ("--margin-db",), "residual criterion: margin below it, dB", _G_CRIT),
+    _O(_S, "drop_db", ("--drop-db",), "relative criterion, dB", _G_CRIT),
+    _O(
+        _S,
+        "reference",
+        ("--reference",),
+        "relative criterion's reference: PSD maximum (psd) or envelope peak (envelope)",
+        _G_CRIT,
+    ),
+    _O(
+        _S,
+        "variance_m2",
+        ("--variance-m2",),
+        "absolute criterion: allowed residual variance, m^2",
+        _G_CRIT,
+    ),
+    _O(_S, "degree", ("--degree",), "envelope polynomial degree, count", _G_CRIT),
+    _O(_S, "quantile", ("--quantile",), "envelope quantile, probability", _G_CRIT),
+    _O(_C, "workers", ("--workers",), "local Dask workers, count", _G_RUN, note="0: no Dask"),
+    _O(
+        _C,
+        "scheduler",
+        ("--scheduler",),
+        "use a running Dask scheduler (default: a local cluster)",
+        _G_RUN,
+        {"metavar": "ADDRESS"},
+    ),
+    _O(
+        _C,
+        "cache_dir",
+        ("--cache-dir",),
+        "cache directory (default: $PSDBOUND_CACHE or ~/.cache/...)",
+        _G_RUN,
+    ),
+    _O(
+        _C,
+        "use_cache",
+        ("--no-cache",),
+        "neither read nor write the cache",
+        _G_RUN,
+        {"action": "store_true"},
+        convert=lambda given: {"use_cache": not given},
+    ),
+    _O(
+        _C,
+        "out",
+        ("--out",),
+        "output directory for the CSV table, the JSON document, the PNG figures and the HTML page",
+        _G_RUN,
+    ),
+    _O(
+        _C,
+        "figures",
+        ("--no-figures",),
+        "write no PNG (the page has no figures)",
+        _G_RUN,
+        {"action": "store_true"},
+        convert=lambda given: {"figures": not given},
+    ),
 )
 
 
@@ -54,6 +312,7 @@ def add_parser(subparsers: Any) -> None:
     """
     p = subparsers.add_parser(
         "cutoff",
+        formatter_class=SchemaHelpFormatter,
         help="select the ionosphere high-pass cutoff frequency (station or station map)",
         description="Simulate slant ionospheric delays (PyIRI) of every satellite in view and "
         "find, per satellite-day, the lowest cutoff above which the fit's high-pass leaves the "
@@ -61,143 +320,29 @@ def add_parser(subparsers: Any) -> None:
         "thesis's 40 dB Lomb-Scargle criterion with --criterion relative or --legacy). "
         "Recommended cutoff = maximum over all series.",
     )
-    where = p.add_argument_group("station or map")
-    where.add_argument(
-        "--lat", type=float, help="station latitude, degrees, -90 to 90 (required without --map)"
-    )
-    where.add_argument(
-        "--lon", type=float, help="station longitude, degrees east (required without --map)"
-    )
-    where.add_argument("--height-m", type=float, default=0.0, help="station height, m (default: 0)")
-    where.add_argument("--name", default="", help="station name for outputs (default: none)")
-    where.add_argument(
-        "--map",
-        action="store_true",
-        help="compute the world cutoff map (20 reference stations + grid, solar-minimum "
-        "2020 and solar-maximum 2024 layers); with --lat/--lon also print its cutoff there",
-    )
-    where.add_argument(
-        "--grid-step",
-        metavar="LAT,LON",
-        help="map grid steps, degrees (default: 20,90)",
-    )
-    where.add_argument(
-        "--install",
-        action="store_true",
-        help="with --map: also replace the shipped map (psdbound/ionosphere/data/cutoff_map.json)",
-    )
-    when = p.add_argument_group("days")
-    when.add_argument(
-        "--year", type=int, default=2020, help="year of the day selection, count (default: 2020)"
-    )
-    when.add_argument("--days", help=_DAYS_HELP + " (--map: first-monday-quarterly)")
-    sim = p.add_argument_group("simulation")
-    sim.add_argument(
-        "--f107",
-        dest="f107_sfu",
-        metavar="F107",
-        type=float,
-        help="F10.7 solar flux, sfu (default: 70; the map uses each layer's year)",
-    )
-    sim.add_argument(
-        "--mask-deg",
-        dest="elevation_mask_deg",
-        metavar="MASK_DEG",
-        type=float,
-        help="elevation mask, deg (default: 10)",
-    )
-    sim.add_argument(
-        "--method",
-        choices=("line-of-sight", "thin-shell"),
-        help="slant TEC by line-of-sight integral (default) or thin shell at 350 km",
-    )
-    sim.add_argument(
-        "--iri-model", choices=("ursi", "ccir", "sh"), help="PyIRI model (default: ursi)"
-    )
-    sim.add_argument(
-        "--frequency",
-        dest="carrier",
-        metavar="FREQUENCY",
-        help="carrier: L1, L2, L5, E1, E5a, E5b, a value in MHz, or a pair like L1-L2 "
-        "for the dual-frequency difference (default: L1-L2, what the fit filters; --legacy: L1)",
-    )
-    orbit = sim.add_mutually_exclusive_group()
-    orbit.add_argument(
-        "--nav", action=Once, help="RINEX navigation file covering the days (default: none)"
-    )
-    orbit.add_argument(
-        "--sp3", action=Once, help="SP3 precise orbit file covering the days (default: none)"
-    )
-    orbit.add_argument("--almanac", help="YUMA almanac file (default: none; nominal constellation)")
-    sim.add_argument(
-        "--sampling-s",
-        type=float,
-        help="sampling interval of the simulated delays, s (default: 30; --legacy: 12)",
-    )
-    sim.add_argument(
-        "--systems",
-        help="nominal constellation when no orbit file: G (GPS 24-slot), E (Galileo "
-        "Walker 24/3/1) or GE (default: G)",
-    )
-    crit = p.add_argument_group("criterion")
-    crit.add_argument(
-        "--criterion",
-        choices=("residual", "relative", "absolute"),
-        help="residual (default): the ionosphere the fit's high-pass leaves, MARGIN_DB below "
-        "MP_SIGMA_M; relative/absolute: the thesis's Lomb-Scargle criteria",
-    )
-    crit.add_argument(
-        "--legacy",
-        action="store_true",
-        help="the issue-#4 settings: 40 dB Lomb-Scargle criterion at L1, 12 s, fine grids",
-    )
-    crit.add_argument(
-        "--mp-sigma-m",
-        type=float,
-        help="residual criterion: reference multipath sigma, m (default: 1e-3)",
-    )
-    crit.add_argument(
-        "--margin-db", type=float, help="residual criterion: margin below it, dB (default: 40)"
-    )
-    crit.add_argument("--drop-db", type=float, help="relative criterion, dB (default: 40)")
-    crit.add_argument(
-        "--reference",
-        choices=("psd", "envelope"),
-        help="relative criterion's reference: PSD maximum (default) or envelope peak",
-    )
-    crit.add_argument(
-        "--variance-m2",
-        type=float,
-        help="absolute criterion: allowed residual variance, m^2 (default: 1e-6)",
-    )
-    crit.add_argument("--degree", type=int, help="envelope polynomial degree, count (default: 3)")
-    crit.add_argument(
-        "--quantile", type=float, help="envelope quantile, probability (default: 0.99)"
-    )
-    run_ = p.add_argument_group("execution and output")
-    run_.add_argument(
-        "--workers", type=int, default=2, help="local Dask workers, count (default: 2; 0: no Dask)"
-    )
-    run_.add_argument(
-        "--scheduler",
-        metavar="ADDRESS",
-        help="use a running Dask scheduler (default: a local cluster)",
-    )
-    run_.add_argument(
-        "--cache-dir", help="cache directory (default: $PSDBOUND_CACHE or ~/.cache/...)"
-    )
-    run_.add_argument("--no-cache", action="store_true", help="neither read nor write the cache")
-    run_.add_argument(
-        "--out",
-        default=".",
-        help="output directory for the CSV table, the JSON document, the PNG figures and "
-        "the HTML page (default: .)",
-    )
-    run_.add_argument(
-        "--no-figures", action="store_true", help="write no PNG (the page has no figures)"
-    )
+    add_options(p, OPTIONS, SCHEMA.spec, groups=_GROUPS, defaults=SCHEMA.default)
     add_config_option(p)
     p.set_defaults(func=run)
+
+
+def _settings(legacy: bool, given: dict[str, Any]) -> Any:
+    """Return the run's CutoffSettings: the options given over the defaults (or ``--legacy``'s)."""
+    from psdbound.ionosphere import CutoffSettings
+
+    if legacy:
+        return CutoffSettings.from_mapping({**CutoffSettings.legacy().to_dict(), **given})
+    return CutoffSettings.from_mapping(given)
+
+
+def _options(args: argparse.Namespace) -> tuple[CutoffOptions, Any]:
+    """Return the command's options and the run's settings, checked (errors name the flag)."""
+    given = read_options(args, OPTIONS, SCHEMA.spec)
+    opts = SCHEMA.build(_C, given.get(_C, {}))
+    if (opts.lat_deg is None) != (opts.lon_deg is None):
+        raise InputError("--lat and --lon go together")
+    if not opts.map and opts.lat_deg is None:
+        raise InputError("give --lat and --lon for a station, or --map for the world map")
+    return opts, _settings(opts.legacy, given.get(_S, {}))
 
 
 def run(args: argparse.Namespace) -> int:
@@ -219,56 +364,47 @@ def run(args: argparse.Namespace) -> int:
         For bad input (position, dates, options, files); the caller maps it
         to exit code 2.
     """
-    from psdbound.ionosphere import SETTING_OPTIONS, CutoffSettings, run_cutoff
+    from psdbound.common.progress import counter
+    from psdbound.ionosphere import run_cutoff
 
-    if (args.lat is None) != (args.lon is None):
-        raise InputError("--lat and --lon go together")
-    if not args.map and args.lat is None:
-        raise InputError("give --lat and --lon for a station, or --map for the world map")
-    if args.workers < 0:
-        raise InputError(f"--workers {args.workers} must be >= 0")
-    given = {k: v for k, v in vars(args).items() if k in SETTING_OPTIONS and v is not None}
-    settings = CutoffSettings.from_mapping(given)
-    if args.legacy:
-        legacy = CutoffSettings.legacy()
-        settings = CutoffSettings.from_mapping({**legacy.to_dict(), **given})
+    opts, settings = _options(args)
     execution = {
-        "workers": args.workers,
-        "scheduler": args.scheduler,
-        "cache_dir": args.cache_dir,
-        "use_cache": not args.no_cache,
+        "workers": opts.workers,
+        "scheduler": opts.scheduler,
+        "cache_dir": opts.cache_dir,
+        "use_cache": opts.use_cache,
         "progress": counter("station-days computed"),
     }
-    if args.map:
+    if opts.map:
         from psdbound.ionosphere.workflow import run_world_map
 
         outcome = run_world_map(
             settings=settings,
-            grid_step_deg=_grid_step(args.grid_step),
-            days=args.days,
-            lat_deg=args.lat,
-            lon_deg=args.lon,
-            year=args.year,
-            out_dir=args.out,
-            figures=not args.no_figures,
-            install=args.install,
+            grid_step_deg=_grid_step(opts.grid_step),
+            days=opts.days,
+            lat_deg=opts.lat_deg,
+            lon_deg=opts.lon_deg,
+            year=opts.year,
+            out_dir=opts.out,
+            figures=opts.figures,
+            install=opts.install,
             **execution,
         )
-        _print_world_map(args, outcome)
+        _print_world_map(opts, outcome)
         return 0
     outcome = run_cutoff(
-        lat_deg=args.lat,
-        lon_deg=args.lon,
-        year=args.year,
-        days=args.days or "first-monday-each-month",
-        name=args.name,
-        height_m=args.height_m,
+        lat_deg=opts.lat_deg,
+        lon_deg=opts.lon_deg,
+        year=opts.year,
+        days=opts.days or "first-monday-each-month",
+        name=opts.name,
+        height_m=opts.height_m,
         settings=settings,
-        nav=args.nav,
-        sp3=args.sp3,
-        almanac=args.almanac,
-        out_dir=args.out,
-        figures=not args.no_figures,
+        nav=opts.nav,
+        sp3=opts.sp3,
+        almanac=opts.almanac,
+        out_dir=opts.out,
+        figures=opts.figures,
         **execution,
     )
     _print_station(outcome)
@@ -311,7 +447,7 @@ def _print_station(outcome: Any) -> None:
         print(f"  wrote {f}")
 
 
-def _print_world_map(args: argparse.Namespace, outcome: Any) -> None:
+def _print_world_map(opts: CutoffOptions, outcome: Any) -> None:
     doc = outcome.doc
     g = doc["grid"]
     c = doc["criterion"]
@@ -337,7 +473,8 @@ def _print_world_map(args: argparse.Namespace, outcome: Any) -> None:
     if outcome.at_position is not None:
         f_c, info = outcome.at_position
         print(
-            f"at ({args.lat}, {args.lon}), F10.7 {info['f107_sfu']:.1f} sfu ({args.year}): "
+            f"at ({opts.lat_deg}, {opts.lon_deg}), F10.7 {info['f107_sfu']:.1f} sfu "
+            f"({opts.year}): "
             f"f_c {f_c:.3e} Hz"
         )
     for f in outcome.files:

@@ -17,7 +17,14 @@ from pathlib import Path
 from typing import Any
 
 from psdbound.cli.exit_codes import EXIT_NOT_BOUNDED, EXIT_OK
-from psdbound.cli.schema import CliOption, add_options, default_text, flag_of, given_values
+from psdbound.cli.schema import (
+    CliOption,
+    SchemaHelpFormatter,
+    add_options,
+    flag_of,
+    given_values,
+    help_text,
+)
 from psdbound.errors import InputError, NoDataError
 
 __all__ = [
@@ -29,6 +36,7 @@ __all__ = [
     "add_output_options",
     "add_parser",
     "build_config",
+    "help_text",
     "output_dir",
     "reporter",
     "run",
@@ -393,7 +401,7 @@ def _options(groups: tuple[str, ...]) -> tuple[CliOption, ...]:
 
 def add_output_options(p: argparse.ArgumentParser) -> None:
     """Options shared by the commands that write reports (outputs, ``-q``/``-v``)."""
-    g = add_options(p, _options((_G_OUT,)), _spec, groups=(_G_OUT,))[_G_OUT]
+    g = add_options(p, _options((_G_OUT,)), _spec, groups=(_G_OUT,), defaults=_default)[_G_OUT]
     talk = g.add_mutually_exclusive_group()
     talk.add_argument("-q", "--quiet", action="store_true", help="print only errors and the result")
     talk.add_argument(
@@ -401,32 +409,15 @@ def add_output_options(p: argparse.ArgumentParser) -> None:
     )
 
 
-def help_text(action: argparse.Action) -> str:
-    """Return an option's help with its default (and unit) appended from the schema if unstated.
-
-    Evaluated when the help is printed, so that commands other than ``fit``
-    do not import the pipeline to build their parsers.
-    """
+def _default(section: str, name: str) -> Any:
+    """Return a field's default in :class:`~psdbound.pipeline.FitConfig` (imported for --help)."""
     from psdbound.pipeline import FitConfig
 
-    text = action.help or ""
-    opt = next(
-        (o for o in OPTIONS if action.option_strings and o.flags[-1] == action.option_strings[-1]),
-        None,
-    )
-    if opt is None or "default" in text or opt.convert is _mapping:
-        return text
-    obj = getattr(FitConfig(), opt.section)
-    unit = getattr(_spec(opt.section, opt.name), "unit", "") or ""
-    default = default_text(opt, getattr(obj, opt.name), unit)
-    return text if default is None else f"{text} (default: {default})"
+    return getattr(getattr(FitConfig(), section), name)
 
 
-class DefaultsFormatter(argparse.HelpFormatter):
-    """Help formatter that states every ``fit`` option's default (see :func:`help_text`)."""
-
-    def _get_help_string(self, action: argparse.Action) -> str | None:
-        return help_text(action)
+#: The help formatter of ``fit``, ``export`` and ``campaign``: every default from FitConfig.
+DefaultsFormatter = SchemaHelpFormatter
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -448,7 +439,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "printed, outputs written); 2 bad input (nothing written); 1 internal error.",
     )
     add_input_options(p)
-    add_options(p, _options((_G_CODE,)), _spec, groups=(_G_CODE,))
+    add_options(p, _options((_G_CODE,)), _spec, groups=(_G_CODE,), defaults=_default)
     add_output_options(p)
     p.set_defaults(func=run)
 
@@ -463,7 +454,7 @@ def add_input_options(p: argparse.ArgumentParser) -> None:
         kw = {**opt.kwargs, **({"default": None} if opt.flags[0].startswith("-") else {})}
         p.add_argument(*opt.flags, help=opt.help, **kw)
     add_day_options(p)
-    add_options(p, _options((_G_DA,)), _spec, groups=(_G_DA,))
+    add_options(p, _options((_G_DA,)), _spec, groups=(_G_DA,), defaults=_default)
 
 
 def add_day_options(p: argparse.ArgumentParser) -> None:
@@ -474,7 +465,7 @@ def add_day_options(p: argparse.ArgumentParser) -> None:
     ``--config``, the system and signals, cutoff, arcs, screening, filter,
     mapping, stationarity, spectra, bound, verdict and validation options.
     """
-    groups = add_options(p, _options(DAY_GROUPS), _spec, groups=DAY_GROUPS)
+    groups = add_options(p, _options(DAY_GROUPS), _spec, groups=DAY_GROUPS, defaults=_default)
     groups[_G_IN].add_argument("--config", help="TOML configuration file (default: none)")
 
 

@@ -18,13 +18,134 @@ holds ``--min-samples``.
 from __future__ import annotations
 
 import argparse
+import dataclasses
+from dataclasses import dataclass
 from typing import Any
 
+from psdbound.aviation.options import DEFAULT_EDGES_DEG, METHODS
 from psdbound.cli.actions import Once
 from psdbound.cli.config_file import add_config_option
+from psdbound.cli.schema import CliOption, Schema, SchemaHelpFormatter, add_options, read_options
+from psdbound.common.options import Choice, Number, Tuple, check_fields, option
 from psdbound.errors import InputError
 
-__all__ = ["add_parser", "run"]
+__all__ = ["OPTIONS", "SCHEMA", "OverboundOptions", "add_parser", "run"]
+
+
+@dataclass(frozen=True)
+class OverboundOptions:
+    """The options of ``psdbound overbound``.
+
+    The names of the overbound's options are the keywords of
+    :func:`psdbound.aviation.overbound_by_elevation` (same defaults);
+    ``code``, ``nav``, ``system`` and ``min_length_s`` compute the samples
+    from a RINEX file (:mod:`psdbound.aviation.code_samples`).
+    """
+
+    samples: str | None = None
+    code: str | None = None
+    nav: str | None = None
+    system: str = "G"
+    min_length_s: float = option(600.0, Number(lo=0.0, lo_open=True, unit="s"))
+    method: str = option("paired", Choice(METHODS, noun="overbound method"))
+    confidence: float = option(0.95, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True))
+    edges_deg: tuple[float, ...] = option(
+        DEFAULT_EDGES_DEG, Tuple(Number(), min_len=1, what="elevation bin edges in deg")
+    )
+    bias: float = option(0.0, Number())
+    min_abs_z: float | None = option(None, Number(lo=0.0, optional=True))
+    min_samples: int = option(100, Number(lo=2, integer=True))
+    unit: str = "m"
+    out: str | None = None
+
+    def __post_init__(self) -> None:
+        check_fields(self)
+
+
+#: The schema of ``overbound``'s options.
+SCHEMA = Schema({"command": "psdbound.cli.overbound:OverboundOptions"})
+
+_O = CliOption
+_C = "command"
+#: Every ``overbound`` option: its schema field, flag and help (all in ``options``).
+OPTIONS: tuple[CliOption, ...] = (
+    _O(
+        _C,
+        "samples",
+        ("samples",),
+        "CSV/text with 'error' [and 'elevation'] columns, or .npy; with --code a RINEX "
+        "observation file (required)",
+        None,
+    ),
+    _O(
+        _C,
+        "code",
+        ("--code",),
+        "compute the samples: code multipath of this pseudorange code (C1C: MP "
+        "combination) or pair (C1C,C5Q: ionosphere-free) by carrier levelling, from the "
+        "RINEX file SAMPLES (default: none, SAMPLES holds the errors)",
+        None,
+    ),
+    _O(
+        _C,
+        "nav",
+        ("--nav",),
+        "navigation or SP3 file for elevations (required with --code)",
+        None,
+        {"action": Once},
+    ),
+    _O(_C, "system", ("--system",), "satellite system letter with --code", None),
+    _O(_C, "min_length_s", ("--min-arc-s",), "shortest carrier-levelling arc with --code, s", None),
+    _O(
+        _C,
+        "method",
+        ("--method",),
+        "overbound construction: paired (bias and sigma per bin, every point "
+        "constrained), two_step (about the median; assumes symmetric unimodal true errors) "
+        "or cdf (zero-mean or --bias)",
+        None,
+    ),
+    _O(
+        _C,
+        "confidence",
+        ("--confidence",),
+        "confidence level of the upper bounds of bias, sigma and inflation, from the "
+        "effective sample size of each bin, dimensionless in (0, 1)",
+        None,
+    ),
+    _O(
+        _C,
+        "edges_deg",
+        ("--edges",),
+        "elevation bin edges, deg",
+        None,
+        {"type": float, "nargs": "+"},
+    ),
+    _O(
+        _C,
+        "bias",
+        ("--bias",),
+        "paired bias of --method cdf, in the samples unit, m by default",
+        None,
+    ),
+    _O(
+        _C,
+        "min_abs_z",
+        ("--min-abs-z",),
+        "two_step / cdf only: ignore the core where the normal quantile of the tail "
+        "is below this, dimensionless (default: 0.25; paired constrains every point)",
+        None,
+    ),
+    _O(_C, "min_samples", ("--min-samples",), "fewest samples per non-empty bin, count", None),
+    _O(_C, "unit", ("--unit",), "unit of the samples, for display", None),
+    _O(
+        _C,
+        "out",
+        ("--out",),
+        "folder for overbound.json and overbound_qq.png (default: none)",
+        None,
+    ),
+)
 
 
 def add_parser(subparsers: Any) -> None:
@@ -37,6 +158,7 @@ def add_parser(subparsers: Any) -> None:
     """
     p = subparsers.add_parser(
         "overbound",
+        formatter_class=SchemaHelpFormatter,
         help="Gaussian overbound (paired, two-step or CDF) of error samples per elevation bin",
         description="Overbound the distribution of error samples (code or carrier "
         "multipath, normalised errors, ...) by a Gaussian in each elevation bin; print "
@@ -46,70 +168,7 @@ def add_parser(subparsers: Any) -> None:
         epilog="examples: psdbound overbound errors.csv --edges 5 15 30 60 90 --out out/ ; "
         "psdbound overbound ESBC.crx.gz --nav ESBC_MN.rnx.gz --code C1C --out out/",
     )
-    p.add_argument(
-        "samples",
-        help="CSV/text with 'error' [and 'elevation'] columns, or .npy; with --code a RINEX "
-        "observation file (required)",
-    )
-    p.add_argument(
-        "--code",
-        help="compute the samples: code multipath of this pseudorange code (C1C: MP "
-        "combination) or pair (C1C,C5Q: ionosphere-free) by carrier levelling, from the "
-        "RINEX file SAMPLES (default: none, SAMPLES holds the errors)",
-    )
-    p.add_argument(
-        "--nav", action=Once, help="navigation or SP3 file for elevations (required with --code)"
-    )
-    p.add_argument("--system", default="G", help="satellite system letter with --code (default: G)")
-    p.add_argument(
-        "--min-arc-s",
-        type=float,
-        default=600.0,
-        help="shortest carrier-levelling arc with --code, s (default: 600)",
-    )
-    p.add_argument(
-        "--method",
-        choices=("paired", "two_step", "cdf"),
-        default="paired",
-        help="overbound construction: paired (bias and sigma per bin, every point "
-        "constrained), two_step (about the median; assumes symmetric unimodal true errors) "
-        "or cdf (zero-mean or --bias) (default: paired)",
-    )
-    p.add_argument(
-        "--confidence",
-        type=float,
-        default=0.95,
-        help="confidence level of the upper bounds of bias, sigma and inflation, from the "
-        "effective sample size of each bin, dimensionless in (0, 1) (default: 0.95)",
-    )
-    p.add_argument(
-        "--edges",
-        type=float,
-        nargs="+",
-        default=[5.0, 15.0, 30.0, 45.0, 60.0, 90.0],
-        help="elevation bin edges, deg (default: 5 15 30 45 60 90)",
-    )
-    p.add_argument(
-        "--bias",
-        type=float,
-        default=0.0,
-        help="paired bias of --method cdf, in the samples unit, m by default (default: 0)",
-    )
-    p.add_argument(
-        "--min-abs-z",
-        type=float,
-        default=None,
-        help="two_step / cdf only: ignore the core where the normal quantile of the tail "
-        "is below this, dimensionless (default: 0.25; paired constrains every point)",
-    )
-    p.add_argument(
-        "--min-samples",
-        type=int,
-        default=100,
-        help="fewest samples per non-empty bin, count (default: 100)",
-    )
-    p.add_argument("--unit", default="m", help="unit of the samples, for display (default: m)")
-    p.add_argument("--out", help="folder for overbound.json and overbound_qq.png (default: none)")
+    add_options(p, OPTIONS, SCHEMA.spec, groups=(None,), defaults=SCHEMA.default)
     add_config_option(p)
     p.set_defaults(func=run)
 
@@ -135,90 +194,86 @@ def run(args: argparse.Namespace) -> int:
     from psdbound.aviation import write_overbound
     from psdbound.common.outputs import check_writable_folder
 
-    _check_options(args)
-    if args.out:
-        check_writable_folder(args.out, option="--out")
-    res, extra = _code_overbound(args) if args.code else (_samples_overbound(args), {})
+    opts = _options(args)
+    if opts.out:
+        check_writable_folder(opts.out, option="--out")
+    res, extra = _code_overbound(opts) if opts.code else (_samples_overbound(opts), {})
     print(res.summary())
-    if args.out:
-        for f in write_overbound(res, args.out, extra=extra):
+    if opts.out:
+        for f in write_overbound(res, opts.out, extra=extra):
             print(f"wrote {f}")
     return 0
 
 
-def _check_options(args: argparse.Namespace) -> None:
-    """Refuse inconsistent options; fill the method-dependent default of ``--min-abs-z``."""
-    if args.min_samples < 2:
-        raise InputError(f"--min-samples must be >= 2, got {args.min_samples}")
-    if not 0.0 < args.confidence < 1.0:
-        raise InputError(f"--confidence must be in (0, 1), got {args.confidence}")
-    if args.method == "paired" and args.min_abs_z is not None:
+def _options(args: argparse.Namespace) -> OverboundOptions:
+    """Return the checked options; refuse inconsistent ones; fill ``--min-abs-z``'s default."""
+    opts = SCHEMA.build("command", read_options(args, OPTIONS, SCHEMA.spec).get(_C, {}))
+    if opts.method == "paired" and opts.min_abs_z is not None:
         raise InputError(
             "--min-abs-z applies to --method two_step / cdf: the paired overbound exempts no core"
         )
-    if args.min_abs_z is None:
-        args.min_abs_z = 0.25
-    if not args.code and args.nav:
+    if opts.min_abs_z is None:
+        opts = dataclasses.replace(opts, min_abs_z=0.25)
+    if not opts.code and opts.nav:
         raise InputError("--nav is only used with --code (SAMPLES is a samples file)")
+    return opts
 
 
-def _samples_overbound(args: argparse.Namespace) -> Any:
+def _samples_overbound(opts: OverboundOptions) -> Any:
     """Overbound the errors of a samples file (``SAMPLES``)."""
     from psdbound.aviation import overbound_by_elevation, read_samples
 
-    errors, elevation = read_samples(args.samples)
+    errors, elevation = read_samples(opts.samples)
     try:
         return overbound_by_elevation(
             errors,
             elevation,
-            edges_deg=args.edges,
-            method=args.method,
-            bias=args.bias,
-            min_abs_z=args.min_abs_z,
-            min_samples=args.min_samples,
-            unit=args.unit,
-            confidence=args.confidence,
+            edges_deg=opts.edges_deg,
+            method=opts.method,
+            bias=opts.bias,
+            min_abs_z=opts.min_abs_z,
+            min_samples=opts.min_samples,
+            unit=opts.unit,
+            confidence=opts.confidence,
         )
     except InputError as exc:
-        raise InputError(exc.reason, path=args.samples) from None
+        raise InputError(exc.reason, path=opts.samples) from None
 
 
-def _code_overbound(args: argparse.Namespace) -> tuple[Any, dict[str, Any]]:
-    """Overbound the code multipath of ``args.samples`` (a RINEX file); name sparse bins."""
+def _code_overbound(opts: OverboundOptions) -> tuple[Any, dict[str, Any]]:
+    """Overbound the code multipath of ``opts.samples`` (a RINEX file); name sparse bins."""
     from psdbound.aviation.code_samples import (
         code_multipath_from_files,
         describe_code_series,
         overbound_code_series,
     )
 
-    if not args.nav:
+    if not opts.nav:
         raise InputError("--code needs --nav (a navigation or SP3 file) for the elevations")
-    if not args.min_arc_s > 0:
-        raise InputError(f"--min-arc-s must be > 0 s, got {args.min_arc_s}")
-    if not 1 <= len([c for c in args.code.split(",") if c.strip()]) <= 2:
-        raise InputError(f"--code takes one code or two separated by a comma, got {args.code!r}")
+    if not 1 <= len([c for c in opts.code.split(",") if c.strip()]) <= 2:
+        raise InputError(f"--code takes one code or two separated by a comma, got {opts.code!r}")
     series = code_multipath_from_files(
-        args.samples,
-        args.nav,
-        args.code,
-        system=args.system,
-        elevation_mask_deg=max(0.0, min(args.edges)),
-        min_length_s=args.min_arc_s,
+        opts.samples,
+        opts.nav,
+        opts.code,
+        system=opts.system,
+        elevation_mask_deg=max(0.0, min(opts.edges_deg)),
+        min_length_s=opts.min_length_s,
     )
     print(series.summary())
     try:
         res, sparse = overbound_code_series(
             series,
-            args.edges,
-            method=args.method,
-            min_samples=args.min_samples,
-            min_abs_z=args.min_abs_z,
-            bias=args.bias,
-            confidence=args.confidence,
+            opts.edges_deg,
+            method=opts.method,
+            min_samples=opts.min_samples,
+            min_abs_z=opts.min_abs_z,
+            bias=opts.bias,
+            confidence=opts.confidence,
         )
     except InputError as exc:
-        raise InputError(exc.reason, path=args.samples) from None
+        raise InputError(exc.reason, path=opts.samples) from None
     for note in sparse:
         print(f"note: {note}")
-    info = describe_code_series(series, min_length_s=args.min_arc_s)
-    return res, {"code_multipath": {"source": str(args.samples), **info, "bins_left_out": sparse}}
+    info = describe_code_series(series, min_length_s=opts.min_length_s)
+    return res, {"code_multipath": {"source": str(opts.samples), **info, "bins_left_out": sparse}}

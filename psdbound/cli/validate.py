@@ -15,13 +15,199 @@ from __future__ import annotations
 
 import argparse
 import re
+from dataclasses import dataclass
 from typing import Any
 
 from psdbound.cli.actions import Once
 from psdbound.cli.config_file import add_config_option
+from psdbound.cli.schema import CliOption, Schema, SchemaHelpFormatter, add_options, read_options
+from psdbound.common.options import Choice, Number, Tuple, check_fields, option
 from psdbound.errors import InputError
 
-__all__ = ["add_parser", "run"]
+__all__ = ["OPTIONS", "SCHEMA", "ValidateOptions", "add_parser", "run"]
+
+
+@dataclass(frozen=True)
+class ValidateOptions:
+    """The options of ``psdbound validate`` besides the fit's (``alpha``, ``threshold``).
+
+    Those two are :class:`~psdbound.validation.ValidationOptions`' (section
+    ``validation`` of :data:`SCHEMA`): the same defaults and checks as the
+    fit's cutoff validation. The other names are the keywords of
+    :func:`psdbound.validation.run_validation`.
+    """
+
+    cutoff_hz: float | None = option(None, Number(lo=1e-6, hi=10.0, unit="Hz", optional=True))
+    geometries: tuple[str, ...] = ()
+    rate: str = "orbit"
+    modes_file: str | None = None
+    theta0_deg: float = option(30.0, Number(lo=-90.0, hi=90.0, unit="deg"))
+    amplitude_deg: float | None = option(
+        None, Number(lo=0.0, hi=90.0, lo_open=True, unit="deg", optional=True)
+    )
+    nav_file: str | None = None
+    receiver_ecef_m: tuple[float, ...] | None = option(
+        None, Tuple(Number(), lengths=(3,), what="X Y Z in m", optional=True)
+    )
+    system: str = "G"
+    sats: tuple[str, ...] = ()
+    elevation_mask_deg: float = option(5.0, Number(lo=0.0, hi=90.0, hi_open=True, unit="deg"))
+    min_pass_s: float = option(3600.0, Number(lo=0.0, hi=86400.0, lo_open=True, unit="s"))
+    convention: str = option("both", Choice(("both", "physical", "thesis"), noun="convention"))
+    wavelength_m: float | None = option(
+        None, Number(lo=0.0, hi=10.0, lo_open=True, unit="m", optional=True)
+    )
+    distance_tolerance_m: float = option(0.0, Number(lo=0.0, hi=1e4, unit="m"))
+    out_dir: str | None = None
+    figures: bool = True
+
+    def __post_init__(self) -> None:
+        check_fields(self)
+
+
+#: The schema of ``validate``'s options: its own, and the fit's cutoff-validation options.
+SCHEMA = Schema(
+    {
+        "check": "psdbound.cli.validate:ValidateOptions",
+        "validation": "psdbound.validation.options:ValidationOptions",
+    }
+)
+
+_O = CliOption
+_FILE = {"metavar": "FILE"}
+#: Every ``validate`` option: its schema field, flag, help and group (None: ``options``).
+OPTIONS: tuple[CliOption, ...] = (
+    _O(
+        "check",
+        "cutoff_hz",
+        ("--cutoff-hz",),
+        "high-pass cutoff f_c, Hz (required)",
+        None,
+        {"required": True},
+    ),
+    _O(
+        "check",
+        "geometries",
+        ("--geometry",),
+        "reflection, repeatable: wall:d=METRES or ground:h=METRES (required, at least one)",
+        None,
+        {"action": "append", "metavar": "SPEC"},
+    ),
+    _O(
+        "check",
+        "rate",
+        ("--rate",),
+        "geometry rate: orbit (GPS, half a sidereal day), orbit-galileo, orbit-glonass, "
+        "orbit-beidou, an aircraft mode (phugoid, spiral, or from --modes), or a frequency in Hz",
+        None,
+    ),
+    _O(
+        "check",
+        "modes_file",
+        ("--modes",),
+        "TOML file adding aircraft modes (default: none)",
+        None,
+        _FILE,
+    ),
+    _O(
+        "check",
+        "theta0_deg",
+        ("--theta0-deg",),
+        "aircraft modes: mean angle of arrival relative to the reflector, deg",
+        None,
+    ),
+    _O(
+        "check",
+        "amplitude_deg",
+        ("--amplitude-deg",),
+        "aircraft modes: attitude oscillation amplitude, deg (default: the mode's, 2)",
+        None,
+    ),
+    _O(
+        "check",
+        "nav_file",
+        ("--nav",),
+        "navigation or SP3 file: simulate real passes (default: none)",
+        None,
+        {"action": Once, **_FILE},
+    ),
+    _O(
+        "check",
+        "receiver_ecef_m",
+        ("--receiver-ecef",),
+        "receiver ECEF position for --nav, m (required with --nav)",
+        None,
+        {"type": float, "nargs": 3, "metavar": ("X", "Y", "Z")},
+    ),
+    _O("check", "system", ("--system",), "satellite system of the passes", None),
+    _O(
+        "check",
+        "sats",
+        ("--sat",),
+        "satellite for --nav, repeatable (default all)",
+        None,
+        {"action": "append"},
+    ),
+    _O(
+        "check",
+        "elevation_mask_deg",
+        ("--elevation-mask-deg",),
+        "elevation mask of the passes, deg",
+        None,
+    ),
+    _O(
+        "check",
+        "min_pass_s",
+        ("--min-pass-min",),
+        "shortest pass simulated, minutes",
+        None,
+        scale=60.0,
+        unit="min",
+    ),
+    _O(
+        "validation", "alpha", ("--alpha",), "reflected/direct amplitude ratio, dimensionless", None
+    ),
+    _O(
+        "validation",
+        "threshold",
+        ("--threshold",),
+        "largest acceptable fraction of multipath power below f_c, fraction",
+        None,
+    ),
+    _O("check", "convention", ("--convention",), "phase convention(s) to report", None),
+    _O(
+        "check",
+        "wavelength_m",
+        ("--wavelength-m",),
+        "carrier wavelength, m (default GPS L1, 0.190294)",
+        None,
+    ),
+    _O(
+        "check",
+        "distance_tolerance_m",
+        ("--distance-tolerance-m",),
+        "also sweep each distance over +- this many metres and judge the worst, m",
+        None,
+    ),
+    _O(
+        "check",
+        "out_dir",
+        ("--out",),
+        "write the table (CSV), the document (JSON), the PNG figures and the HTML page here "
+        "(default: print only)",
+        None,
+        {"metavar": "DIR"},
+    ),
+    _O(
+        "check",
+        "figures",
+        ("--no-figures",),
+        "with --out: skip the PNG figures (the page has no figures)",
+        None,
+        {"action": "store_true"},
+        convert=lambda given: {"figures": not given},
+    ),
+)
 
 
 def add_parser(subparsers: Any) -> None:
@@ -34,6 +220,7 @@ def add_parser(subparsers: Any) -> None:
     """
     p = subparsers.add_parser(
         "validate",
+        formatter_class=SchemaHelpFormatter,
         help="validate a cutoff with the Jacobi-Anger expansion and direct simulation",
         description="Fraction of geometric multipath power below a high-pass cutoff, "
         "for ground (h) and wall (d) reflections, from the Jacobi-Anger expansion "
@@ -44,103 +231,7 @@ def add_parser(subparsers: Any) -> None:
         epilog="example: psdbound validate --cutoff-hz 9.55e-4 --geometry wall:d=25 "
         "--geometry ground:h=1.5 --rate orbit --out out/",
     )
-    p.add_argument(
-        "--cutoff-hz", type=float, required=True, help="high-pass cutoff f_c, Hz (required)"
-    )
-    p.add_argument(
-        "--geometry",
-        action="append",
-        default=[],
-        metavar="SPEC",
-        help="reflection, repeatable: wall:d=METRES or ground:h=METRES (required, at least one)",
-    )
-    p.add_argument(
-        "--rate",
-        default="orbit",
-        help="geometry rate: orbit (GPS, half a sidereal day), orbit-galileo, orbit-glonass, "
-        "orbit-beidou, an aircraft mode (phugoid, spiral, or from --modes), or a frequency "
-        "in Hz (default orbit)",
-    )
-    p.add_argument(
-        "--modes", metavar="FILE", help="TOML file adding aircraft modes (default: none)"
-    )
-    p.add_argument(
-        "--theta0-deg",
-        type=float,
-        default=30.0,
-        help="aircraft modes: mean angle of arrival relative to the reflector, deg (default: 30)",
-    )
-    p.add_argument(
-        "--amplitude-deg",
-        type=float,
-        help="aircraft modes: attitude oscillation amplitude, deg (default: the mode's, 2)",
-    )
-    p.add_argument(
-        "--nav",
-        action=Once,
-        metavar="FILE",
-        help="navigation or SP3 file: simulate real passes (default: none)",
-    )
-    p.add_argument(
-        "--receiver-ecef",
-        type=float,
-        nargs=3,
-        metavar=("X", "Y", "Z"),
-        help="receiver ECEF position for --nav, m (required with --nav)",
-    )
-    p.add_argument("--system", default="G", help="satellite system of the passes (default: G)")
-    p.add_argument("--sat", action="append", help="satellite for --nav, repeatable (default all)")
-    p.add_argument(
-        "--elevation-mask-deg",
-        type=float,
-        default=5.0,
-        help="elevation mask of the passes, deg (default: 5)",
-    )
-    p.add_argument(
-        "--min-pass-min",
-        type=float,
-        default=60.0,
-        help="shortest pass simulated, minutes (default: 60)",
-    )
-    p.add_argument(
-        "--alpha",
-        type=float,
-        default=0.1,
-        help="reflected/direct amplitude ratio, dimensionless (default: 0.1)",
-    )
-    p.add_argument(
-        "--threshold",
-        type=float,
-        default=0.10,
-        help="largest acceptable fraction of multipath power below f_c, fraction (default: 0.10)",
-    )
-    p.add_argument(
-        "--convention",
-        choices=("both", "physical", "thesis"),
-        default="both",
-        help="phase convention(s) to report (default: both)",
-    )
-    p.add_argument(
-        "--wavelength-m", type=float, help="carrier wavelength, m (default GPS L1, 0.190294)"
-    )
-    p.add_argument(
-        "--distance-tolerance-m",
-        type=float,
-        default=0.0,
-        help="also sweep each distance over +- this many metres and judge the worst, m "
-        "(default: 0)",
-    )
-    p.add_argument(
-        "--out",
-        metavar="DIR",
-        help="write the table (CSV), the document (JSON), the PNG figures and the HTML page "
-        "here (default: print only)",
-    )
-    p.add_argument(
-        "--no-figures",
-        action="store_true",
-        help="with --out: skip the PNG figures (the page has no figures)",
-    )
+    add_options(p, OPTIONS, SCHEMA.spec, groups=(None,), defaults=SCHEMA.default)
     add_config_option(p)
     p.set_defaults(func=run)
 
@@ -164,7 +255,6 @@ def run(args: argparse.Namespace) -> int:
         Bad geometry, distance, cutoff, rate, mode file, navigation file or
         output folder.
     """
-    from psdbound.common.options import Number, Tuple
     from psdbound.common.outputs import check_writable_folder
     from psdbound.validation import run_validation
 
@@ -172,61 +262,36 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("give at least one --geometry, e.g. --geometry wall:d=25")
     if not (args.cutoff_hz > 0.0):
         raise InputError(f"--cutoff-hz must be > 0, got {args.cutoff_hz}")
-    checks = {
-        "--cutoff-hz": (args.cutoff_hz, Number(lo=1e-6, hi=10.0, unit="Hz")),
-        "--theta0-deg": (args.theta0_deg, Number(lo=-90.0, hi=90.0, unit="deg")),
-        "--amplitude-deg": (
-            args.amplitude_deg,
-            Number(lo=0.0, hi=90.0, lo_open=True, unit="deg", optional=True),
-        ),
-        "--elevation-mask-deg": (
-            args.elevation_mask_deg,
-            Number(lo=0.0, hi=90.0, hi_open=True, unit="deg"),
-        ),
-        "--min-pass-min": (args.min_pass_min, Number(lo=0.0, hi=1440.0, lo_open=True, unit="min")),
-        "--alpha": (args.alpha, Number(lo=0.0, hi=1.0, lo_open=True)),
-        "--threshold": (args.threshold, Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True)),
-        "--wavelength-m": (
-            args.wavelength_m,
-            Number(lo=0.0, hi=10.0, lo_open=True, unit="m", optional=True),
-        ),
-        "--distance-tolerance-m": (args.distance_tolerance_m, Number(lo=0.0, hi=1e4, unit="m")),
-        "--receiver-ecef": (
-            args.receiver_ecef,
-            Tuple(Number(), lengths=(3,), what="X Y Z in m")
-            if args.receiver_ecef is not None
-            else Number(optional=True),
-        ),
-    }
-    for flag, (value, spec) in checks.items():
-        spec(flag, value)
-    if args.nav and args.receiver_ecef is None:
+    given = read_options(args, OPTIONS, SCHEMA.spec)
+    opts = SCHEMA.build("check", given.get("check", {}))
+    fit_opts = SCHEMA.build("validation", given.get("validation", {}))
+    if opts.nav_file and opts.receiver_ecef_m is None:
         raise InputError("--nav needs --receiver-ecef X Y Z (receiver position, m)")
-    if args.out:
-        check_writable_folder(args.out, option="--out")
-    for sat in args.sat or ():
+    if opts.out_dir:
+        check_writable_folder(opts.out_dir, option="--out")
+    for sat in opts.sats:
         if not re.fullmatch(r"[A-Z]\d{2}", sat):
             raise InputError(f"--sat {sat!r}: expected a satellite id such as G05")
     report, written = run_validation(
-        args.geometry,
-        cutoff_hz=args.cutoff_hz,
-        rate=args.rate,
-        alpha=args.alpha,
-        threshold=args.threshold,
-        convention=args.convention,
-        wavelength_m=args.wavelength_m,
-        modes_file=args.modes,
-        theta0_deg=args.theta0_deg,
-        amplitude_deg=args.amplitude_deg,
-        nav_file=args.nav,
-        receiver_ecef_m=args.receiver_ecef,
-        sats=args.sat,
-        system=args.system,
-        elevation_mask_deg=args.elevation_mask_deg,
-        min_pass_s=args.min_pass_min * 60.0,
-        distance_tolerance_m=args.distance_tolerance_m,
-        out_dir=args.out or None,
-        figures=not args.no_figures,
+        list(opts.geometries),
+        cutoff_hz=opts.cutoff_hz,
+        rate=opts.rate,
+        alpha=fit_opts.alpha,
+        threshold=fit_opts.threshold,
+        convention=opts.convention,
+        wavelength_m=opts.wavelength_m,
+        modes_file=opts.modes_file,
+        theta0_deg=opts.theta0_deg,
+        amplitude_deg=opts.amplitude_deg,
+        nav_file=opts.nav_file,
+        receiver_ecef_m=opts.receiver_ecef_m,
+        sats=list(opts.sats) or None,
+        system=opts.system,
+        elevation_mask_deg=opts.elevation_mask_deg,
+        min_pass_s=opts.min_pass_s,
+        distance_tolerance_m=opts.distance_tolerance_m,
+        out_dir=opts.out_dir,
+        figures=opts.figures,
     )
     print(report.summary())
     if written:

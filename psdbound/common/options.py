@@ -332,6 +332,8 @@ class Tuple(Spec):
         it a single string is one element.
     what : str
         Description used in messages.
+    optional : bool
+        ``None`` is allowed (the option is unset).
     """
 
     item: Spec = field(default_factory=lambda: Text())
@@ -341,6 +343,7 @@ class Tuple(Spec):
     split: str | None = None
     what: str = "a list"
     distinct: bool = False
+    optional: bool = False
 
     def describe(self) -> str:
         """Describe what is allowed (see :meth:`Spec.describe`)."""
@@ -348,6 +351,8 @@ class Tuple(Spec):
 
     def check(self, value: Any) -> Any:
         """Check and normalise ``value`` (see :meth:`Spec.check`)."""
+        if value is None and self.optional:
+            return None
         if isinstance(value, str | os.PathLike):
             text = os.fspath(value)
             value = text.split(self.split) if self.split and isinstance(text, str) else [text]

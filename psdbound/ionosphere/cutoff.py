@@ -42,6 +42,14 @@ from numpy.typing import ArrayLike, NDArray
 from psdbound.constants import SIDEREAL_DAY_S
 from psdbound.errors import InputError
 from psdbound.ionosphere.envelope import Envelope, fit_envelope
+from psdbound.ionosphere.names import (
+    CRITERIA,
+    DEFAULT_DROP_DB,
+    DEFAULT_VARIANCE_M2,
+    MIN_ARC_S,
+    MIN_SERIES_SAMPLES,
+    REFERENCES,
+)
 from psdbound.periodogram import frequency_grid, lomb_scargle, to_one_sided_density
 
 __all__ = [
@@ -61,18 +69,6 @@ __all__ = [
 
 #: Default number of sidereal-day copies (the one-day series and six replicas).
 REPLICAS = 7
-#: Cutoff criteria.
-CRITERIA = ("relative", "absolute")
-#: Reference levels of the relative criterion.
-REFERENCES = ("envelope", "psd")
-#: Relative criterion: power drop below the reference, dB.
-DEFAULT_DROP_DB = 40.0
-#: Absolute criterion: allowed residual ionospheric variance, m^2 ((1 mm)^2).
-DEFAULT_VARIANCE_M2 = 1e-6
-#: Shortest series (samples above the mask in the one-day series) analysed: 30 min at 12 s.
-MIN_SERIES_SAMPLES = 150
-#: Arcs shorter than this are dropped before the periodogram, s (the DF pipeline's default).
-MIN_ARC_S = 1800.0
 
 
 def one_day_series(

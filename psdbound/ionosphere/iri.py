@@ -56,6 +56,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from psdbound.errors import InputError
+from psdbound.ionosphere.names import (
+    ALT_RESOLUTIONS,
+    DEFAULT_F107_SFU,
+    IRI_MODELS,
+)
 
 __all__ = [
     "ALT_RESOLUTIONS",
@@ -75,12 +80,6 @@ __all__ = [
     "pyiri_density",
 ]
 
-#: Default F10.7 solar flux, sfu (2019-2020 solar minimum level).
-DEFAULT_F107_SFU = 70.0
-#: Altitude node sets of the density integral (see :func:`altitude_nodes_km`).
-ALT_RESOLUTIONS = ("fine", "coarse")
-#: PyIRI models: classic URSI or CCIR foF2 maps, or the spherical-harmonics model.
-IRI_MODELS = ("ursi", "ccir", "sh")
 #: First and last supported dates: the GPS epoch, and the end of PyIRI's
 #: magnetic coordinate tables (Apex to 2030; IGRF-13 secular variation
 #: extrapolated past 2025).

@@ -47,6 +47,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from psdbound.errors import InputError
+from psdbound.ionosphere.names import (
+    F_MIN_HZ,
+    MIN_KEPT_S,
+)
 from psdbound.isolation import HighPass
 
 __all__ = [
@@ -60,11 +64,6 @@ __all__ = [
     "highpass_arcs",
     "split_arcs",
 ]
-
-#: Arcs shorter than this after edge trimming are dropped (the DF isolation's default), s.
-MIN_KEPT_S = 600.0
-#: Lowest cutoff searched, Hz: the fit's trimming then removes 2.8 h at each arc end.
-F_MIN_HZ = 1e-4
 
 
 def residual_threshold_m(mp_sigma_m: float, margin_db: float) -> float:

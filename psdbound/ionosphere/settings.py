@@ -27,26 +27,31 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
+from psdbound.common.options import Choice, Number, option
 from psdbound.errors import InputError
-from psdbound.ionosphere.cutoff import (
+from psdbound.ionosphere.names import (
+    ALT_RESOLUTIONS,
     CRITERIA,
     DEFAULT_DROP_DB,
+    DEFAULT_F107_SFU,
+    DEFAULT_MARGIN_DB,
+    DEFAULT_MP_SIGMA_M,
+    DEFAULT_SHELL_HEIGHT_KM,
     DEFAULT_VARIANCE_M2,
+    F_MIN_HZ,
+    FREQUENCIES_HZ,
+    IRI_MODELS,
+    METHODS,
     MIN_ARC_S,
+    MIN_KEPT_S,
     MIN_SERIES_SAMPLES,
     REFERENCES,
 )
-from psdbound.ionosphere.iri import ALT_RESOLUTIONS, DEFAULT_F107_SFU, IRI_MODELS
-from psdbound.ionosphere.names import DEFAULT_MARGIN_DB, DEFAULT_MP_SIGMA_M
-from psdbound.ionosphere.residual import (
-    F_MIN_HZ,
-    MIN_KEPT_S,
-    residual_threshold_m,
-)
-from psdbound.ionosphere.slant import DEFAULT_SHELL_HEIGHT_KM, FREQUENCIES_HZ, METHODS
-from psdbound.isolation import DF_SCALING, FILTER_KINDS, HighPass
+
+if TYPE_CHECKING:
+    from psdbound.isolation import HighPass
 
 __all__ = ["ALL_CRITERIA", "LEVELS_DB", "SETTING_OPTIONS", "CutoffSettings", "parse_carriers"]
 
@@ -160,41 +165,41 @@ class CutoffSettings:
     listed as skipped); see :func:`~psdbound.ionosphere.cutoff.one_day_series`.
     """
 
-    f107_sfu: float = DEFAULT_F107_SFU
-    elevation_mask_deg: float = 10.0
-    method: str = "line-of-sight"
-    iri_model: str = "ursi"
+    f107_sfu: float = option(DEFAULT_F107_SFU, Number(lo=50.0, hi=400.0, unit="sfu"))
+    elevation_mask_deg: float = option(10.0, Number(lo=0.0, hi=90.0, hi_open=True, unit="deg"))
+    method: str = option("line-of-sight", Choice(METHODS, noun="method"))
+    iri_model: str = option("ursi", Choice(IRI_MODELS, noun="IRI model"))
     frequency_hz: float = FREQUENCIES_HZ["L1"]
     second_frequency_hz: float | None = FREQUENCIES_HZ["L2"]
-    sampling_s: float = 30.0
+    sampling_s: float = option(30.0, Number(lo=0.0, lo_open=True, unit="s"))
     alt_range_km: tuple[float, float] = (60.0, 2000.0)
-    alt_resolution: str = "coarse"
+    alt_resolution: str = option("coarse", Choice(ALT_RESOLUTIONS, noun="altitude resolution"))
     shell_height_km: float = DEFAULT_SHELL_HEIGHT_KM
     grid_size: int = 11
     ut_step_h: float = 1.0
     ray_stride: int = 4
     systems: str = "G"
-    criterion: str = "residual"
-    mp_sigma_m: float = DEFAULT_MP_SIGMA_M
-    margin_db: float = DEFAULT_MARGIN_DB
+    criterion: str = option("residual", Choice(ALL_CRITERIA, noun="criterion"))
+    mp_sigma_m: float = option(DEFAULT_MP_SIGMA_M, Number(lo=0.0, lo_open=True, unit="m"))
+    margin_db: float = option(DEFAULT_MARGIN_DB, Number(lo=0.0, unit="dB"))
     filter_kind: str = "butter"
     filter_order: int = 4
-    filter_edge: str = "trim"
+    filter_edge: str = option("trim", Choice(("trim", "pad"), noun="edge handling"))
     min_kept_s: float = MIN_KEPT_S
-    search_top_fraction: float = 0.5
+    search_top_fraction: float = option(0.5, Number(lo=0.0, lo_open=True, hi=1.0))
     points_per_decade: int = 16
-    copies: int = 7
+    copies: int = option(7, Number(lo=1, integer=True))
     oversample: float = 1.0
     nyquist_fraction: float = 0.99
-    drop_db: float = DEFAULT_DROP_DB
-    reference: str = "psd"
-    variance_m2: float = DEFAULT_VARIANCE_M2
-    degree: int = 3
-    quantile: float = 0.99
+    drop_db: float = option(DEFAULT_DROP_DB, Number(lo=0.0, lo_open=True, unit="dB"))
+    reference: str = option("psd", Choice(REFERENCES, noun="reference"))
+    variance_m2: float = option(DEFAULT_VARIANCE_M2, Number(lo=0.0, lo_open=True, unit="m^2"))
+    degree: int = option(3, Number(lo=0, integer=True))
+    quantile: float = option(0.99, Number(lo=0.5, hi=1.0))
     envelope_method: str = "quantreg"
     bins_per_decade: float = 20.0
     min_samples: int = 60
-    min_arc_s: float = MIN_ARC_S
+    min_arc_s: float = option(MIN_ARC_S, Number(lo=0.0, unit="s"))
 
     @classmethod
     def legacy(cls, **changes: Any) -> CutoffSettings:
@@ -264,7 +269,14 @@ class CutoffSettings:
         return settings
 
     def validate(self) -> None:
-        """Raise :class:`InputError` for an unknown choice or an out-of-range number."""
+        """Raise :class:`InputError` for an unknown choice or an out-of-range number.
+
+        The ranges and choices are the fields' schema (:func:`~psdbound.common.options.option`,
+        which the ``cutoff`` command's options are read with, naming the flag); here they keep
+        the messages the library has always given.
+        """
+        from psdbound.isolation.filters import FILTER_KINDS
+
         checks = [
             (self.method in METHODS, f"method {self.method!r} not in {METHODS}"),
             (self.iri_model in IRI_MODELS, f"iri_model {self.iri_model!r} not in {IRI_MODELS}"),
@@ -324,6 +336,8 @@ class CutoffSettings:
 
     def highpass(self) -> HighPass:
         """Return the fit's high-pass filter these settings describe."""
+        from psdbound.isolation import HighPass
+
         return HighPass(kind=self.filter_kind, order=self.filter_order, edge=self.filter_edge)
 
     @property
@@ -334,6 +348,8 @@ class CutoffSettings:
         (the fit's per-carrier scaling of the DF difference); 1 for one
         carrier (conservative by 6.8 dB at L1 for an L1-L2 fit).
         """
+        from psdbound.isolation import DF_SCALING
+
         return float(DF_SCALING) if self.second_frequency_hz is not None else 1.0
 
     def margins_db(self) -> list[float]:
@@ -342,6 +358,8 @@ class CutoffSettings:
 
     def thresholds_m(self) -> list[float]:
         """Return the allowed residuals of :meth:`margins_db`, m."""
+        from psdbound.ionosphere.residual import residual_threshold_m
+
         return [residual_threshold_m(self.mp_sigma_m, m) for m in self.margins_db()]
 
     def residual_options(self) -> dict[str, Any]:

@@ -41,7 +41,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from psdbound.constants import F_L1_HZ, F_L2_HZ, F_L5_HZ, SIDEREAL_DAY_S
+from psdbound.constants import SIDEREAL_DAY_S
 from psdbound.errors import InputError, NoDataError
 from psdbound.io.geometry import OrbitSource, geodetic_to_ecef, satellite_azel
 from psdbound.io.timescales import calendar_to_gps_s, utc_to_gps_s
@@ -60,6 +60,11 @@ from psdbound.ionosphere.iri import (
     parse_date,
     pyiri_density,
 )
+from psdbound.ionosphere.names import (
+    DEFAULT_SHELL_HEIGHT_KM,
+    FREQUENCIES_HZ,
+    METHODS,
+)
 from psdbound.ionosphere.stations import validate_station
 
 __all__ = [
@@ -72,21 +77,8 @@ __all__ = [
     "slant_tec_direct",
 ]
 
-#: Default thin-shell height, km.
-DEFAULT_SHELL_HEIGHT_KM = 350.0
 #: Simulated time beyond one sidereal day, s (room for gap-aligned day windows).
 DEFAULT_MARGIN_S = 12 * 3600.0
-#: Carrier frequencies by name, Hz.
-FREQUENCIES_HZ = {
-    "L1": F_L1_HZ,
-    "L2": F_L2_HZ,
-    "L5": F_L5_HZ,
-    "E1": F_L1_HZ,
-    "E5a": F_L5_HZ,
-    "E5b": 1207.14e6,
-}
-#: Line-of-sight integration methods.
-METHODS = ("line-of-sight", "thin-shell")
 
 _K_IONO = 40.3  # m^3 s^-2: first-order delay = K * TEC / f^2
 _TECU = 1e16

@@ -407,8 +407,8 @@ class Scenario:
 
     def __post_init__(self) -> None:
         check_fields(self)
-        if not -90.0 <= self.lat_deg <= 90.0:
-            raise InputError(f"latitude must be within [-90, 90] deg, got {self.lat_deg}")
+        if not -90.0 <= self.lat_deg <= 90.0:  # an OptionError: the command line names its flag
+            raise OptionError("lat_deg", self.lat_deg, "within [-90, 90] deg", label="latitude")
         if self.duration_s / self.interval_s > 2_000_000:
             raise InputError("more than 2e6 epochs requested; shorten or decimate")
         if not isinstance(self.multipath, MultipathModel):

@@ -1,4 +1,4 @@
-"""Every option's --help states its default and its unit; fit's defaults are the library's."""
+"""Every option's --help states its default and its unit, from each command's option schema."""
 
 from __future__ import annotations
 
@@ -7,8 +7,9 @@ import re
 
 import pytest
 
-from psdbound.cli.fit import OPTIONS, help_text
+from psdbound.cli.fit import OPTIONS
 from psdbound.cli.main import build_parser
+from psdbound.cli.schema import help_text
 from psdbound.pipeline import FitConfig
 
 #: what counts as a unit (or an explicit statement that there is none)
@@ -34,8 +35,7 @@ def _actions():
     ids=lambda x: x if isinstance(x, str) else "/".join(x.option_strings) or x.dest,
 )
 def test_help_states_default_and_unit(command, action):
-    shared = command in ("fit", "campaign", "export")  # fit's day options and formatter
-    h = " ".join((help_text(action) if shared else action.help or "").split())
+    h = " ".join(help_text(action).split())  # as --help prints it: the schema's default added
     assert h, f"{command} {action.dest}: no help"
     assert re.search(r"default|required", h), f"{command} {action.option_strings}: {h!r}"
     if action.type in (int, float):
