@@ -17,7 +17,7 @@ package's modules when it installs it; gnssmultipath's are compiled in
 site-packages): our package's bytecode is compiled once before the runs
 (:func:`compile_ours`). Without it, a source checkout run with
 ``PYTHONDONTWRITEBYTECODE`` set (as in some sandboxes and CI) compiles the
-~170 modules a fit imports on every run, about 0.6 s of CPU that an
+~170 modules a fit imports on every run, about 0.2 s of CPU that an
 installed psdbound never spends; ``--no-compile`` times that case.
 
 Same day, same files: gnssmultipath does not read Hatanaka-compressed or
