@@ -23,6 +23,7 @@ What was done is recorded by :meth:`HighPass.describe`.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -121,17 +122,10 @@ class HighPass:
         return y, keep
 
     def sos(self, interval_s: float, cutoff_hz: float) -> NDArray[np.float64]:
-        """Second-order sections of the single-pass IIR design."""
-        from scipy import signal  # deferred: the options class is imported by every --help
-
-        fs = 1.0 / interval_s
-        if self.kind == "butter":
-            return signal.butter(self.order, cutoff_hz, btype="highpass", fs=fs, output="sos")
-        if self.kind == "cheby2":
-            return signal.cheby2(
-                self.order, self.stopband_db, cutoff_hz, btype="highpass", fs=fs, output="sos"
-            )
-        raise InputError("the FIR design has no second-order sections")
+        """Second-order sections of the single-pass IIR design (a copy of the cached design)."""
+        if self.kind not in ("butter", "cheby2"):
+            raise InputError("the FIR design has no second-order sections")
+        return _iir_design(self.kind, self.order, self.stopband_db, interval_s, cutoff_hz).copy()
 
     @staticmethod
     def _numtaps(interval_s: float, cutoff_hz: float) -> int:
@@ -148,9 +142,8 @@ class HighPass:
     def _fir(self, x: NDArray[np.float64], interval_s: float, cutoff_hz: float, pad: int):
         from scipy import signal  # deferred: the options class is imported by every --help
 
-        fs = 1.0 / interval_s
         numtaps = self._numtaps(interval_s, cutoff_hz)
-        taps = signal.firwin(numtaps, cutoff_hz, pass_zero=False, fs=fs, window="hamming")
+        taps = _fir_design(numtaps, interval_s, cutoff_hz)
         half = numtaps // 2
         m = min(half, x.size - 1)
         ext = np.concatenate([2 * x[0] - x[m:0:-1], x, 2 * x[-1] - x[-2 : -m - 2 : -1]])
@@ -164,8 +157,7 @@ class HighPass:
         self.check_cutoff(cutoff_hz, interval_s)
         fs = 1.0 / interval_s
         if self.kind == "fir":
-            numtaps = self._numtaps(interval_s, cutoff_hz)
-            taps = signal.firwin(numtaps, cutoff_hz, pass_zero=False, fs=fs, window="hamming")
+            taps = _fir_design(self._numtaps(interval_s, cutoff_hz), interval_s, cutoff_hz)
             _, h = signal.freqz(taps, worN=f_hz, fs=fs)
             return np.abs(h)
         _, h = signal.sosfreqz(self.sos(interval_s, cutoff_hz), worN=f_hz, fs=fs)
@@ -218,3 +210,33 @@ class HighPass:
         if self.edge == "trim":
             d["trim_s"] = float(np.ceil(1.0 / (cutoff_hz * interval_s)) * interval_s)
         return d
+
+
+# The designs depend on the options, the sampling and the cutoff alone; a station day
+# filters hundreds of arcs (and the validation filters them again) with one design,
+# which scipy would otherwise compute anew each time (about 1 ms each). The cached
+# arrays are read-only; sos() hands out copies.
+@lru_cache(maxsize=64)
+def _iir_design(
+    kind: str, order: int, stopband_db: float, interval_s: float, cutoff_hz: float
+) -> NDArray[np.float64]:
+    """Second-order sections of a high-pass Butterworth or Chebyshev II design (read-only)."""
+    from scipy import signal  # deferred: the options class is imported by every --help
+
+    fs = 1.0 / interval_s
+    if kind == "butter":
+        sos = signal.butter(order, cutoff_hz, btype="highpass", fs=fs, output="sos")
+    else:
+        sos = signal.cheby2(order, stopband_db, cutoff_hz, btype="highpass", fs=fs, output="sos")
+    sos.setflags(write=False)
+    return np.asarray(sos, dtype=np.float64)
+
+
+@lru_cache(maxsize=16)
+def _fir_design(numtaps: int, interval_s: float, cutoff_hz: float) -> NDArray[np.float64]:
+    """Taps of the windowed-sinc (Hamming) high-pass FIR design (read-only)."""
+    from scipy import signal  # deferred: the options class is imported by every --help
+
+    taps = signal.firwin(numtaps, cutoff_hz, pass_zero=False, fs=1.0 / interval_s, window="hamming")
+    taps.setflags(write=False)
+    return np.asarray(taps, dtype=np.float64)

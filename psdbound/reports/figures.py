@@ -1,9 +1,10 @@
 """Report figures, drawn from a result document alone (``result.json``).
 
 Every function takes the result ``dict`` and returns a matplotlib
-:class:`~matplotlib.figure.Figure` (Agg, constrained layout, not registered
-with pyplot), or None when the result holds no data for that figure. Every
-figure is one A4 text width wide (:data:`~psdbound.reports.figures_base.FIG_W_IN`)
+:class:`~matplotlib.figure.Figure` (Agg, explicit layout by
+:mod:`psdbound.reports.layout`, not registered with pyplot), or None when
+the result holds no data for that figure. Every figure is one A4 text
+width wide (:data:`~psdbound.reports.figures_base.FIG_W_IN`)
 so that the PDF places it unscaled, two to a page where they fit; every axis
 label carries its unit in brackets.
 

@@ -69,8 +69,8 @@ def fig_overbound_qq(
     ax, ax2 = fig.subplots(1, 2, width_ratios=(1.6, 1.0))
     _qq_panel(ax, overbound, qq, unit)
     _sigma_panel(ax2, overbound["bins"], unit)
-    fig.suptitle(title, fontsize=9)
-    return finish(fig)
+    heading = fig.suptitle(title, fontsize=9)
+    return finish(fig, above=[heading])
 
 
 def _qq_panel(ax: Any, ob: dict[str, Any], qq: dict[str, Any], unit: str) -> None:

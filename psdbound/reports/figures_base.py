@@ -1,4 +1,4 @@
-"""Shared pieces of the report figures: sizes, a bare Agg figure, time origin.
+"""Shared pieces of the report figures: sizes, a bare figure, the finish, time origin.
 
 Every figure is :data:`FIG_W_IN` wide, the text width of an A4 page, so the
 PDF places it at its own size (no rescaling, text at the size it was drawn);
@@ -8,13 +8,17 @@ figures up to :data:`HALF_PAGE_H_IN` tall go two to a page.
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
 from typing import Any
 
 import matplotlib
 
 matplotlib.use("Agg")
+from matplotlib.artist import Artist  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 from matplotlib.ticker import LogFormatterSciNotation, LogLocator  # noqa: E402
+
+from psdbound.reports.layout import place_grid  # noqa: E402
 
 __all__ = [
     "FIG_W_IN",
@@ -35,7 +39,10 @@ FULL_PAGE_H_IN = 10.3
 
 
 def new_figure(height_in: float, *, width_in: float = FIG_W_IN) -> Figure:
-    """Return a figure (constrained layout, no pyplot state) of the report's width.
+    """Return a figure (no layout engine, no pyplot state) of the report's width.
+
+    Its grid of axes is placed by :func:`finish` (explicit layout,
+    :func:`psdbound.reports.layout.place_grid`).
 
     Parameters
     ----------
@@ -49,9 +56,7 @@ def new_figure(height_in: float, *, width_in: float = FIG_W_IN) -> Figure:
     matplotlib.figure.Figure
         Not registered with pyplot: nothing to close, garbage-collected.
     """
-    fig = Figure(figsize=(width_in, min(float(height_in), FULL_PAGE_H_IN)), layout="constrained")
-    fig.get_layout_engine().set(h_pad=0.03, w_pad=0.03, hspace=0.03, wspace=0.03)
-    return fig
+    return Figure(figsize=(width_in, min(float(height_in), FULL_PAGE_H_IN)))
 
 
 def t0_gps_s(r: dict[str, Any]) -> float:
@@ -81,11 +86,25 @@ class PlainLogFormatter(LogFormatterSciNotation):
         return s.replace("-", "\u2212")
 
 
-def finish(fig: Figure) -> Figure:
-    """Give every log axis plain-text tick labels and minor ticks at 2 and 5; return the figure.
+def finish(fig: Figure, *, above: Sequence[Artist] = ()) -> Figure:
+    """Give every log axis plain-text tick labels and minor ticks at 2 and 5, place the axes.
 
     Minor ticks at 2 and 5 (not 2..9) keep a readable grid and make a third
     fewer tick objects, which dominate the drawing time of a small figure.
+    The grid of axes is then placed with margins measured from the figure's
+    texts (:func:`psdbound.reports.layout.place_grid`).
+
+    Parameters
+    ----------
+    fig : Figure
+        The figure, complete.
+    above : sequence of Artist, optional
+        Figure-level artists above the axes (a figure legend, a heading).
+
+    Returns
+    -------
+    Figure
+        ``fig``.
     """
     for ax in fig.axes:
         for axis, scale in ((ax.xaxis, ax.get_xscale()), (ax.yaxis, ax.get_yscale())):
@@ -93,4 +112,5 @@ def finish(fig: Figure) -> Figure:
                 axis.set_minor_locator(LogLocator(subs=(2.0, 5.0)))
                 axis.set_major_formatter(PlainLogFormatter())
                 axis.set_minor_formatter(PlainLogFormatter(labelOnlyBase=False))
+    place_grid(fig, above=above)
     return fig

@@ -16,6 +16,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from psdbound.reports.figures_base import HALF_PAGE_H_IN, finish, new_figure
+from psdbound.reports.layout import EDGE_IN, axis_room_in, renderer_of
 
 __all__ = ["fig_sky"]
 
@@ -42,7 +43,7 @@ def fig_sky(r: dict[str, Any]) -> Figure | None:
         return None
     az, zd, rms = _grid(d)
     fig = new_figure(HALF_PAGE_H_IN)
-    ax = fig.add_subplot(projection="polar")
+    ax = fig.add_axes((0.0, 0.0, 1.0, 1.0), projection="polar")  # placed by _place
     ax.set_theta_zero_location("N")
     ax.set_theta_direction(-1)
     mesh = ax.pcolormesh(az, zd, np.ma.masked_invalid(rms), cmap="viridis", shading="flat")
@@ -53,7 +54,7 @@ def fig_sky(r: dict[str, Any]) -> Figure | None:
     ax.grid(alpha=0.4)
     ax.set_xlabel("azimuth, clockwise from north [deg]", fontsize=8)
     ax.set_ylabel("elevation [deg]", fontsize=8, labelpad=18)
-    cb = fig.colorbar(mesh, ax=ax, shrink=0.8, pad=0.08)
+    cb = fig.colorbar(mesh, cax=fig.add_axes((0.9, 0.1, 0.02, 0.8)))
     cb.set_label("isolated multipath RMS [mm]")
     b = r["bound"]
     sigma = 1000.0 * float(np.hypot(b["sigma_gm_m"], b["sigma_wn_m"]))
@@ -62,4 +63,25 @@ def fig_sky(r: dict[str, Any]) -> Figure | None:
         f"zenith {sigma:.2f} mm",
         fontsize=9,
     )
+    _place(fig, ax, cb.ax)
     return finish(fig)
+
+
+#: Room below the sky (azimuth labels and the axis label) and above it (north's label and
+#: the title), in; the colour bar's width and its distance from the sky (the east label), in.
+_BELOW_IN, _ABOVE_IN, _BAR_W_IN, _BAR_GAP_IN = 0.45, 0.47, 0.16, 0.75
+
+
+def _place(fig: Figure, sky: Any, bar: Any) -> None:
+    """Put the sky as large as the figure's height allows, its colour bar at the right edge.
+
+    The colour bar's right margin holds its tick labels and label (measured);
+    the bar is 0.8 of the sky's diameter tall, centred on it.
+    """
+    w, h = fig.get_size_inches()
+    diameter = h - _BELOW_IN - _ABOVE_IN
+    bar_x = w - EDGE_IN - axis_room_in(bar.yaxis, renderer_of(fig)) - _BAR_W_IN
+    sky_x = bar_x - _BAR_GAP_IN - diameter
+    sky.set_position((sky_x / w, _BELOW_IN / h, diameter / w, diameter / h))
+    bar_y = _BELOW_IN + 0.1 * diameter
+    bar.set_position((bar_x / w, bar_y / h, _BAR_W_IN / w, 0.8 * diameter / h))

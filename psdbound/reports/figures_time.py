@@ -117,8 +117,8 @@ def fig_windows(r: dict[str, Any]) -> Figure | None:
     ax.set_xlim(min(0.0, (r["data_span"]["start_gps_s"] - t0) / 3600.0), span_h)
     ax.set_ylim(len(lanes) - 0.5, -0.5)
     size = float(np.clip(520.0 / max(len(lanes), 1), 4.5, 8.0))
-    ax.set_yticks(range(len(lanes)), lanes, fontsize=size)
-    ax.tick_params(axis="y", length=0)
+    ax.set_yticks(range(len(lanes)), lanes)
+    ax.tick_params(axis="y", length=0, labelsize=size)
     ax.set_ylabel("satellite pair [PRN-PRN]" if pair else "satellite [PRN]")
     ax.set_xlabel("time since data start [h]")
     ax.grid(axis="x", alpha=0.3)
@@ -129,16 +129,16 @@ def fig_windows(r: dict[str, Any]) -> Figure | None:
         f"stationary {w['never_stationary_s'] / 60:.1f} min",
         fontsize=9,
     )
-    fig.legend(
+    legend = fig.legend(
         handles=handles,
         fontsize=7,
         ncol=len(handles),
-        loc="outside upper center",
+        loc="upper center",
         frameon=False,
         handlelength=1.2,
         columnspacing=1.0,
     )
-    return finish(fig)
+    return finish(fig, above=[legend])
 
 
 def _screened_layers(

