@@ -53,7 +53,8 @@ def fig_sky(r: dict[str, Any]) -> Figure | None:
     ax.tick_params(axis="x", labelsize=7)
     ax.grid(alpha=0.4)
     ax.set_xlabel("azimuth, clockwise from north [deg]", fontsize=8)
-    ax.set_ylabel("elevation [deg]", fontsize=8, labelpad=18)
+    ax.set_ylabel("elevation [deg]", fontsize=8)
+    ax.yaxis.set_label_coords(-0.13, 0.5)  # left of the 270 deg label, not on it
     cb = fig.colorbar(mesh, cax=fig.add_axes((0.9, 0.1, 0.02, 0.8)))
     cb.set_label("isolated multipath RMS [mm]")
     b = r["bound"]

@@ -18,6 +18,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Patch
 
 from psdbound.reports.figures_base import finish, new_figure, t0_gps_s
+from psdbound.reports.layout import renderer_of
 from psdbound.screening.rot import ROTI_BLOCK_S
 
 __all__ = ["fig_df_filter", "fig_mapped", "fig_screening", "fig_windows"]
@@ -258,7 +259,11 @@ def _test_label(test: str, n: int, spans: list[dict[str, Any]]) -> str:
 
 
 def _lanes_axis(ax: Any, r: dict[str, Any], d: dict[str, Any]) -> Any:
-    """Draw the blocks (coloured by statistic / threshold) and the cut spans (by test) in lanes."""
+    """Draw the blocks (coloured by statistic / threshold) and the cut spans (by test) in lanes.
+
+    Returns the blocks (for the colour bar), the colour bar's label and the legend handles
+    of the tests that flagged the cut spans.
+    """
     t0 = t0_gps_s(r)
     excl = [e for e in r.get("screening", {}).get("excluded", []) if "sat" in e]
     items, ratio, has_roti = _block_ratios(d)
@@ -284,17 +289,8 @@ def _lanes_axis(ax: Any, r: dict[str, Any], d: dict[str, Any]) -> Any:
     ax.tick_params(axis="y", length=0)
     ax.set_ylabel("satellite pair [PRN-PRN]" if r.get("method") == "DA" else "satellite [PRN]")
     ax.grid(alpha=0.3, axis="x")
-    if handles:
-        ax.figure.legend(
-            handles=handles,
-            fontsize=6.5,
-            loc="outside lower center",
-            ncol=min(len(handles), 3),
-            title="excluded spans by the test that flagged them (count; false-alarm probability)",
-            title_fontsize=7,
-        )
     label = "ROTI / threshold [-]" if has_roti else "largest |value| / limit [-]"
-    return blocks, label
+    return blocks, label, handles
 
 
 def fig_screening(r: dict[str, Any]) -> Figure | None:
@@ -319,8 +315,7 @@ def fig_screening(r: dict[str, Any]) -> Figure | None:
     ax, ax_v = fig.subplots(
         2, 1, sharex=True, height_ratios=[LANE_IN * n_lanes + 0.9, 1.4], squeeze=True
     )
-    blocks, label = _lanes_axis(ax, r, d)
-    fig.colorbar(blocks, ax=ax, label=label, fraction=0.03, pad=0.01, extend="both")
+    blocks, label, handles = _lanes_axis(ax, r, d)
     _limit_axis(ax_v, r, d)
     t0 = t0_gps_s(r)
     ax.set_xlim(
@@ -328,12 +323,52 @@ def fig_screening(r: dict[str, Any]) -> Figure | None:
         (r["data_span"]["stop_gps_s"] - t0) / 3600.0,
     )
     scr = r.get("screening", {})
-    fig.suptitle(
+    heading = fig.suptitle(
         f"Screening per satellite and 5-min block: {len(scr.get('excluded', []))} excluded "
         f"spans ({scr.get('excluded_s', 0.0) / 3600:.2f} h)\nthreshold {_threshold_words(r, d)}",
         fontsize=8,
     )
-    return finish(fig)
+    finish(fig, above=[heading, *_tests_legend(fig, heading, handles)])
+    _colour_bar_right(fig, (ax, ax_v), blocks, label)
+    return fig
+
+
+def _tests_legend(fig: Figure, heading: Any, handles: list[Any]) -> list[Any]:
+    """Put the legend of the flagging tests under the heading (none without excluded spans)."""
+    if not handles:
+        return []
+    top = heading.get_window_extent(renderer_of(fig)).y0 / (fig.get_figheight() * fig.dpi)
+    return [
+        fig.legend(
+            handles=handles,
+            fontsize=6.5,
+            loc="upper center",
+            bbox_to_anchor=(0.5, top),
+            ncol=min(len(handles), 3),
+            frameon=False,
+            title="excluded spans by the test that flagged them (count; false-alarm probability)",
+            title_fontsize=7,
+        )
+    ]
+
+
+#: Room the lanes' colour bar takes at the right of the axes (gap, bar, ticks and label), in.
+_BAR_GAP_IN, _BAR_W_IN, _BAR_ROOM_IN = 0.1, 0.12, 0.95
+
+
+def _colour_bar_right(fig: Figure, axes: tuple[Any, Any], mappable: Any, label: str) -> None:
+    """Narrow the laid-out axes by the colour bar's room and put the bar beside the top one.
+
+    The grid is placed first (:func:`finish`: a colour bar made with ``ax=`` would give
+    the top axes a grid of its own and the placement would miss the bottom one).
+    """
+    w = fig.get_size_inches()[0]
+    for a in axes:
+        x0, y0, aw, ah = a.get_position().bounds
+        a.set_position((x0, y0, aw - _BAR_ROOM_IN / w, ah))
+    x0, y0, aw, ah = axes[0].get_position().bounds
+    cax = fig.add_axes((x0 + aw + _BAR_GAP_IN / w, y0, _BAR_W_IN / w, ah))
+    fig.colorbar(mappable, cax=cax, label=label, extend="both")
 
 
 def _threshold_words(r: dict[str, Any], d: dict[str, Any]) -> str:
