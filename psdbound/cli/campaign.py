@@ -3,18 +3,111 @@
 A day's options are ``fit``'s own (:func:`psdbound.cli.fit.add_day_options`,
 checked by :func:`psdbound.cli.fit.build_config` as for ``fit`` on the first
 observation file); the observation and navigation files, the isolation
-method (dual-frequency), code multipath and the outputs are the campaign's.
+method (dual-frequency), code multipath and the outputs are the campaign's:
+listed in :data:`OPTIONS` over :data:`SCHEMA` (:class:`CampaignOptions`), as
+every command's (:mod:`psdbound.cli.schema`).
 """
 
 from __future__ import annotations
 
 import argparse
-from dataclasses import fields
+from dataclasses import dataclass, fields
 from typing import Any
 
 from psdbound.cli.exit_codes import EXIT_NOT_BOUNDED, EXIT_OK
+from psdbound.cli.schema import CliOption, Schema, add_options, read_options
+from psdbound.common.options import Boolean, Number, Text, Tuple, check_fields, option
 
-__all__ = ["add_parser", "day_options", "run"]
+__all__ = ["OPTIONS", "SCHEMA", "CampaignOptions", "add_parser", "day_options", "run"]
+
+
+@dataclass(frozen=True)
+class CampaignOptions:
+    """The options of ``psdbound campaign`` besides a day's (which are ``fit``'s).
+
+    The names are the keywords of :func:`psdbound.campaign.run_campaign`
+    and :func:`psdbound.campaign.write_campaign` (``out``, ``pdf``).
+    """
+
+    obs: tuple[str, ...] = option((), Tuple(Text(what="a file name", paths=True)))
+    nav: tuple[str, ...] = option((), Tuple(Text(what="a file name", paths=True)))
+    out: str = option("reports/campaign", Text(what="a folder name", paths=True))
+    workers: int = option(2, Number(lo=0, hi=256, integer=True))
+    scheduler: str | None = option(None, Text(what="a scheduler address", optional=True))
+    cache_dir: str | None = option(None, Text(what="a folder name", paths=True, optional=True))
+    pdf: bool = option(True, Boolean())
+    sidereal_keep: bool = option(True, Boolean())
+
+    def __post_init__(self) -> None:
+        check_fields(self)
+
+
+#: The schema of ``campaign``'s own options (a day's are FitConfig's, as ``fit``'s).
+SCHEMA = Schema({"campaign": "psdbound.cli.campaign:CampaignOptions"})
+
+_O = CliOption
+#: Every ``campaign`` option that is not a day's: files, execution and outputs.
+OPTIONS: tuple[CliOption, ...] = (
+    _O(
+        "campaign",
+        "obs",
+        ("obs",),
+        "observation files (any stations and days; required)",
+        None,
+        {"nargs": "+"},
+    ),
+    _O(
+        "campaign",
+        "nav",
+        ("--nav",),
+        "navigation/SP3 files, any names: each day takes the one file that covers its "
+        "observations' time span for the system fitted (required)",
+        None,
+        {"nargs": "+", "action": "extend", "required": True},
+    ),
+    _O("campaign", "out", ("--out",), "output folder", None),
+    _O(
+        "campaign",
+        "workers",
+        ("--workers",),
+        "local Dask worker processes, count",
+        None,
+        note="0 runs in this process",
+    ),
+    _O(
+        "campaign",
+        "scheduler",
+        ("--scheduler",),
+        "address of a running Dask scheduler (overrides --workers; default: a local cluster)",
+        None,
+    ),
+    _O(
+        "campaign",
+        "cache_dir",
+        ("--cache-dir",),
+        "task cache folder (default: the psdbound cache)",
+        None,
+    ),
+    _O(
+        "campaign",
+        "pdf",
+        ("--no-pdf",),
+        "skip campaign.pdf",
+        None,
+        {"action": "store_true"},
+        convert=lambda given: {"pdf": not given},
+    ),
+    _O(
+        "campaign",
+        "sidereal_keep",
+        ("--no-sidereal-keep",),
+        "do not fit again, keeping them as multipath, the days whose spans screened as "
+        "ionosphere repeat one sidereal day later on a neighbouring day (default: fit again)",
+        None,
+        {"action": "store_true"},
+        convert=lambda given: {"sidereal_keep": not given},
+    ),
+)
 
 #: FitConfig options a campaign sets itself (files, method) or does not use (outputs).
 _CAMPAIGN_OWNS = {("inputs", "obs"), ("inputs", "nav"), ("inputs", "method")}
@@ -56,36 +149,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "station's pooled bound is not bounded (reasons printed, outputs written); 2 bad input "
         "(nothing written); 1 internal error.",
     )
-    p.add_argument("obs", nargs="+", help="observation files (any stations and days; required)")
-    p.add_argument(
-        "--nav",
-        nargs="+",
-        action="extend",
-        required=True,
-        help="navigation/SP3 files, any names: each day takes the one file that covers its "
-        "observations' time span for the system fitted (required)",
-    )
-    p.add_argument(
-        "--out", default="reports/campaign", help="output folder (default: reports/campaign)"
-    )
-    p.add_argument(
-        "--workers",
-        type=int,
-        default=2,
-        help="local Dask worker processes, count (default: 2; 0 runs in this process)",
-    )
-    p.add_argument(
-        "--scheduler",
-        help="address of a running Dask scheduler (overrides --workers; default: a local cluster)",
-    )
-    p.add_argument("--cache-dir", help="task cache folder (default: the psdbound cache)")
-    p.add_argument("--no-pdf", action="store_true", help="skip campaign.pdf")
-    p.add_argument(
-        "--no-sidereal-keep",
-        action="store_true",
-        help="do not fit again, keeping them as multipath, the days whose spans screened as "
-        "ionosphere repeat one sidereal day later on a neighbouring day (default: fit again)",
-    )
+    add_options(p, OPTIONS, SCHEMA.spec, groups=(None,), defaults=SCHEMA.default)
     add_day_options(p)
     p.set_defaults(func=run)
 
@@ -146,25 +210,25 @@ def day_options(args: argparse.Namespace) -> dict[str, dict[str, Any]]:
 def run(args: argparse.Namespace) -> int:
     """Run the campaign, write its outputs, print the summary; return the exit code."""
     from psdbound.campaign import run_campaign, write_campaign
-    from psdbound.common.options import Number
     from psdbound.common.outputs import check_writable_folder
     from psdbound.common.progress import counter
 
-    Number(lo=0, hi=256, integer=True)("--workers", args.workers)
-    check_writable_folder(args.out, option="--out")
+    given = read_options(args, OPTIONS, SCHEMA.spec)
+    opts = SCHEMA.build("campaign", given.get("campaign", {}))
+    check_writable_folder(opts.out, option="--out")
     options = day_options(args)
 
     res = run_campaign(
-        args.obs,
-        args.nav,
-        workers=args.workers,
-        scheduler=args.scheduler,
-        cache_dir=args.cache_dir,
+        list(opts.obs),
+        list(opts.nav),
+        workers=opts.workers,
+        scheduler=opts.scheduler,
+        cache_dir=opts.cache_dir,
         options=options,
         progress=counter("station-days computed"),
-        sidereal_keep=not args.no_sidereal_keep,
+        sidereal_keep=opts.sidereal_keep,
     )
-    files = write_campaign(res, args.out, pdf=not args.no_pdf)
+    files = write_campaign(res, opts.out, pdf=opts.pdf)
     print(res.summary())
     for f in files.values():
         print(f)

@@ -4,20 +4,90 @@ The inputs and method options are ``fit``'s (:func:`psdbound.cli.fit.add_input_o
 checked by :func:`psdbound.cli.fit.build_config`); the fit runs through
 :func:`psdbound.fit` and only the series table is written
 (:meth:`psdbound.pipeline.FitResults.write_series`), atomically. The output
-file is checked before the fit starts.
+file is checked before the fit starts. ``export``'s own options (the output
+file, its format, the run name and ``--overwrite``) are listed in
+:data:`OPTIONS` over :data:`SCHEMA` (:class:`ExportOptions`, and fit's
+``[output] name``), as every command's (:mod:`psdbound.cli.schema`).
 """
 
 from __future__ import annotations
 
 import argparse
+from dataclasses import dataclass
 from pathlib import Path
 
 from psdbound.cli.exit_codes import EXIT_NOT_BOUNDED, EXIT_OK
+from psdbound.cli.schema import CliOption, Schema, add_options, read_options
+from psdbound.common.options import Boolean, Choice, Text, check_fields, option
 
-__all__ = ["add_parser", "output_file", "run"]
+__all__ = ["OPTIONS", "SCHEMA", "ExportOptions", "add_parser", "output_file", "run"]
 
 #: File name suffix of each format (the default output is reports/<run-name>-series<suffix>).
 _SUFFIX = {"csv": ".csv", "netcdf": ".nc"}
+
+
+@dataclass(frozen=True)
+class ExportOptions:
+    """The options of ``psdbound export`` besides the fit's.
+
+    Attributes
+    ----------
+    out : str or None
+        Output file (None: ``reports/<run-name>-series.csv``, or ``.nc``).
+    format : str or None
+        ``"csv"`` or ``"netcdf"`` (None: from the name of ``out``).
+    overwrite : bool
+        Replace an existing file that psdbound did not write.
+    """
+
+    out: str | None = option(None, Text(what="a file name", paths=True, optional=True))
+    format: str | None = option(None, Choice(("csv", "netcdf"), optional=True, noun="format"))
+    overwrite: bool = option(False, Boolean())
+
+    def __post_init__(self) -> None:
+        check_fields(self)
+
+
+#: The schema of ``export``'s own options: the output file, and the fit's run name.
+SCHEMA = Schema(
+    {
+        "export": "psdbound.cli.export:ExportOptions",
+        "output": "psdbound.pipeline.config:OutputConfig",
+    }
+)
+
+_G_OUT = "outputs"
+_O = CliOption
+#: Every option of ``export`` that is not ``fit``'s input or method option.
+OPTIONS: tuple[CliOption, ...] = (
+    _O(
+        "export",
+        "out",
+        ("-o", "--out"),
+        "output file (default: reports/<run-name>-series.csv, or .nc with "
+        "--format netcdf); .csv.gz is gzip-compressed CSV",
+        _G_OUT,
+        {"metavar": "FILE"},
+    ),
+    _O(
+        "export",
+        "format",
+        ("--format",),
+        "file format (default: from the name of -o: .nc netCDF, .csv or "
+        ".csv.gz CSV; csv without -o)",
+        _G_OUT,
+    ),
+    _O("output", "name", ("--name",), "run name (default from the first observation file)", _G_OUT),
+    _O(
+        "export",
+        "overwrite",
+        ("--overwrite",),
+        "replace an existing file that psdbound did not write (an earlier "
+        "series file is always replaced)",
+        _G_OUT,
+        {"action": "store_true"},
+    ),
+)
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -40,27 +110,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "the data as isolated); 2 bad input (nothing written); 1 internal error.",
     )
     add_input_options(p)
-    g = p.add_argument_group("outputs")
-    g.add_argument(
-        "-o",
-        "--out",
-        metavar="FILE",
-        help="output file (default: reports/<run-name>-series.csv, or .nc with "
-        "--format netcdf); .csv.gz is gzip-compressed CSV",
-    )
-    g.add_argument(
-        "--format",
-        choices=("csv", "netcdf"),
-        help="file format (default: from the name of -o: .nc netCDF, .csv or "
-        ".csv.gz CSV; csv without -o)",
-    )
-    g.add_argument("--name", help="run name (default from the first observation file)")
-    g.add_argument(
-        "--overwrite",
-        action="store_true",
-        help="replace an existing file that psdbound did not write (an earlier "
-        "series file is always replaced)",
-    )
+    g = add_options(p, OPTIONS, SCHEMA.spec, groups=(_G_OUT,), defaults=SCHEMA.default)[_G_OUT]
     talk = g.add_mutually_exclusive_group()
     talk.add_argument("-q", "--quiet", action="store_true", help="print only errors and the result")
     talk.add_argument(
@@ -95,13 +145,14 @@ def output_file(args: argparse.Namespace, cfg) -> tuple[Path, str]:
     from psdbound.common.outputs import check_output_file
     from psdbound.results.series_export import format_of, is_series_file
 
-    if args.out:
-        path = Path(args.out)
-        fmt = format_of(path, args.format)
+    opts = SCHEMA.build("export", read_options(args, OPTIONS, SCHEMA.spec).get("export", {}))
+    if opts.out:
+        path = Path(opts.out)
+        fmt = format_of(path, opts.format)
     else:
-        fmt = args.format or "csv"
+        fmt = opts.format or "csv"
         path = Path("reports") / f"{run_name(cfg)}-series{_SUFFIX[fmt]}"
-    check_output_file(path, overwrite=args.overwrite, option="-o/--out", ours=is_series_file)
+    check_output_file(path, overwrite=opts.overwrite, option="-o/--out", ours=is_series_file)
     return path, fmt
 
 

@@ -1,4 +1,4 @@
-"""cutoff, validate, overbound, budget, simulate: options generated from one schema, as fit's.
+"""cutoff, validate, overbound, budget, simulate, export, campaign: options from one schema.
 
 Each command lists its options once (``OPTIONS``, rows of
 :class:`psdbound.cli.schema.CliOption`) over its schema (``SCHEMA``: the
@@ -21,7 +21,7 @@ from psdbound.cli.main import build_parser, main
 from psdbound.cli.schema import help_text, read_options
 from psdbound.common.options import Choice, Number
 
-COMMANDS = ("cutoff", "validate", "overbound", "budget", "simulate")
+COMMANDS = ("cutoff", "validate", "overbound", "budget", "simulate", "export", "campaign")
 #: Options that set a name the domain reads but that is not a field (CutoffSettings.from_mapping).
 NOT_FIELDS = {("cutoff", "settings", "carrier")}
 
@@ -82,7 +82,8 @@ def test_help_states_the_schema_default_with_its_unit(command):
         if unit and not isinstance(value, tuple):
             assert stated[1] == unit, opt.flag
         checked += 1
-    assert checked >= (0 if command == "simulate" else 2)  # simulate's are the preset's
+    # simulate's defaults are the preset's; export's own state theirs in words
+    assert checked >= (0 if command in ("simulate", "export") else 2)
 
 
 @pytest.mark.parametrize(
@@ -103,6 +104,8 @@ def test_help_states_the_schema_default_with_its_unit(command):
         (["overbound", "s.csv", "--min-samples", "1"], "--min-samples must be an integer >= 2"),
         (["simulate", "--duration-h", "0"], "--duration-h must be a number > 0 and <= 8784 h"),
         (["simulate", "--lat-deg", "95"], "--lat-deg must be within [-90, 90] deg, got 95"),
+        (["campaign", "a.rnx", "--nav", "n", "--workers", "-1"], "--workers must be an integer"),
+        (["export", "--name", "a/b"], "--name must be a run name"),
     ],
 )
 def test_bad_values_name_the_flag(argv, message, capsys, tmp_path, monkeypatch):
