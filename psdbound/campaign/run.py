@@ -309,7 +309,7 @@ def run_campaign(
                 scheduler=scheduler,
                 cache=_cache(cache_dir),
                 progress=progress,
-                client=None if workers == 0 and scheduler is None else client,
+                client=client,
             )
 
         run = fit_days(items)

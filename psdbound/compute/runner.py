@@ -87,8 +87,8 @@ def run_tasks(
     client : callable, optional
         ``client() -> dask.distributed.Client`` to submit to (e.g. from
         :func:`~psdbound.compute.cluster.lazy_client`, shared by the passes
-        of one run) instead of opening a cluster for this call; ``workers``
-        and ``scheduler`` are then not used.
+        of one run) instead of opening a cluster for this call. Not called
+        with ``workers=0`` and no scheduler: the tasks then run in this process.
 
     Returns
     -------
@@ -137,7 +137,7 @@ def _compute(
     """Compute ``func`` over ``items``; call ``done(index, result, n_done)`` as each ends."""
     if not items:
         return
-    if client is None and scheduler is None and workers == 0:
+    if scheduler is None and workers == 0:
         for j, item in enumerate(items):
             done(j, func(item), j + 1)
         return

@@ -169,7 +169,11 @@ def band_spectra(
 
 
 def merge_bands(
-    bands: BandSpectra, *, min_window_dof: float = 4.0, min_width_hz: float = 0.0
+    bands: BandSpectra,
+    *,
+    min_window_dof: float = 4.0,
+    min_width_hz: float = 0.0,
+    dof_by_width: bool | None = None,
 ) -> BandSpectra:
     """Merge adjacent bands until a typical window has ``min_window_dof`` in each.
 
@@ -188,10 +192,13 @@ def merge_bands(
     min_width_hz : float, default 0
         Smallest band width, Hz. With the estimator's smoothing width (for
         multitaper ``2W``) the merged band averages of one window are nearly
-        independent of each other. Given (> 0), each merged band's degrees of
-        freedom, and those ``min_window_dof`` is judged on, come from its
-        width (``2 T df``, at least ``nu_0``, at most the sum of its parts),
-        not summed over parts that share ordinates.
+        independent of each other.
+    dof_by_width : bool, optional
+        Each merged band's degrees of freedom, and those ``min_window_dof``
+        is judged on, come from its width (``2 T df``, at least ``nu_0``, at
+        most the sum of its parts), not summed over parts that share
+        ordinates. Default: when ``min_width_hz`` is given (> 0). Needs the
+        windows' durations and ``nu_0``.
 
     Returns
     -------
@@ -199,7 +206,9 @@ def merge_bands(
     """
     groups: list[list[int]] = []
     cur: list[int] = []
-    by_width = min_width_hz > 0 and bands.duration_s is not None and bands.nu0 is not None
+    if dof_by_width is None:
+        dof_by_width = min_width_hz > 0
+    by_width = dof_by_width and bands.duration_s is not None and bands.nu0 is not None
     for j in range(bands.centres_hz.size):
         if not cur and not (bands.dof[:, j] > 0).any():
             continue  # no window reaches this band: drop it rather than widen the next one
@@ -225,7 +234,7 @@ def merge_bands(
     )
     with np.errstate(invalid="ignore", divide="ignore"):
         psd = np.where(dof > 0, num / dof, np.nan)
-    if min_width_hz > 0 and bands.duration_s is not None and bands.nu0 is not None:
+    if by_width:
         width = np.diff(edges)[None, :]
         by_width = np.maximum(2.0 * bands.duration_s[:, None] * width, bands.nu0[:, None])
         dof = np.where(dof > 0, np.minimum(dof, by_width), 0.0)

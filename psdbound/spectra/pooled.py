@@ -306,7 +306,7 @@ def group_bands(bands: BandSpectra, rows: NDArray[np.intp]) -> tuple[BandSpectra
     if np.all(pooled[pooled > 0] >= MIN_GROUP_DOF):
         return sub, np.where(pooled > 0, np.arange(pooled.size), -1)
     # degrees of freedom from the merged width: narrow bands share multitaper ordinates
-    merged = merge_bands(sub, min_window_dof=MIN_GROUP_DOF / rows.size, min_width_hz=1e-300)
+    merged = merge_bands(sub, min_window_dof=MIN_GROUP_DOF / rows.size, dof_by_width=True)
     lo = bands.edges_hz[:-1]
     index = np.searchsorted(merged.edges_hz, lo * (1.0 + 1e-12), side="right") - 1
     index[(index < 0) | (index >= merged.centres_hz.size)] = -1
@@ -413,21 +413,25 @@ def _group_limits(
     z, v = gb.log_unbiased()
     p_hom = _cochran_p(z, v, np.isfinite(z))
     span = np.column_stack([gb.edges_hz[:-1], gb.edges_hz[1:]])
-
-    def common(x: NDArray[np.float64]) -> NDArray[np.float64]:
-        return np.where(index >= 0, x[np.maximum(index, 0)], np.nan)
-
     return _GroupLimits(
-        common(mean_up),
-        common(tau2),
-        common(p_hom),
-        common(eff),
+        _on_common(mean_up, index),
+        _on_common(tau2, index),
+        _on_common(p_hom, index),
+        _on_common(eff, index),
         dev,
         spread_upper_limit(level, level_se, a_spread),
         tolerance_factor(m, allowed, a_count),
-        np.where(index >= 0, term[np.maximum(index, 0)], 0.0),
-        np.where((index >= 0)[:, None], span[np.maximum(index, 0)], np.nan),
+        _on_common(term, index, fill=0.0),
+        _on_common(span, index),
     )
+
+
+def _on_common(
+    x: NDArray[np.float64], index: NDArray[np.intp], fill: float = np.nan
+) -> NDArray[np.float64]:
+    """Spread per-group-band values ``x`` (first axis) over the common bands (``fill``: none)."""
+    have = (index >= 0).reshape(-1, *([1] * (x.ndim - 1)))
+    return np.where(have, x[np.maximum(index, 0)], fill)
 
 
 def _loose_notes(
