@@ -7,8 +7,9 @@ seconds. Calendar labels in other scales are converted here:
 
 * GPS and Galileo system time (GST) labels: GST is steered to GPS time and
   labelled identically by RINEX, so the label converts directly.
-* UTC and GLONASS time (UTC + 3 h) labels: converted with astropy's leap
-  second table (GPS - UTC = TAI - UTC - 19 s).
+* UTC and GLONASS time (UTC + 3 h) labels: converted with ERFA's leap
+  second table, the one astropy's time scales use (GPS - UTC = TAI - UTC -
+  19 s).
 """
 
 from __future__ import annotations
@@ -28,6 +29,8 @@ __all__ = [
 GPS_EPOCH = np.datetime64("1980-01-06T00:00:00", "ns")
 SECONDS_PER_WEEK = 604800.0
 _GPS_EPOCH_DAY = np.datetime64("1980-01-06", "D")
+#: TAI - GPS time, s: constant by the definition of GPS time (IS-GPS-200).
+TAI_MINUS_GPS_S = 19.0
 
 
 def calendar_to_gps_s(
@@ -87,34 +90,41 @@ def utc_to_gps_s(t_utc_label_gps_s: ArrayLike) -> NDArray[np.float64]:
     Returns
     -------
     ndarray of float64
-        True GPS seconds, i.e. the labels plus the GPS-UTC offset (leap
-        seconds since 1980, from astropy's table) in force at each epoch.
+        True GPS seconds, i.e. the labels plus the GPS-UTC offset in force at
+        each epoch: TAI-UTC from the leap-second table of ERFA (``erfa.dat``,
+        the table astropy's time scales use) minus the constant TAI-GPS of
+        19 s.
+
+    Warns
+    -----
+    PsdboundWarning
+        Epochs later than the table can vouch for (ERFA's "dubious year"):
+        converted with the last known offset.
     """
     import warnings
 
-    from astropy.time import Time
+    import erfa  # the leap seconds without astropy.time's 0.3 s import
 
     lab = np.atleast_1d(np.asarray(t_utc_label_gps_s, dtype=np.float64))
     # a leap second is inserted at the end of a UTC day, so the offset is that of the
-    # day's start: convert each distinct day once (a navigation file has thousands of
+    # day's start: look each distinct day up once (a navigation file has thousands of
     # epochs and one or two days)
     days, inverse = np.unique(np.floor(lab / 86400.0), return_inverse=True)
-    isot = gps_s_to_datetime64(days * 86400.0).astype("datetime64[ms]").astype(str)
+    ymd = gps_s_to_datetime64(days * 86400.0).astype("datetime64[D]")
+    year = ymd.astype("datetime64[Y]").astype(int) + 1970
+    month = ymd.astype("datetime64[M]").astype(int) % 12 + 1
+    day = (ymd - ymd.astype("datetime64[M]")).astype(int) + 1
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        utc = Time(list(isot), format="isot", scale="utc")
-        # astropy's "gps" format counts SI seconds since 1980-01-06 00:00:00 UTC.
-        offset = (utc.gps - days * 86400.0)[inverse.reshape(lab.shape)]
+        tai_utc_s = erfa.dat(year, month, day, 0.0)
     if caught:
         from psdbound.common.notices import warn
 
-        if any("dubious year" in str(w.message) for w in caught):
-            warn(
-                f"UTC epochs up to {str(isot[-1])[:10]} are later than the leap seconds known "
-                "to astropy: converted with the last known GPS-UTC offset"
-            )
-        for text in {str(w.message) for w in caught if "dubious year" not in str(w.message)}:
-            warn(f"converting UTC epochs: {text}")
+        warn(
+            f"UTC epochs up to {str(ymd[-1])} are later than the leap seconds known to "
+            "ERFA: converted with the last known GPS-UTC offset"
+        )
+    offset = np.atleast_1d(tai_utc_s - TAI_MINUS_GPS_S)[inverse.reshape(lab.shape)]
     return lab + np.round(offset)
 
 

@@ -54,6 +54,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy import optimize, stats
 
+from psdbound.spectra import _plane as plane
 from psdbound.spectra.bands import BandSpectra, merge_bands
 from psdbound.spectra.expectation import (
     EXACT_BELOW,
@@ -202,30 +203,14 @@ def _constraints(
 def _corners(
     u: NDArray, e: NDArray, lower: NDArray, upper: NDArray, pooled: NDArray
 ) -> NDArray[np.float64]:
-    """Return the corners ``(v, w)`` of one time constant's polygon of admitted variances.
-
-    Every pair of constraint lines (the band intervals and ``v, w >= 0``) is
-    intersected; the intersections that satisfy every constraint are the corners.
-    """
+    """Return the corners ``(v, w)`` of one time constant's polygon of admitted variances."""
     a_ub, b_ub, sv, sw = _constraints(u, e, lower, upper, pooled)
-    a = np.vstack([a_ub, [[-1.0, 0.0], [0.0, -1.0]]])
-    b = np.r_[b_ub, 0.0, 0.0]
-    i, j = np.triu_indices(b.size, 1)
-    det = a[i, 0] * a[j, 1] - a[i, 1] * a[j, 0]
-    ok = np.abs(det) > 1e-12
-    i, j, det = i[ok], j[ok], det[ok]
-    x = (b[i] * a[j, 1] - b[j] * a[i, 1]) / det
-    y = (a[i, 0] * b[j] - a[j, 0] * b[i]) / det
-    inside = (a @ np.vstack([x, y]) <= (b + 1e-9 * (1.0 + np.abs(b)))[:, None]).all(axis=0)
-    return np.column_stack([np.maximum(x[inside], 0.0) * sv, np.maximum(y[inside], 0.0) * sw])
+    return plane.corners(a_ub, b_ub) * np.array([sv, sw])
 
 
 def _feasible(u: NDArray, e: NDArray, lower: NDArray, upper: NDArray, pooled: NDArray) -> bool:
     a_ub, b_ub, _, _ = _constraints(u, e, lower, upper, pooled)
-    res = optimize.linprog(
-        [0.0, 0.0], A_ub=a_ub, b_ub=b_ub, bounds=[(0, None), (0, None)], method="highs"
-    )
-    return res.status == 0
+    return plane.corners(a_ub, b_ub).shape[0] > 0
 
 
 def _min_widening(

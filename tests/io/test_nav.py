@@ -285,7 +285,7 @@ def test_rinex5_rejected(tmp_path):
 
 def _read_timed(name: str) -> tuple[Navigation, float]:
     path = shared_file(name)
-    utc_to_gps_s(0.0)  # the one-off astropy import (GLONASS epochs) is not the reader's cost
+    utc_to_gps_s(0.0)  # the one-off erfa import (GLONASS epochs) is not the reader's cost
     t0 = time.perf_counter()
     nav = read_nav(path)
     return nav, time.perf_counter() - t0

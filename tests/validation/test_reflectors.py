@@ -441,3 +441,41 @@ def test_zimm_rinex2_reflector_heights(zimm):
     d = paired_differences_m(r1, r2)
     if d.size >= 5:  # only where both signals see the same reflection
         assert abs(np.median(d)) < 0.10
+
+
+@pytest.mark.parametrize("n", [40, 300])
+def test_snr_periodogram_equals_astropys_exact_method(n):
+    """scipy's floating-mean sum is astropy's "psd" power (cython method), and its fit."""
+    from astropy.timeseries import LombScargle
+
+    from psdbound.validation import snr_arc
+
+    rng = np.random.default_rng(n)
+    x = np.sort(rng.uniform(0.1, 0.45, n))
+    y = 2.0 + 0.3 * np.sin(2 * np.pi * 21.0 * x + 1.0) + rng.normal(0.0, 0.2, n)
+    freq = np.linspace(2.0, 80.0, 400)
+    ls = LombScargle(x, y, normalization="psd")
+    np.testing.assert_allclose(
+        snr_arc._ls_power(x, y, freq), ls.power(freq, method="cython"), rtol=1e-9, atol=1e-12
+    )
+    theta = ls.model_parameters(21.0)
+    assert snr_arc._sinusoid_amplitude(x, y, 21.0) == pytest.approx(
+        np.hypot(theta[-2], theta[-1]), rel=1e-9
+    )
+
+
+def test_snr_periodogram_large_arcs_use_astropys_fast_method():
+    """Above the size limit, the O(N log N) approximation agrees with the exact sum."""
+    from astropy.timeseries import LombScargle
+
+    from psdbound.validation import snr_arc
+
+    rng = np.random.default_rng(7)
+    x = np.sort(rng.uniform(0.1, 0.45, 3000))
+    y = np.sin(2 * np.pi * 30.0 * x) + rng.normal(0.0, 0.5, x.size)
+    freq = np.linspace(2.0, 80.0, 200)
+    assert x.size * freq.size > snr_arc._FAST_ABOVE
+    exact = LombScargle(x, y, normalization="psd").power(freq, method="cython")
+    np.testing.assert_allclose(
+        snr_arc._ls_power(x, y, freq), exact, rtol=0.02, atol=1e-3 * exact.max()
+    )
