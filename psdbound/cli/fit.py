@@ -368,6 +368,16 @@ OPTIONS: tuple[CliOption, ...] = (
     ),
     _O(
         "output",
+        "report",
+        ("--no-report",),
+        "write result.json only: no report.html or report.pdf, no figures drawn "
+        "(render them later with 'psdbound report OUT/result.json')",
+        _G_OUT,
+        {"action": "store_true"},
+        convert=lambda given: {"report": not given},
+    ),
+    _O(
+        "output",
         "series",
         ("--series",),
         "also write series.csv.gz: every isolated sample "
@@ -601,17 +611,14 @@ def run(args: argparse.Namespace) -> int:
     except InputError as exc:
         raise with_files(exc, cfg.inputs.obs) from None
     extra = {"series.csv.gz": result.series_csv()} if cfg.output.series else None
-    names = [
-        "result.json",
-        "report.html",
-        *(["report.pdf"] if cfg.output.pdf else []),
-        *(extra or {}),
-    ]
+    reports = ["report.html", *(["report.pdf"] if cfg.output.pdf else [])]
+    names = ["result.json", *(reports if cfg.output.report else []), *(extra or {})]
     say(f"writing {out}/ ({', '.join(names)})")
     paths = write_report_folder(
         result.document,
         out,
         pdf=cfg.output.pdf,
+        report=cfg.output.report,
         overwrite=cfg.output.overwrite,
         option="--out",
         extra=extra,

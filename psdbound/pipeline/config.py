@@ -178,8 +178,11 @@ class InputsConfig:
 
 @dataclass(frozen=True)
 class OutputConfig:
-    """Outputs: folder (default ``reports/<name>``), run name, PDF on/off, overwrite, series.
+    """Outputs: folder (default ``reports/<name>``), name, reports, PDF, overwrite, series.
 
+    ``report``: write ``report.html`` (and ``report.pdf`` unless ``pdf`` is
+    off); without it only ``result.json`` is written, and ``psdbound report``
+    renders the reports later from it alone.
     ``overwrite``: also write into an existing folder that is not a previous
     psdbound output (psdbound's files are replaced, nothing else is touched).
     ``series``: also write ``series.csv.gz``, every isolated sample with its
@@ -196,6 +199,7 @@ class OutputConfig:
         ),
     )
     pdf: bool = option(True, Boolean())
+    report: bool = option(True, Boolean())
     overwrite: bool = option(False, Boolean())
     series: bool = option(False, Boolean())
 

@@ -53,10 +53,8 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 from PIL import Image  # noqa: E402
 
-from psdbound.common.outputs import output_folder  # noqa: E402
 from psdbound.reports.figures import FIGURES  # noqa: E402
 from psdbound.reports.templating import template  # noqa: E402
-from psdbound.results import write_document  # noqa: E402
 from psdbound.results.headline import DO_NOT_USE, headline  # noqa: E402
 
 __all__ = [
@@ -67,7 +65,6 @@ __all__ = [
     "render_html",
     "render_pdf",
     "rendered_figures",
-    "write_report_folder",
 ]
 
 #: Resolution of the figures in both reports, dots per inch.
@@ -475,63 +472,3 @@ def render_pdf(
             footer = f"{title} - page {n} of {total}"
             pdf.savefig(_figure_page([(k + 1, figs[k]) for k in idx], footer))
     return p
-
-
-def write_report_folder(
-    document: dict[str, Any],
-    out_dir: str | os.PathLike[str],
-    *,
-    pdf: bool = True,
-    overwrite: bool = False,
-    option: str = "output folder",
-    extra: dict[str, bytes] | None = None,
-) -> dict[str, Path]:
-    """Write ``result.json``, ``report.html`` (and ``report.pdf``) safely and atomically.
-
-    Everything is written into a temporary folder that is installed only
-    when complete: a failed run leaves no half-written folder (and an
-    existing folder untouched). An existing ``out_dir`` is replaced only when
-    it is empty or a previous psdbound output; any other folder is refused
-    unless ``overwrite`` (then psdbound's three files are written into it and
-    nothing else is touched); an existing file is always refused (see
-    :mod:`psdbound.common.outputs`).
-
-    Parameters
-    ----------
-    document : dict
-        The result document to write and render.
-    out_dir : str or path-like
-        Destination folder.
-    pdf : bool, default True
-        Also write the PDF report.
-    overwrite : bool, default False
-        Allow writing into a folder that is not a psdbound output.
-    extra : dict of str to bytes, optional
-        Further files of the run (name -> content, e.g. ``series.csv.gz``),
-        written into the same folder in the same atomic step.
-    option : str, default "output folder"
-        How to name the destination in messages (the CLI passes ``"--out"``).
-
-    Returns
-    -------
-    dict of str to Path
-        ``{"result": ..., "html": ..., "pdf": ...}``.
-
-    Raises
-    ------
-    InputError
-        The destination is refused (checked before anything is rendered).
-    """
-    out = Path(out_dir)
-    with output_folder(out, overwrite=overwrite, option=option) as tmp:
-        write_document(tmp / "result.json", document)
-        figures = rendered_figures(document)  # drawn once: the same pixels in both reports
-        (tmp / "report.html").write_text(render_html(document, rendered=figures))
-        if pdf:
-            render_pdf(document, tmp / "report.pdf", rendered=figures)
-        for name, data in (extra or {}).items():
-            (tmp / name).write_bytes(data)
-    paths = {"result": out / "result.json", "html": out / "report.html"}
-    if pdf:
-        paths["pdf"] = out / "report.pdf"
-    return paths | {Path(name).name.split(".")[0]: out / name for name in extra or {}}

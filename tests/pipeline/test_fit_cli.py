@@ -92,6 +92,30 @@ def test_report_rerenders_from_result_alone(demo_run, tmp_path):
     assert html.count("data:image/png;base64,") >= 5
 
 
+def test_no_report_writes_the_result_alone_without_drawing(demo_run, tmp_path):
+    """--no-report: result.json only, the same result, matplotlib never imported; and
+    ``psdbound report`` draws the reports from it afterwards."""
+    work, _ = demo_run
+    code = (
+        "import sys; from psdbound.cli.main import main; "
+        "c = main(['fit', '--no-report', '--quiet', '--out', 'r']); "
+        "print('drawing modules:', sorted(m for m in sys.modules "
+        "if m.split('.')[0] in ('matplotlib', 'jinja2', 'PIL'))); sys.exit(c)"
+    )
+    r = subprocess.run(
+        [sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True, timeout=600
+    )
+    assert r.returncode == 0, r.stderr
+    assert "drawing modules: []" in r.stdout
+    assert sorted(p.name for p in (tmp_path / "r").iterdir()) == ["result.json"]
+    ours = json.loads((tmp_path / "r" / "result.json").read_text())["bound"]
+    full = json.loads((work / "reports" / "demo" / "result.json").read_text())["bound"]
+    assert ours["sigma_gm_m"] == full["sigma_gm_m"] and ours["tau_s"] == full["tau_s"]
+    r = run_cli("report", tmp_path / "r" / "result.json", "--no-pdf", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert sorted(p.name for p in (tmp_path / "r").iterdir()) == ["report.html", "result.json"]
+
+
 def test_report_out_never_loses_a_user_file(demo_run, tmp_path, capsys):
     """--out: a user's folder is refused (or, with --overwrite, only added to); a previous
     output is replaced atomically; a file is never replaced."""
