@@ -79,6 +79,7 @@ __all__ = [
     "MIN_BLOCKS",
     "MultipathNull",
     "fit_null",
+    "local_exceedance",
     "local_scale",
     "lower_dof",
 ]
@@ -354,11 +355,7 @@ def local_scale(
     n = int(ok.sum())
     if n < min_blocks:
         return None
-    order = np.argsort(el[ok])
-    e_s, x_s = el[ok][order], x[ok][order]
-    half = max(min_blocks, n // 12) // 2  # a local quantile of >= 40 blocks, 1/12 of them
-    centres = np.unique(np.linspace(0, n - 1, min(_N_GRID, n)).astype(int))
-    windows = [slice(max(0, c - half), min(n, c + half + 1)) for c in centres]
+    e_s, x_s, windows = _local_windows(el[ok], x[ok], min_blocks)
     q = np.array([np.quantile(x_s[w], Q_HI) for w in windows])
     # each quantile belongs to its window's median elevation: at the ends of the elevation range
     # the window is one-sided, and placing its quantile at the end block biased the scale there
@@ -367,3 +364,70 @@ def local_scale(
     grid, first = np.unique(grid, return_index=True)
     q = q[first]
     return grid, q, x_s / np.interp(e_s, grid, q)
+
+
+def _local_windows(
+    el: NDArray[np.float64], x: NDArray[Any], min_blocks: int
+) -> tuple[NDArray[np.float64], NDArray[Any], list[slice]]:
+    """Sort by elevation; return the sorted values and the local windows (>= 40, 1/12 of all)."""
+    n = el.size
+    order = np.argsort(el)
+    half = max(min_blocks, n // 12) // 2
+    centres = np.unique(np.linspace(0, n - 1, min(_N_GRID, n)).astype(int))
+    windows = [slice(max(0, c - half), min(n, c + half + 1)) for c in centres]
+    return el[order], x[order], windows
+
+
+def local_exceedance(
+    exceeds: ArrayLike,
+    elevation_deg: ArrayLike,
+    *,
+    min_blocks: int = MIN_BLOCKS,
+    confidence_level: float = 0.95,
+) -> dict[str, NDArray[np.float64]] | None:
+    """Count the blocks above their threshold along elevation; a model-free upper limit.
+
+    The null's tail is extrapolated from its lower quantiles; this measures
+    it. Over the same local windows as :func:`local_scale` (the blocks
+    nearest in elevation), ``k`` of ``n`` blocks exceed their threshold, and
+    the one-sided Clopper-Pearson limit bounds the exceedance probability of
+    the day's blocks from above. Ionosphere adds independent variance to the
+    rate of TEC, so (to that approximation) the day's blocks exceed a
+    threshold at least as often as their multipath alone would: the limit is
+    also an upper limit of the false-alarm probability, whatever the null's
+    shape.
+
+    Parameters
+    ----------
+    exceeds : array_like of bool
+        Whether each block's statistic exceeded its threshold (NaN
+        elevations: left out).
+    elevation_deg : array_like
+        Mean elevation of every block, degrees.
+    min_blocks : int, default 40
+        As for :func:`local_scale`.
+    confidence_level : float, default 0.95
+        Level of the upper limit.
+
+    Returns
+    -------
+    dict or None
+        ``elevation_deg`` (each window's median), ``exceeded`` (k),
+        ``blocks`` (n), ``upper`` (the limit, 0-1); None with fewer than
+        ``min_blocks`` blocks.
+    """
+    hit = np.asarray(exceeds, dtype=bool)
+    el = np.asarray(elevation_deg, dtype=float)
+    ok = np.isfinite(el)
+    if int(ok.sum()) < min_blocks:
+        return None
+    e_s, h_s, windows = _local_windows(el[ok], hit[ok], min_blocks)
+    k = np.array([int(h_s[w].sum()) for w in windows], dtype=float)
+    n = np.array([w.stop - w.start for w in windows], dtype=float)
+    upper = np.where(k < n, stats.beta.ppf(confidence_level, k + 1.0, n - k), 1.0)
+    return {
+        "elevation_deg": np.array([np.median(e_s[w]) for w in windows]),
+        "exceeded": k,
+        "blocks": n,
+        "upper": upper,
+    }

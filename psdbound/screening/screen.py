@@ -120,6 +120,7 @@ from numpy.typing import NDArray
 from psdbound.errors import InputError
 from psdbound.io.signals import carrier_frequency_hz, wavelength_m
 from psdbound.isolation import MultipathSeries
+from psdbound.screening.blocktest import block_test, tail_note
 from psdbound.screening.coherence import coherent_blocks
 from psdbound.screening.null import NU_DISTURBED, MultipathNull, fit_null
 from psdbound.screening.options import ScreeningOptions
@@ -296,44 +297,6 @@ def _threshold(
         return scaled
     thr = np.maximum(base, null.threshold(el_mean, share))
     return thr if null.trusted else np.minimum(thr, np.maximum(base, scaled))
-
-
-def _block_test(
-    null: MultipathNull | None, opt: ScreeningOptions, mapping: Any, share: float
-) -> dict[str, Any] | None:
-    """Return the single-block test along the null's elevations: threshold and false alarm.
-
-    Parameters
-    ----------
-    null : MultipathNull or None
-        The series' multipath null (None: the fixed threshold, no probability).
-    opt : ScreeningOptions
-    mapping : ElevationMapping or None
-        The provisional multipath mapping (the untrusted null's fixed threshold).
-    share : float
-        The block test's false-alarm probability (its share of ``opt.false_alarm``).
-
-    Returns
-    -------
-    dict or None
-        ``elevation_deg`` (the null's grid, deg), ``threshold_tecu_min`` (the
-        threshold applied there, TECU/min), ``false_alarm`` (``share``),
-        ``false_alarm_at_threshold`` (the probability under the null that a
-        block of multipath alone exceeds that threshold: ``share`` where the
-        null's quantile sets it, less where the significance level does) and
-        ``by_significance`` (whether ``roti_threshold_tecu_min`` sets it).
-    """
-    if null is None:
-        return None
-    el = null.elevation_deg
-    thr = _threshold(el, opt, mapping, null, share)
-    return {
-        "elevation_deg": el,
-        "threshold_tecu_min": thr,
-        "false_alarm": share,
-        "false_alarm_at_threshold": null.exceedance(thr, el),
-        "by_significance": thr <= opt.roti_threshold_tecu_min,
-    }
 
 
 def _series_null(blocks: list[dict[str, Any]], opt: ScreeningOptions) -> MultipathNull | None:
@@ -585,6 +548,14 @@ def screen_series(
     out = _kept_series(series, kept, ctx)
     three_freq = _three_frequency(series, bounds, blocks, arcs, null, rnull, tf)
     notes = _notes(m_per_tecu, null, rnull, tf)
+    test = block_test(
+        null,
+        lambda el: _threshold(el, opt, mapping, null, share),
+        blocks,
+        share,
+        opt.roti_threshold_tecu_min,
+    )
+    notes += tuple(n for n in (tail_note(test),) if n)
     if tf is not None and three_freq is not None:
         notes += (_three_frequency_note(three_freq),)
     if ctx["kept_known"]:
@@ -604,7 +575,7 @@ def screen_series(
         guard_s,
         null,
         three_freq,
-        _block_test(null, opt, mapping, share),
+        test,
     )
 
 

@@ -54,7 +54,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy import optimize, stats
 
-from psdbound.spectra import _plane as plane
+from psdbound.spectra._plane import corners as polygon_corners
 from psdbound.spectra.bands import BandSpectra, merge_bands
 from psdbound.spectra.expectation import (
     EXACT_BELOW,
@@ -205,12 +205,12 @@ def _corners(
 ) -> NDArray[np.float64]:
     """Return the corners ``(v, w)`` of one time constant's polygon of admitted variances."""
     a_ub, b_ub, sv, sw = _constraints(u, e, lower, upper, pooled)
-    return plane.corners(a_ub, b_ub) * np.array([sv, sw])
+    return polygon_corners(a_ub, b_ub) * np.array([sv, sw])
 
 
 def _feasible(u: NDArray, e: NDArray, lower: NDArray, upper: NDArray, pooled: NDArray) -> bool:
     a_ub, b_ub, _, _ = _constraints(u, e, lower, upper, pooled)
-    return plane.corners(a_ub, b_ub).shape[0] > 0
+    return polygon_corners(a_ub, b_ub).shape[0] > 0
 
 
 def _min_widening(
