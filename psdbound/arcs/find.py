@@ -40,15 +40,38 @@ from psdbound.errors import InputError, NoDataError
 from psdbound.io.coverage import OrbitCoverage, orbit_coverage
 from psdbound.io.obs import Observations
 
-__all__ = ["Arc", "ArcSet", "find_arcs", "detect_slips", "require_arcs", "DEFAULT_SIGNALS"]
+__all__ = [
+    "Arc",
+    "ArcSet",
+    "DEFAULT_SIGNALS",
+    "SIGNAL_CANDIDATES",
+    "default_pair",
+    "detect_slips",
+    "find_arcs",
+    "require_arcs",
+]
 
-#: Default signal pair per system for dual-frequency work.
+#: Phase signals of each system's dual-frequency pair, per carrier in order of preference
+#: (RINEX 3 codes): without given signals the first of each that the file holds with phases
+#: is used. Receivers differ in the tracking modes they record (a Trimble NetR9 writes
+#: Galileo E1/E5a as L1X/L5X; a phone GPS L1C/L5Q; BeiDou-3 receivers B1C/B2a as L1P/L5P).
+SIGNAL_CANDIDATES: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
+    "G": (
+        ("L1C", "L1W", "L1P", "L1X", "L1L", "L1S"),
+        ("L2W", "L2P", "L2L", "L2X", "L2S", "L2C", "L2D", "L5Q", "L5X", "L5I"),
+    ),
+    "E": (("L1C", "L1X", "L1B"), ("L5Q", "L5X", "L5I", "L7Q", "L7X", "L7I", "L8Q", "L8X", "L8I")),
+    "J": (("L1C", "L1X", "L1L", "L1S"), ("L2L", "L2X", "L2S", "L5Q", "L5X", "L5I")),
+    "C": (
+        ("L2I", "L2X", "L2Q", "L1P", "L1X", "L1D"),
+        ("L7I", "L7X", "L7Q", "L6I", "L6X", "L6Q", "L5P", "L5X", "L5D", "L7D", "L7P"),
+    ),
+    "R": (("L1C", "L1P"), ("L2P", "L2C")),
+}
+
+#: Default signal pair per system for dual-frequency work (the first candidates).
 DEFAULT_SIGNALS: dict[str, tuple[str, str]] = {
-    "G": ("L1C", "L2W"),
-    "E": ("L1C", "L5Q"),
-    "J": ("L1C", "L2L"),
-    "C": ("L2I", "L7I"),
-    "R": ("L1C", "L2P"),
+    system: (first[0], second[0]) for system, (first, second) in SIGNAL_CANDIDATES.items()
 }
 
 _SLIP_WINDOW = 11  # samples in the running median of the geometry-free rate
@@ -336,12 +359,49 @@ def detect_slips(gf_m: NDArray[np.float64], threshold_m: float) -> NDArray[np.bo
     return out
 
 
+def default_pair(obs: Observations, system: str) -> tuple[str, str]:
+    """Return the system's dual-frequency pair the file holds: per carrier, the first candidate.
+
+    Parameters
+    ----------
+    obs : Observations
+        The observations.
+    system : str
+        Satellite system letter.
+
+    Returns
+    -------
+    tuple of str
+        RINEX 3 phase codes, one per carrier of :data:`SIGNAL_CANDIDATES`:
+        the first that the file holds with at least one phase (the default
+        pair :data:`DEFAULT_SIGNALS` when it does).
+
+    Raises
+    ------
+    InputError
+        No candidate of a carrier has phases in the file (the message lists
+        the file's codes and how to choose).
+    """
+    if system not in SIGNAL_CANDIDATES:
+        raise InputError(f"no default signal pair for system {system!r}; give signals")
+    pair = []
+    for band in SIGNAL_CANDIDATES[system]:
+        held = [c for c in band if obs.phase_count(system, c) > 0]
+        if not held:
+            raise InputError(
+                f"none of the phase signals {', '.join(band)} has observations for "
+                f"system {system!r}; the file holds {' '.join(obs.codes(system))}: "
+                "give the pair with --signals",
+                path=obs.path,
+            )
+        pair.append(held[0])
+    return pair[0], pair[1]
+
+
 def _signal_pair(obs: Observations, signals: Sequence[str] | None, system: str) -> tuple[str, str]:
     """Return the file's codes of the phase pair (the system's default when None), checked."""
     if signals is None:
-        if system not in DEFAULT_SIGNALS:
-            raise InputError(f"no default signal pair for system {system!r}; give signals")
-        signals = DEFAULT_SIGNALS[system]
+        signals = default_pair(obs, system)
     if len(signals) != 2:
         raise InputError(f"expected a pair of phase signals, got {tuple(signals)}")
     code_a, code_b = (obs.resolve_code(system, s) for s in signals)

@@ -95,11 +95,11 @@ OPTIONS: tuple[CliOption, ...] = (
         "inputs",
         "nav",
         ("--nav",),
-        "navigation (RINEX 2/3/4) or SP3 file, repeatable: several "
-        "(e.g. of consecutive days, or a zip of them) are joined (required with OBS, unless OBS "
-        "is a zip archive that also holds the navigation file)",
+        "navigation (RINEX 2/3/4) or SP3 file(s): several "
+        "(e.g. of consecutive days or systems, or a zip of them) are joined (required with OBS, "
+        "unless OBS is a zip archive that also holds the navigation file)",
         "inputs",
-        {"action": "append", "metavar": "NAV"},
+        {"action": "extend", "nargs": "+", "metavar": "NAV"},
     ),
     _O("inputs", "system", ("--system",), "satellite system letter", _G_IN),
     _O(
@@ -435,7 +435,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "fit",
         formatter_class=DefaultsFormatter,
-        usage="psdbound fit [OBS ...] [--nav NAV] [-o OUT] [-q | -v] [options]",
+        usage="psdbound fit [OBS ...] [--nav NAV ...] [-o OUT] [-q | -v] [options]",
         help="fit a PSD bound to RINEX observations (no files: the demo data)",
         description="Read RINEX observations, isolate carrier-phase multipath (dual-frequency "
         "for one file, dual-antenna for two), window it into stationary pieces, estimate PSDs "

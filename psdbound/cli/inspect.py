@@ -27,9 +27,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("obs", nargs="+", help="RINEX observation file(s) (required)")
     p.add_argument(
         "--nav",
-        action="append",
+        action="extend",
+        nargs="+",
         metavar="NAV",
-        help="navigation (RINEX) or SP3 file for elevations, repeatable: several are joined "
+        help="navigation (RINEX) or SP3 file(s) for elevations: several are joined "
         "(default: none, no elevations)",
     )
     p.add_argument("--system", default="G", help="satellite system letter (default G)")

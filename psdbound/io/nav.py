@@ -96,7 +96,8 @@ def _header(path: Path, lines: list[str]) -> tuple[float, str, int | None, int]:
     if ftype not in ("N", "G", "H"):
         raise InputError(
             f"header says file type {ftype!r} ({described!r}); expected a navigation "
-            "file (RINEX VERSION / TYPE type 'N', e.g. 'NAVIGATION DATA')",
+            "file (RINEX VERSION / TYPE type 'N', e.g. 'NAVIGATION DATA')"
+            + ("; observation files go before --nav" if ftype == "O" else ""),
             path=path,
             line=1,
         )

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import os
 import re
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -158,6 +158,23 @@ class Observations:
             path=self.path,
         )
 
+    def phase_count(self, system: str, code: str) -> int:
+        """Return how many observations of a code the file holds for a system (0: none).
+
+        ``code`` as for :meth:`resolve_code` (RINEX 3 names also for RINEX 2
+        files); a code the file does not have counts 0. Receiver-written zero
+        phases do not count.
+        """
+        if system not in self.blocks:
+            return 0
+        try:
+            code = self.resolve_code(system, code)
+        except InputError:
+            return 0
+        block = self._block(system)
+        v = block.values[:, :, block.codes.index(code)]
+        return int(np.count_nonzero(np.isfinite(v) & (v != 0.0)))
+
     def get(self, sat: str, code: str) -> NDArray[np.float64]:
         """Observation series of one satellite and code (NaN where absent)."""
         block, i, k = self._locate(sat, code)
@@ -289,6 +306,19 @@ def _keep_codes(raw: dict[str, RawBlock], codes: set[str]) -> dict[str, RawBlock
     return out
 
 
+def _first_in_header(
+    code: str | Sequence[str], header: ObsHeader, want_sys: set[str] | None
+) -> set[str]:
+    """Return the header's codes for ``code``, or for every alternative when a sequence is given.
+
+    A sequence is a carrier's candidates (:data:`psdbound.arcs.SIGNAL_CANDIDATES`): all those
+    the header lists are kept, and the caller picks among them by the phases the file holds.
+    """
+    if isinstance(code, str):
+        return _codes_in_header(code, header, want_sys)
+    return set().union(*(_codes_in_header(c, header, want_sys) for c in code))
+
+
 def _codes_in_header(code: str, header: ObsHeader, want_sys: set[str] | None) -> set[str]:
     """Return the header's codes for ``code`` (itself, or its RINEX 2 name), for the systems."""
     out = set()
@@ -321,7 +351,7 @@ def _wanted_codes(
     p: Path,
     header: ObsHeader,
     want_sys: set[str] | None,
-    codes: Iterable[str] | None,
+    codes: Iterable[str | Sequence[str]] | None,
     optional_codes: Iterable[str],
 ) -> set[str] | None:
     """Return the header's codes to keep (None: all); refuse a requested code it lacks."""
@@ -329,7 +359,7 @@ def _wanted_codes(
         return None
     want_codes = set()
     for c in codes:
-        found = _codes_in_header(c, header, want_sys)
+        found = _first_in_header(c, header, want_sys)
         if not found:
             avail = sorted(
                 {
@@ -339,8 +369,9 @@ def _wanted_codes(
                     if want_sys is None or s in want_sys
                 }
             )
+            wanted = repr(c) if isinstance(c, str) else "any of " + ", ".join(c)
             raise InputError(
-                f"observation code {c!r} is not in the header; available: {' '.join(avail)}",
+                f"observation code {wanted} is not in the header; available: {' '.join(avail)}",
                 path=p,
             )
         want_codes |= found
@@ -385,7 +416,7 @@ def read_obs(
     path: str | os.PathLike[str],
     *,
     systems: str | Iterable[str] | None = None,
-    codes: Iterable[str] | None = None,
+    codes: Iterable[str | Sequence[str]] | None = None,
     optional_codes: Iterable[str] = (),
 ) -> Observations:
     """Read a RINEX 2.1x, 3.0x or 4.00-4.02 observation file.
@@ -398,10 +429,12 @@ def read_obs(
     systems : str or iterable of str, optional
         System letters to keep (``"GE"`` or ``["G", "E"]``); all by default.
         Each requested system must have observations in the file.
-    codes : iterable of str, optional
+    codes : iterable of str or of sequences of str, optional
         Observation codes to keep (``["L1C", "L2W"]``; for RINEX 2 files the
         RINEX 2 codes or their RINEX 3 equivalents). All by default. Each
-        requested code must exist for at least one requested system.
+        requested code must exist for at least one requested system; an item
+        that is a sequence of codes (a carrier's alternatives) keeps every
+        one of them the header lists and needs at least one.
     optional_codes : iterable of str, optional
         With ``codes``: further codes kept where the file has them (e.g. an
         SNR), without an error where it does not.

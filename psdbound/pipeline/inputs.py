@@ -108,19 +108,24 @@ def _unpack(paths: Sequence[Path], tmp: Path) -> tuple[list[Source], list[Path]]
 
 
 def _read_observations(
-    sources: Sequence[Source], system: str, codes: Sequence[str] | None = None
+    sources: Sequence[Source], system: str, codes: Sequence[str | tuple[str, ...]] | None = None
 ) -> list[Observations]:
     """Read every observation file (archive members named ``archive.zip:member``).
 
     ``codes``: the only observation codes kept (a dual-frequency run needs its
-    phase pair only: a third of the memory of a typical file), with the first
-    carrier's SNR and the phases that could be a third carrier
+    phase pair only, or each carrier's candidates: a third of the memory of a
+    typical file), with the first carrier's SNR and the phases that could be a
+    third carrier
     (:func:`psdbound.arcs.third.third_candidates`) where the file has them.
     """
     from psdbound.arcs.third import third_candidates
     from psdbound.validation.site import snr_signal
 
-    optional = (snr_signal(codes[0]), *third_candidates(system, codes)) if codes else ()
+    optional: tuple[str, ...] = ()
+    if codes:
+        first = (codes[0],) if isinstance(codes[0], str) else codes[0]
+        pair = [c if isinstance(c, str) else c[0] for c in codes]
+        optional = (*(snr_signal(c) for c in first), *third_candidates(system, pair))
     out = []
     for path, label in sources:
         try:
@@ -187,14 +192,19 @@ def _refuse_repeats(paths: Sequence[Path]) -> None:
                 )
 
 
-def _codes_needed(options: InputsConfig) -> tuple[str, ...] | None:
-    """Return the codes a run reads: the phase pair for dual-frequency, everything for a pair."""
-    from psdbound.arcs import DEFAULT_SIGNALS
+def _codes_needed(options: InputsConfig) -> tuple[str | tuple[str, ...], ...] | None:
+    """Return the codes a run reads: the phase pair for dual-frequency, everything for a pair.
+
+    Without given signals, each carrier's candidates (the file's pair is chosen among them
+    once read: :func:`psdbound.arcs.default_pair`).
+    """
+    from psdbound.arcs import SIGNAL_CANDIDATES
 
     if options.pair or options.method.lower() != "df" and options.method.lower() != "auto":
         return None  # dual-antenna: the clock estimate may use any pseudorange
-    signals = tuple(options.signals) or DEFAULT_SIGNALS.get(options.system)
-    return tuple(signals) if signals else None
+    if options.signals:
+        return tuple(options.signals)
+    return SIGNAL_CANDIDATES.get(options.system)
 
 
 def _name(group: list[Observations]) -> str:

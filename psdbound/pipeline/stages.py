@@ -31,9 +31,10 @@ from typing import Any
 
 import numpy as np
 
-from psdbound.arcs import ArcSet, add_third_carrier, find_arcs
+from psdbound.arcs import DEFAULT_SIGNALS, ArcSet, add_third_carrier, default_pair, find_arcs
 from psdbound.arcs.options import ArcOptions
 from psdbound.errors import InputError, NoDataError
+from psdbound.io import Observations
 from psdbound.io.signals import wavelength_m
 from psdbound.ionosphere.policy import CutoffChoice, CutoffOptions
 from psdbound.ionosphere.policy import choose_cutoff as _choose_cutoff
@@ -168,13 +169,27 @@ def _isolate_df(
             "removed_above_fc_max": float(np.nanmax(safety.removed_above)),
         },
     }
-    warnings = ()
+    warnings: tuple[str, ...] = ()
+    if not signals:
+        warnings += _pair_note(inputs.observations[0], system)
     if n_dropped:
-        warnings = (
+        warnings += (
             f"{n_dropped} tracking stretches shorter than {arcs_opt.min_length_s / 60:g} min "
             f"dropped ({arcs.dropped_s / 3600:.2f} h)",
         )
     return Isolated(series, arcs, details, warnings)
+
+
+def _pair_note(obs: Observations, system: str) -> tuple[str, ...]:
+    """Say which pair was used when the file does not hold the system's default pair."""
+    chosen, default = default_pair(obs, system), DEFAULT_SIGNALS[system]
+    if chosen == default:
+        return ()
+    return (
+        f"signals {','.join(chosen)}: the file has no phases of the default pair "
+        f"{','.join(default)}; per carrier the first signal it holds is used "
+        "(psdbound.arcs.SIGNAL_CANDIDATES; choose with --signals)",
+    )
 
 
 def _isolate_da(
