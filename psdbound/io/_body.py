@@ -559,7 +559,18 @@ def _v2_sat_list(
     ids = b"".join(lines[i + c][32:68].ljust(36) for c in range(n_cont + 1))
     sats = [ids[3 * s : 3 * s + 3].decode("ascii", "replace") for s in range(nsat)]
     first_obs = i + 1 + n_cont
-    if first_obs + nsat * per_sat > n_lines:
+    missing = first_obs + nsat * per_sat - n_lines
+    if 0 < missing < per_sat:
+        # the file ends inside the last record's continuation lines: blank lines that a
+        # decompressor or an editor dropped at the end of the file (CRX2RNX output of IGS
+        # files, e.g. york0440.15d); read as blank, and said
+        lines.extend([b""] * missing)
+        acc.warnings.append(
+            f"line {_error_line(acc.header, i)}: the file ends {missing} line(s) into the last "
+            f"epoch's last record (satellite {sats[-1].strip()}), where its layout has "
+            "continuation lines: trailing blank lines taken as blank observations"
+        )
+    elif first_obs + nsat * per_sat > n_lines:
         raise acc.fail(
             f"truncated epoch {lines[i][:26].decode('ascii', 'replace').strip()}: it announces "
             f"{nsat} satellites x {per_sat} lines but the file ends",

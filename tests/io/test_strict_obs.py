@@ -322,3 +322,29 @@ def test_clean_files_give_no_warning(tmp_path):
         read_obs(_write(tmp_path, _text(), "a.rnx"))
         read_obs(_write(tmp_path, format_obs_v3(small_observations()), "b.rnx"))
         read_obs(_write(tmp_path, V2_TEXT, "c.10o"))
+
+
+def test_rinex2_file_ending_inside_the_last_records_blank_continuation(tmp_path):
+    """CRX2RNX output can lose the blank continuation line of the last record at the file's end
+    (IGS york0440.15d): read it as blank, and say so; a missing satellite stays an error."""
+    six = V2_TEXT.replace(
+        "     4    C1    L1    L2    P2                              # / TYPES OF OBSERV",
+        "     6    C1    L1    L2    P2    S1    S2                  # / TYPES OF OBSERV",
+    )
+    lines = six.splitlines()
+    body = lines.index(next(ln for ln in lines if ln.startswith(" 20  6 25  0  0  0.0")))
+    out = lines[:body]
+    for ln in lines[body:]:
+        out.append(ln if not ln.startswith("  2") else ln + "        45.000  ")
+        if ln.startswith("  2"):
+            out.append("")  # S2 blank: an empty continuation line
+    whole = "\n".join(out) + "\n"
+    ref = read_obs(_write(tmp_path, whole, "whole.10o"))
+    cut = whole.rstrip("\n") + "\n"  # the last (blank) continuation line is gone
+    assert cut != whole
+    with pytest.warns(PsdboundWarning, match=r"ends 1 line\(s\) into the last epoch's last record"):
+        obs = read_obs(_write(tmp_path, cut, "cut.10o"))
+    np.testing.assert_array_equal(obs.blocks["G"].values, ref.blocks["G"].values)
+    short = "\n".join(out[:-3]) + "\n"  # the last satellite's record is gone
+    with pytest.raises(InputError, match="truncated epoch"):
+        read_obs(_write(tmp_path, short, "short.10o"))
