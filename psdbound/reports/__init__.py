@@ -1,7 +1,9 @@
 """Reports: figure data from the stage results, figures, HTML and PDF reports.
 
-The names are imported on first use (:mod:`psdbound.common.lazy`): writing a
-result folder without reports does not load matplotlib.
+The drawing is imported on first use (:mod:`psdbound.common.lazy`): writing a
+result folder without reports does not load matplotlib. The figure data
+(numpy only) are imported here: their function shares its submodule's name,
+and a lazy export would be shadowed by the submodule once it is imported.
 """
 
 from __future__ import annotations
@@ -9,9 +11,9 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from psdbound.common.lazy import lazy_exports
+from psdbound.reports.figure_data import figure_data, psd_outline
 
 if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
-    from psdbound.reports.figure_data import figure_data, psd_outline
     from psdbound.reports.figures import FIGURES
     from psdbound.reports.folder import write_report_folder
     from psdbound.reports.render import render_html, render_pdf
@@ -27,8 +29,6 @@ __all__ = [
 
 _EXPORTS = {
     "FIGURES": ("psdbound.reports.figures", "FIGURES"),
-    "figure_data": ("psdbound.reports.figure_data", "figure_data"),
-    "psd_outline": ("psdbound.reports.figure_data", "psd_outline"),
     "render_html": ("psdbound.reports.render", "render_html"),
     "render_pdf": ("psdbound.reports.render", "render_pdf"),
     "write_report_folder": ("psdbound.reports.folder", "write_report_folder"),

@@ -13,7 +13,7 @@ import pytest
 from matplotlib.collections import PolyCollection
 
 import psdbound
-from psdbound.reports import render
+from psdbound.reports import render, write_report_folder
 from psdbound.reports.figure_data import cutoff_figure
 from psdbound.reports.figures import (
     FIGURES,
@@ -80,7 +80,7 @@ def test_pack_pages():
 
 
 def test_write_report_folder_small_pdf(demo_doc, tmp_path):
-    paths = render.write_report_folder(demo_doc, tmp_path / "out")
+    paths = write_report_folder(demo_doc, tmp_path / "out")
     size = paths["pdf"].stat().st_size
     assert 100_000 < size < 2_000_000
     assert paths["pdf"].read_bytes()[:5] == b"%PDF-"
