@@ -374,28 +374,40 @@ def default_pair(obs: Observations, system: str) -> tuple[str, str]:
     tuple of str
         RINEX 3 phase codes, one per carrier of :data:`SIGNAL_CANDIDATES`:
         the first that the file holds with at least one phase (the default
-        pair :data:`DEFAULT_SIGNALS` when it does).
+        pair :data:`DEFAULT_SIGNALS` when it does); where none has phases,
+        the first the file lists (its arcs are then empty, and say why).
 
     Raises
     ------
     InputError
-        No candidate of a carrier has phases in the file (the message lists
-        the file's codes and how to choose).
+        No candidate of a carrier is in the file (the message lists the
+        file's codes and how to choose).
     """
     if system not in SIGNAL_CANDIDATES:
         raise InputError(f"no default signal pair for system {system!r}; give signals")
     pair = []
     for band in SIGNAL_CANDIDATES[system]:
         held = [c for c in band if obs.phase_count(system, c) > 0]
+        # none with phases: the first the file lists, whose empty arcs say what is missing
+        held = held or [c for c in band if _listed(obs, system, c)]
         if not held:
             raise InputError(
-                f"none of the phase signals {', '.join(band)} has observations for "
-                f"system {system!r}; the file holds {' '.join(obs.codes(system))}: "
+                f"none of the phase signals {', '.join(band)} is in the file for "
+                f"system {system!r}; it holds {' '.join(obs.codes(system))}: "
                 "give the pair with --signals",
                 path=obs.path,
             )
         pair.append(held[0])
     return pair[0], pair[1]
+
+
+def _listed(obs: Observations, system: str, code: str) -> bool:
+    """Whether the file lists a code for the system (with or without observations)."""
+    try:
+        obs.resolve_code(system, code)
+    except InputError:
+        return False
+    return True
 
 
 def _signal_pair(obs: Observations, signals: Sequence[str] | None, system: str) -> tuple[str, str]:

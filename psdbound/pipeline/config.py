@@ -450,9 +450,26 @@ def _n_files(inp: InputsConfig) -> int:
     return len(inp.obs) + len(extra)
 
 
+def _holds_observations(path: str) -> bool:
+    """Whether a file given as navigation is a RINEX observation file (by its first line)."""
+    from psdbound.io.archive import file_kind
+
+    try:
+        return file_kind(path) == "obs"
+    except (OSError, ValueError, EOFError):
+        return False  # a missing or unreadable file: its reader names the problem
+
+
 def _rule_demo_inputs(inp: InputsConfig, label: Label) -> None:
     """No observation file (the demo): file options are errors."""
     if inp.nav:
+        observations = [n for n in inp.nav if _holds_observations(n)]
+        if observations:
+            raise InputError(
+                f"{observations[0]} is an observation file given after "
+                f"{label('inputs', 'nav')}, which takes every file after it: observation "
+                "files go before --nav"
+            )
         raise InputError(
             f"{_show(label('inputs', 'nav'), ' '.join(inp.nav))} given without observation "
             "files: the demo uses its own navigation file; give the observation files too"

@@ -58,6 +58,15 @@ def test_a_listed_code_without_phases_is_passed_over():
     assert default_pair(obs, "G") == ("L1C", "L2L")
 
 
+def test_listed_codes_without_phases_keep_the_default_and_its_reason():
+    """No candidate with phases: the listed default stays, so the empty arcs say what is missing."""
+    obs = small_observations()
+    b = obs.blocks["G"]
+    v = b.values.copy()
+    v[:, :, b.codes.index("L2W")] = np.nan
+    assert default_pair(replace(obs, blocks={"G": replace(b, values=v)}), "G") == ("L1C", "L2W")
+
+
 def test_no_candidate_is_one_clear_error():
     obs = _renamed(small_observations(), {"L2W": "L9Z"})
     with pytest.raises(InputError, match="give the pair with --signals"):

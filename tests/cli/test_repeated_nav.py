@@ -39,10 +39,22 @@ def test_cutoff_refuses_a_second_sp3(capsys):
         (["fit", "o.rnx", "--nav", "a", "--nav", "b"], ["a", "b"]),
         (["inspect", "o.rnx", "--nav", "a", "--nav", "b"], ["a", "b"]),
         (["campaign", "o.rnx", "--nav", "a", "b", "--nav", "c"], ["a", "b", "c"]),
-        (["fit", "--nav", "a", "o.rnx"], ["a"]),  # one value per --nav: OBS is not swallowed
+        (["fit", "o.rnx", "--nav", "a", "b"], ["a", "b"]),  # several after one --nav
+        (["inspect", "o.rnx", "--nav", "a", "b", "--nav", "c"], ["a", "b", "c"]),
     ],
 )
 def test_nav_accumulates(args, expected):
     ns = build_parser().parse_args(args)
     assert ns.nav == expected
     assert ns.obs == ["o.rnx"]
+
+
+def test_an_observation_file_after_nav_is_named(tmp_path, capsys):
+    """``--nav`` takes every file after it: an observation file there gets one clear line."""
+    from samples import write_small
+
+    obs = write_small(tmp_path / "o.rnx")
+    code = main(["fit", "--nav", str(obs), str(obs), "--out", str(tmp_path / "out")])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and not (tmp_path / "out").exists()
+    assert err[-1].endswith("observation files go before --nav")
