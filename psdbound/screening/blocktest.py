@@ -63,7 +63,8 @@ def block_test(
         ``elevation_deg`` (the null's grid, deg), ``threshold_tecu_min``,
         ``false_alarm`` (``share``), ``false_alarm_at_threshold`` (under the
         fitted null), ``by_significance`` (whether the significance level
-        sets the threshold) and ``measured``: ``elevation_deg``,
+        sets the threshold), ``null_trusted`` (:attr:`MultipathNull.trusted`)
+        and ``measured``: ``elevation_deg``,
         ``exceeded`` and ``blocks`` per local window of the day's blocks,
         ``upper`` (the Clopper-Pearson upper limit of their exceedance) and
         ``by_significance`` there.
@@ -78,6 +79,7 @@ def block_test(
         "false_alarm": share,
         "false_alarm_at_threshold": null.exceedance(thr, el),
         "by_significance": thr <= significance_tecu_min,
+        "null_trusted": null.trusted,
         "measured": None,
     }
     roti = np.concatenate([b["roti"] for b in blocks]) if blocks else np.zeros(0)
@@ -94,7 +96,9 @@ def block_test(
 def tail_note(test: dict[str, Any] | None) -> str | None:
     """Return a note where the day's blocks exceed the null's quantile far more often than stated.
 
-    Where the null's quantile sets the threshold and the one-sided
+    Where the null is trusted (a quiet day: on a disturbed one the
+    exceedances are its ionosphere), the null's quantile sets the threshold
+    and the one-sided
     Clopper-Pearson *lower* limit of the measured exceedance (at ``LEVEL``,
     Bonferroni over the windows) lies above :data:`NOTE_FACTOR` times the
     stated probability; None otherwise. On simulated multipath that the null
@@ -102,8 +106,8 @@ def tail_note(test: dict[str, Any] | None) -> str | None:
     (``tests/screening/test_blocktest.py``).
     """
     m = (test or {}).get("measured")
-    if not m:
-        return None
+    if not m or not test.get("null_trusted", True):  # type: ignore[union-attr]
+        return None  # a disturbed day: exceedances are its ionosphere, not false alarms
     k, n, p = m["exceeded"], m["blocks"], float(test["false_alarm"])  # type: ignore[index]
     alpha = (1.0 - LEVEL) / k.size
     lower = np.where(k > 0, stats.beta.ppf(alpha, np.maximum(k, 1.0), n - k + 1.0), 0.0)

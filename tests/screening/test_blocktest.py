@@ -88,3 +88,15 @@ def test_no_note_where_the_significance_level_sets_the_threshold():
 def test_without_a_null_there_is_no_test():
     assert block_test(None, lambda e: e, [], 1e-3, 0.15) is None
     assert tail_note(None) is None
+
+
+def test_no_note_on_a_disturbed_day():
+    """An untrusted (heavy-tailed) null means a disturbed day: exceedances are ionosphere."""
+    from dataclasses import replace
+
+    rng = np.random.default_rng(11)
+    el, roti = _day(rng, 2300, 7.0, heavy_below_deg=25.0)
+    null = replace(fit_null(roti, el), dof=2.0)
+    assert not null.trusted
+    test = block_test(null, lambda e: null.threshold(e, 2.5e-4), _blocks(el, roti), 2.5e-4, 0.0)
+    assert test["measured"]["exceeded"].sum() > 0 and tail_note(test) is None
