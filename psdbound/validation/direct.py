@@ -46,6 +46,7 @@ __all__ = [
     "SatellitePass",
     "direct_check",
     "oscillation_track",
+    "pass_track",
     "phase_error_rad",
     "sampling_interval_s",
     "satellite_passes",
@@ -53,6 +54,7 @@ __all__ = [
 
 _MAX_PHASE_STEP_RAD = math.pi / 4.0
 _MIN_SAMPLES = 64
+_MAX_HALVINGS = 6  # a pass's step is halved at most this often (64 times finer)
 
 
 def phase_error_rad(
@@ -301,6 +303,52 @@ class SatellitePass:
         """
         t = np.arange(self.t_gps_s[0], self.t_gps_s[-1], float(dt_s))
         return t, CubicSpline(self.t_gps_s, self.elevation_rad)(t)
+
+
+def pass_track(
+    p: SatellitePass,
+    geometry: Reflection,
+    *,
+    convention: str = "physical",
+    wavelength_m: float = GPS_L1_WAVELENGTH_M,
+) -> tuple[float, NDArray[np.float64]]:
+    """Sample a pass finely enough for a reflection's phase: the step and the elevations.
+
+    The step is :func:`sampling_interval_s` at the pass's largest rate, read
+    from its coarse track; the spline between coarse samples can turn faster
+    (an orbit with a gap, the ends of a pass), so the step is halved while
+    ``psi`` still advances more than ``pi / 4`` per sample (at most
+    :data:`_MAX_HALVINGS` times; beyond, :func:`direct_check` says so).
+
+    Parameters
+    ----------
+    p : SatellitePass
+        The pass.
+    geometry : Reflection
+        The reflection.
+    convention : {"physical", "thesis"}, default "physical"
+        Phase convention.
+    wavelength_m : float, default GPS L1
+        Carrier wavelength, m.
+
+    Returns
+    -------
+    dt_s : float
+        Step, s.
+    elevation_rad : ndarray of float64
+        The pass's elevation on that step, rad.
+    """
+    dt = sampling_interval_s(
+        geometry, max_rate_rad_s=p.max_rate_rad_s, convention=convention, wavelength_m=wavelength_m
+    )
+    _, el = p.resample(dt)
+    for _ in range(_MAX_HALVINGS):
+        psi = geometry.phase_rad(el, wavelength_m=wavelength_m, convention=convention)
+        if psi.size < 2 or float(np.max(np.abs(np.diff(psi)))) <= _MAX_PHASE_STEP_RAD:
+            break
+        dt /= 2.0
+        _, el = p.resample(dt)
+    return dt, el
 
 
 def _orbit_span(orbit: object) -> tuple[float, float]:

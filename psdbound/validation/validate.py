@@ -14,6 +14,7 @@ from psdbound.validation.cutoff import DEFAULT_THRESHOLD, check_oscillation, che
 from psdbound.validation.direct import (
     direct_check,
     oscillation_track,
+    pass_track,
     sampling_interval_s,
     satellite_passes,
 )
@@ -277,13 +278,7 @@ def _pass_checks(
     direct: list[DirectCheck] = []
     for g in geoms:
         for conv in conventions:
-            dt = sampling_interval_s(
-                g,
-                max_rate_rad_s=p.max_rate_rad_s,
-                convention=conv,
-                wavelength_m=st.wavelength_m,
-            )
-            _, el = p.resample(dt)
+            dt, el = pass_track(p, g, convention=conv, wavelength_m=st.wavelength_m)
             direct.append(
                 direct_check(
                     g,

@@ -543,3 +543,24 @@ def test_cli_bad_input_raises_input_error(argv, message):
     args = _parser().parse_args(["validate", *argv])
     with pytest.raises(InputError, match=message):
         run(args)
+
+
+def test_pass_track_samples_a_fast_turn_finely_enough():
+    """A coarse track whose spline turns faster than its sampled rate (an orbit glitch: the
+    GLONASS SP3 of OPEC 2022-01-01 stopped a fit with exit 2) is resampled until the phase
+    advances at most pi/4 per sample, and the direct check then runs."""
+    from psdbound.validation.direct import SatellitePass, pass_track, sampling_interval_s
+
+    t = np.arange(0.0, 7200.0, 30.0)
+    el = np.radians(10.0 + 60.0 * t / t[-1])
+    el[t >= 3600.0] += np.radians(4.0)  # a jump between two coarse samples
+    p = SatellitePass("R10", t, el)
+    g = parse_geometry("wall:d=25")
+    naive = sampling_interval_s(g, max_rate_rad_s=p.max_rate_rad_s)
+    with pytest.raises(InputError, match="too coarse"):
+        direct_check(g, p.resample(naive)[1], naive, cutoff_hz=1e-3)
+    dt, track = pass_track(p, g)
+    assert dt < naive
+    psi = g.phase_rad(track, wavelength_m=GPS_L1_WAVELENGTH_M, convention="physical")
+    assert np.max(np.abs(np.diff(psi))) <= np.pi / 4
+    assert 0.0 <= direct_check(g, track, dt, cutoff_hz=1e-3).fraction_below_cutoff <= 1.0
