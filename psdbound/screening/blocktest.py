@@ -98,12 +98,11 @@ def tail_note(test: dict[str, Any] | None) -> str | None:
 
     Where the null is trusted (a quiet day: on a disturbed one the
     exceedances are its ionosphere), the null's quantile sets the threshold
-    and the one-sided
-    Clopper-Pearson *lower* limit of the measured exceedance (at ``LEVEL``,
-    Bonferroni over the windows) lies above :data:`NOTE_FACTOR` times the
-    stated probability; None otherwise. On simulated multipath that the null
-    describes, 1 day in 20 or fewer gets the note
-    (``tests/screening/test_blocktest.py``).
+    and the one-sided Clopper-Pearson *lower* limit of the measured
+    exceedance (at ``LEVEL``, Bonferroni over the windows) lies above
+    :data:`NOTE_FACTOR` times the stated probability; None otherwise. On
+    simulated multipath that the null describes, 1 day in 20 or fewer gets
+    the note (``tests/screening/test_blocktest.py``).
     """
     m = (test or {}).get("measured")
     if not m or not test.get("null_trusted", True):  # type: ignore[union-attr]
