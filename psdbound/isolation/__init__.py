@@ -8,7 +8,8 @@ Public surface:
   levelling, one code or ionosphere-free pair, as a :class:`MultipathSeries`),
   :func:`rms_by_satellite`, :func:`level_shifts` (steps that split a levelling arc)
 * :func:`estimate_baseline_correction`, :func:`baseline_note` (the dual-antenna
-  baseline from the double differences)
+  baseline from the double differences), :func:`long_baseline_note` (what a
+  long one leaves in them)
 * :class:`HighPass` (zero-phase high-pass designs and edge handling)
 * :func:`filter_safety_check` (Lomb-Scargle power removed below/above f_c)
 
@@ -26,6 +27,7 @@ if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
         BaselineEstimate,
         baseline_note,
         estimate_baseline_correction,
+        long_baseline_note,
     )
     from psdbound.isolation.code import isolate_code_multipath, level_shifts, rms_by_satellite
     from psdbound.isolation.dual_antenna import DA_SCALING, isolate_dual_antenna
@@ -44,6 +46,7 @@ __all__ = [
     "MultipathSeries",
     "SafetyCheck",
     "baseline_note",
+    "long_baseline_note",
     "estimate_baseline_correction",
     "filter_safety_check",
     "isolate_code_multipath",
@@ -57,6 +60,7 @@ __all__ = [
 _EXPORTS = {
     "BaselineEstimate": ("psdbound.isolation.baseline", "BaselineEstimate"),
     "baseline_note": ("psdbound.isolation.baseline", "baseline_note"),
+    "long_baseline_note": ("psdbound.isolation.baseline", "long_baseline_note"),
     "estimate_baseline_correction": ("psdbound.isolation.baseline", "estimate_baseline_correction"),
     "isolate_code_multipath": ("psdbound.isolation.code", "isolate_code_multipath"),
     "level_shifts": ("psdbound.isolation.code", "level_shifts"),

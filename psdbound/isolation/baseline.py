@@ -47,7 +47,18 @@ from numpy.typing import NDArray
 
 from psdbound.io.geometry import ecef_to_geodetic, enu_rotation
 
-__all__ = ["BaselineEstimate", "baseline_note", "estimate_baseline_correction"]
+__all__ = [
+    "LONG_BASELINE_M",
+    "BaselineEstimate",
+    "baseline_note",
+    "estimate_baseline_correction",
+    "long_baseline_note",
+]
+
+#: Baselines above this (m) leave differential ionosphere and troposphere in the double
+#: differences at the millimetre level of the multipath (about 1 mm per km of baseline
+#: on L1 for a quiet ionosphere's gradient of 1 ppm, several times that when disturbed).
+LONG_BASELINE_M = 1000.0
 
 #: Arcs with a residual RMS above this multiple of the median are left out.
 OUTLIER_RMS_FACTOR = 5.0
@@ -247,3 +258,28 @@ def baseline_note(info: dict[str, Any] | None, markers: Sequence[str] | None = N
             "drift of this baseline error"
         )
     return ""
+
+
+def long_baseline_note(baseline_m: float | None) -> str:
+    """Warn that a long dual-antenna baseline leaves atmosphere in the double differences.
+
+    Parameters
+    ----------
+    baseline_m : float or None
+        Distance between the two antennas, m.
+
+    Returns
+    -------
+    str
+        A warning above :data:`LONG_BASELINE_M`; empty otherwise.
+    """
+    if baseline_m is None or not baseline_m > LONG_BASELINE_M:
+        return ""
+    km = baseline_m / 1e3
+    return (
+        f"the antennas are {km:.1f} km apart: at that distance the double differences also "
+        f"hold differential ionosphere and troposphere (of order {km:.0f} mm on L1 for a "
+        "quiet ionosphere's 1 ppm gradient, several times that when disturbed), which the "
+        "bound covers as if it were multipath; the dual-frequency method of each station "
+        "separates them"
+    )

@@ -44,6 +44,7 @@ from psdbound.isolation import (
     filter_safety_check,
     isolate_dual_antenna,
     isolate_dual_frequency,
+    long_baseline_note,
 )
 from psdbound.pipeline.config import InputsConfig
 from psdbound.pipeline.inputs import Progress, quiet, read_inputs
@@ -230,9 +231,12 @@ def _isolate_da(
         f"({m.get('baseline_m', float('nan')):.1f} m baseline): the bound may be "
         "optimistic for a single antenna; the dual-frequency method is preferred"
     ]
-    note = baseline_note(m.get("baseline_estimate"), m.get("markers"))
-    if note:
-        warnings.append(note)
+    for note in (
+        long_baseline_note(m.get("baseline_m")),
+        baseline_note(m.get("baseline_estimate"), m.get("markers")),
+    ):
+        if note:
+            warnings.append(note)
     return Isolated(series, None, details, tuple(warnings))
 
 

@@ -408,3 +408,11 @@ def test_upc_double_differences():
             n_checked += 1
     assert n_checked >= 5
     assert elapsed < 2.0
+
+
+def test_a_long_baseline_is_said_to_hold_atmosphere():
+    from psdbound.isolation import long_baseline_note
+
+    assert long_baseline_note(38.0) == "" and long_baseline_note(None) == ""
+    note = long_baseline_note(3335.4)
+    assert "3.3 km apart" in note and "differential ionosphere" in note
