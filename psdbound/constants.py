@@ -57,6 +57,9 @@ GM_BEIDOU_GALILEO_M3_S2 = 3.986004418e14
 #: Speed of light in vacuum, m/s (exact, SI).
 SPEED_OF_LIGHT_M_S = 299792458.0
 
+#: TAI - GPS time, s: constant by the definition of GPS time (IS-GPS-200).
+TAI_MINUS_GPS_S = 19.0
+
 #: WGS-84 semi-major axis, m (NIMA TR8350.2).
 WGS84_A_M = 6378137.0
 #: WGS-84 flattening (NIMA TR8350.2).

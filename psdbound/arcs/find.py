@@ -389,7 +389,7 @@ def default_pair(obs: Observations, system: str) -> tuple[str, str]:
     for band in SIGNAL_CANDIDATES[system]:
         held = [c for c in band if obs.phase_count(system, c) > 0]
         # none with phases: the first the file lists, whose empty arcs say what is missing
-        held = held or [c for c in band if _listed(obs, system, c)]
+        held = held or [c for c in band if obs.file_code(system, c) is not None]
         if not held:
             raise InputError(
                 f"none of the phase signals {', '.join(band)} is in the file for "
@@ -399,15 +399,6 @@ def default_pair(obs: Observations, system: str) -> tuple[str, str]:
             )
         pair.append(held[0])
     return pair[0], pair[1]
-
-
-def _listed(obs: Observations, system: str, code: str) -> bool:
-    """Whether the file lists a code for the system (with or without observations)."""
-    try:
-        obs.resolve_code(system, code)
-    except InputError:
-        return False
-    return True
 
 
 def _signal_pair(obs: Observations, signals: Sequence[str] | None, system: str) -> tuple[str, str]:

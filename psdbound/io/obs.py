@@ -158,6 +158,15 @@ class Observations:
             path=self.path,
         )
 
+    def file_code(self, system: str, code: str) -> str | None:
+        """Return the code as stored in the file, as :meth:`resolve_code`; None when absent."""
+        if system not in self.blocks:
+            return None
+        try:
+            return self.resolve_code(system, code)
+        except InputError:
+            return None
+
     def phase_count(self, system: str, code: str) -> int:
         """Return how many observations of a code the file holds for a system (0: none).
 
@@ -165,14 +174,11 @@ class Observations:
         files); a code the file does not have counts 0. Receiver-written zero
         phases do not count.
         """
-        if system not in self.blocks:
-            return 0
-        try:
-            code = self.resolve_code(system, code)
-        except InputError:
+        stored = self.file_code(system, code)
+        if stored is None:
             return 0
         block = self._block(system)
-        v = block.values[:, :, block.codes.index(code)]
+        v = block.values[:, :, block.codes.index(stored)]
         return int(np.count_nonzero(np.isfinite(v) & (v != 0.0)))
 
     def get(self, sat: str, code: str) -> NDArray[np.float64]:
@@ -306,7 +312,7 @@ def _keep_codes(raw: dict[str, RawBlock], codes: set[str]) -> dict[str, RawBlock
     return out
 
 
-def _first_in_header(
+def _alternatives_in_header(
     code: str | Sequence[str], header: ObsHeader, want_sys: set[str] | None
 ) -> set[str]:
     """Return the header's codes for ``code``, or for every alternative when a sequence is given.
@@ -359,7 +365,7 @@ def _wanted_codes(
         return None
     want_codes = set()
     for c in codes:
-        found = _first_in_header(c, header, want_sys)
+        found = _alternatives_in_header(c, header, want_sys)
         if not found:
             avail = sorted(
                 {

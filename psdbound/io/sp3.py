@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from psdbound.constants import TAI_MINUS_GPS_S
 from psdbound.errors import InputError
 from psdbound.io._nav_records import valid_calendar
 from psdbound.io._source import read_bytes
@@ -536,7 +537,7 @@ def _labels_to_gps_s(labels: NDArray[np.float64], time_system: str) -> NDArray[n
     if time_system in ("GPS", "GAL", "QZS"):
         return labels
     if time_system == "TAI":
-        return labels - 19.0
+        return labels - TAI_MINUS_GPS_S
     if time_system == "BDT":
         return labels + 14.0
     if time_system == "GLO":

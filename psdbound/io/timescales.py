@@ -17,6 +17,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from psdbound.constants import TAI_MINUS_GPS_S
+
 __all__ = [
     "GPS_EPOCH",
     "SECONDS_PER_WEEK",
@@ -29,8 +31,6 @@ __all__ = [
 GPS_EPOCH = np.datetime64("1980-01-06T00:00:00", "ns")
 SECONDS_PER_WEEK = 604800.0
 _GPS_EPOCH_DAY = np.datetime64("1980-01-06", "D")
-#: TAI - GPS time, s: constant by the definition of GPS time (IS-GPS-200).
-TAI_MINUS_GPS_S = 19.0
 
 
 def calendar_to_gps_s(

@@ -105,7 +105,7 @@ def tail_note(test: dict[str, Any] | None) -> str | None:
     the note (``tests/screening/test_blocktest.py``).
     """
     m = (test or {}).get("measured")
-    if not m or not test.get("null_trusted", True):  # type: ignore[union-attr]
+    if not m or not test["null_trusted"]:  # type: ignore[index]
         return None  # a disturbed day: exceedances are its ionosphere, not false alarms
     k, n, p = m["exceeded"], m["blocks"], float(test["false_alarm"])  # type: ignore[index]
     alpha = (1.0 - LEVEL) / k.size
