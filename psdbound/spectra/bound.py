@@ -40,7 +40,10 @@ from psdbound.errors import InputError
 from psdbound.spectra.models import GaussMarkovWhiteNoise, gm_psd_sampled
 from psdbound.spectra.names import OBJECTIVES, RULES
 
-__all__ = ["BoundFit", "fit_bound", "OBJECTIVES", "RULES"]
+#: Further linear constraints of a time constant: ``tau -> (a, b)``, ``a @ variances >= b``.
+ExtraRows = Callable[[float], tuple[NDArray[np.float64], NDArray[np.float64]]]
+
+__all__ = ["BoundFit", "ExtraRows", "fit_bound", "OBJECTIVES", "RULES"]
 
 
 class _PSDLike(Protocol):
@@ -219,6 +222,7 @@ def fit_bound(
     tau_range_s: tuple[float, float] | None = None,
     n_grid: int = 64,
     floor: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
+    extra: ExtraRows | None = None,
 ) -> BoundFit:
     """Fit the tightest GMRP + white-noise bound over a set of PSD estimates.
 
@@ -245,6 +249,12 @@ def fit_bound(
         on or above that are not data (e.g. the models the data admit below
         the lowest band, :mod:`psdbound.spectra.lowfreq`): constraints of the
         linear programs, left out of the margins and the gap figures.
+    extra : callable, optional
+        Further linear constraints that are not PSD values: ``extra(tau)``
+        returns ``(a, b)``, ``a`` of shape (R, 2) and ``b`` of shape (R,),
+        requiring ``a @ (sigma_gm^2, sigma_wn^2) >= b`` (m^2 and the units of
+        ``b``), e.g. expected estimates above data limits
+        (:mod:`psdbound.spectra.lowest`).
 
     Returns
     -------
@@ -269,7 +279,7 @@ def fit_bound(
     fc, sc = _staircase(f_con, s_con)
     scale = float(sc.max())
     cost = _cost_function(objective, dt_s, f_min, nyq)
-    solve = _lp_solver(fc, sc / scale, dt_s, cost)
+    solve = _lp_solver(fc, sc / scale, dt_s, cost, extra=extra, scale=scale)
     lo, hi = tau_range_s if tau_range_s is not None else (0.5 * dt_s, 20.0 / f_min)
     if not 0 < lo < hi:
         raise InputError(f"bad tau range {lo, hi}")
@@ -281,6 +291,8 @@ def fit_bound(
             f"{best_tau:.4g} s (data of {s_all.size} points)"
         )
     var_gm, var_wn = _enforce_bound(x, scale, f_con, s_con, best_tau, dt_s)
+    if extra is not None:
+        var_gm, var_wn = _enforce_extra(extra(best_tau), var_gm, var_wn)
     gap_db = 10.0 * np.log10(_model_psd(f_all, var_gm, var_wn, best_tau, dt_s) / s_all)
     margins = []
     for f, s in data:
@@ -368,18 +380,26 @@ def _lp_solver(
     s_norm: NDArray[np.float64],
     dt_s: float,
     cost: Callable[[float], NDArray[np.float64]],
+    *,
+    extra: ExtraRows | None = None,
+    scale: float = 1.0,
 ) -> Callable[[float], tuple[float, NDArray[np.float64]]]:
     """Return the linear program of one tau: its optimum and ``(sigma_gm^2, sigma_wn^2)``.
 
-    The values are normalised by the PSD scale; the optimum is inf when the program fails.
+    The values are normalised by the PSD scale (``extra`` rows, in absolute
+    units, by ``scale``); the optimum is inf when the program fails.
     """
     white = 2.0 * dt_s
 
     def solve(tau: float) -> tuple[float, NDArray[np.float64]]:
         g = gm_psd_sampled(fc, 1.0, tau, dt_s)
         a_ub = -np.column_stack([g, np.full(fc.size, white)])
+        b_ub = -s_norm
+        if extra is not None:
+            a_x, b_x = extra(tau)
+            a_ub, b_ub = np.vstack([a_ub, -a_x]), np.concatenate([b_ub, -b_x / scale])
         res = linprog(
-            cost(tau), A_ub=a_ub, b_ub=-s_norm, bounds=[(0, None), (0, None)], method="highs"
+            cost(tau), A_ub=a_ub, b_ub=b_ub, bounds=[(0, None), (0, None)], method="highs"
         )
         if res.status != 0:
             return np.inf, np.array([np.nan, np.nan])
@@ -417,6 +437,21 @@ def _model_psd(
 ) -> NDArray[np.float64]:
     """Return the bound's sampled PSD at ``f`` (Hz), m^2/Hz."""
     return var_gm * gm_psd_sampled(f, 1.0, tau, dt_s) + var_wn * (2.0 * dt_s)
+
+
+def _enforce_extra(
+    rows: tuple[NDArray[np.float64], NDArray[np.float64]], var_gm: float, var_wn: float
+) -> tuple[float, float]:
+    """Return the variances (m^2), scaled up so the ``extra`` rows hold exactly."""
+    a_x, b_x = rows
+    need = b_x > 0
+    if not need.any():
+        return var_gm, var_wn
+    worst = float(np.min((a_x[need] @ np.array([var_gm, var_wn])) / b_x[need]))
+    if worst < 1.0:
+        up = (1.0 + 1e-12) / max(worst, 1e-300)
+        var_gm, var_wn = var_gm * up, var_wn * up
+    return var_gm, var_wn
 
 
 def _enforce_bound(

@@ -37,7 +37,8 @@ under the bound at ``f_min`` and is one of the admitted models, the bound lies
 above it at every lower frequency by construction of the envelope. That the
 truth *is* first-order GM + white is the model's assumption; a slow component
 of another shape is covered only as far as its band averages constrain the
-set.
+set, and, for data that went through no filter, as far as the windows'
+lowest Fourier frequencies show it (:mod:`psdbound.spectra.lowest`).
 
 References
 ----------

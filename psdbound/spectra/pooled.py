@@ -54,7 +54,7 @@ from scipy import stats
 
 from psdbound.errors import InputError
 from psdbound.spectra.bands import BandSpectra, band_spectra, merge_bands
-from psdbound.spectra.bound import BoundFit, fit_bound
+from psdbound.spectra.bound import BoundFit, ExtraRows, fit_bound
 from psdbound.spectra.estimators import PSDEstimate
 from psdbound.spectra.groups import log_frequency, shape_groups, tilted
 from psdbound.spectra.limits import (
@@ -806,6 +806,7 @@ def fit_limits(
     objective: str = "variance",
     n_grid: int = 64,
     floor: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
+    extra: ExtraRows | None = None,
 ) -> BoundFit:
     """Fit the tightest GM + white-noise bound above pooled band limits.
 
@@ -830,6 +831,8 @@ def fit_limits(
     floor : (ndarray, ndarray), optional
         Further points (Hz, m^2/Hz) the bound must lie above, not data
         (:func:`fit_bound`).
+    extra : callable, optional
+        Further linear constraints of each time constant (:func:`fit_bound`).
 
     Returns
     -------
@@ -854,6 +857,7 @@ def fit_limits(
         n_grid=n_grid,
         tau_range_s=(0.5 * dt_s, 20.0 / float(bands.edges_hz[0])),
         floor=floor,
+        extra=extra,
     )
     # the bound is stated over the bands' full span, lowest edge to Nyquist
     return replace(

@@ -21,6 +21,7 @@ from psdbound.spectra.bands import BandSpectra, resolved_from_hz
 from psdbound.spectra.bound import BoundFit
 from psdbound.spectra.estimators import MIN_SAMPLES, PSDEstimate, estimate_psd
 from psdbound.spectra.intervals import ModelSet
+from psdbound.spectra.lowest import LowestFrequencies, lowest_ordinates
 from psdbound.spectra.lowfreq import POLICIES, TAU_MAX_S, LowFrequency, low_frequency_reasons
 from psdbound.spectra.models import GaussMarkovWhiteNoise
 from psdbound.spectra.pooled import PooledLimits
@@ -68,6 +69,11 @@ class SeriesBound:
     low_frequency : LowFrequency or None
         What the bound covers below ``f_min_hz``, down to 0 Hz
         (:mod:`psdbound.spectra.lowfreq`).
+    lowest_frequencies : LowestFrequencies or None
+        The bound's expected estimate at the windows' lowest Fourier
+        frequencies against each shape group's upper limit
+        (:mod:`psdbound.spectra.lowest`); None when no window has a Fourier
+        frequency below ``f_min_hz``.
     """
 
     bound: GaussMarkovWhiteNoise
@@ -82,6 +88,7 @@ class SeriesBound:
     notes: tuple[str, ...] = field(default_factory=tuple)
     model_set: ModelSet | None = None
     low_frequency: LowFrequency | None = None
+    lowest_frequencies: LowestFrequencies | None = None
 
     @property
     def n_windows(self) -> int:
@@ -304,6 +311,7 @@ def bound_series(
         deviation_model=deviation_model,
         objective=objective,
         tau_max_s=tau_max_s,
+        lowest=lowest_ordinates(stretches, dt_s, f_min_hz),
     )
     fit, bands, limits, ms, low = sb.fit, sb.bands, sb.limits, sb.model_set, sb.low_frequency
     reasons = _verdict(fit, limits, low, low_frequency_policy)
@@ -313,7 +321,7 @@ def bound_series(
         verdict=NOT_BOUNDED if reasons else BOUNDED,
         verdict_reasons=reasons,
         f_min_hz=float(fit.f_min_hz),
-        covers=statement(limits, bands, low),
+        covers=statement(limits, bands, low, sb.lowest),
         fit=fit,
         psds=psds,
         bands=bands,
@@ -321,4 +329,5 @@ def bound_series(
         notes=notes,
         model_set=ms,
         low_frequency=low,
+        lowest_frequencies=sb.lowest,
     )

@@ -8,7 +8,11 @@ One chain, used by :meth:`psdbound.spectra.BoundModel.fit`,
 2. :func:`~psdbound.spectra.intervals.model_set`: the Gauss-Markov + white
    models the data admit;
 3. :func:`~psdbound.spectra.lowfreq.bound_below`: the bound raised, where
-   needed, above every admitted model below ``f_min``, down to 0 Hz.
+   needed, above every admitted model below ``f_min``, down to 0 Hz;
+4. :func:`~psdbound.spectra.lowest.cover_lowest` (unfiltered data, when the
+   windows' lowest Fourier ordinates are given): the bound raised, where
+   needed, so that its expected estimate there lies above each shape group's
+   upper limit, whatever the truth's shape.
 
 The model set is identified on more of the spectrum than the statement
 covers: from each window's lowest Fourier frequency ``1/T`` when the data
@@ -36,6 +40,7 @@ from psdbound.spectra.bands import BandSpectra, band_spectra
 from psdbound.spectra.bound import BoundFit
 from psdbound.spectra.estimators import PSDEstimate
 from psdbound.spectra.intervals import ModelSet, model_set
+from psdbound.spectra.lowest import LowestFrequencies, LowestOrdinates, cover_lowest
 from psdbound.spectra.lowfreq import TAU_MAX_S, LowFrequency, bound_below
 from psdbound.spectra.pooled import MIN_GROUP_DOF, PooledLimits, fit_pooled_bound, smoothing_hz
 
@@ -59,6 +64,8 @@ class StatedBound(NamedTuple):
         Why there is no model set.
     low_frequency : LowFrequency
         What the bound covers below its lowest band.
+    lowest : LowestFrequencies or None
+        The check at the lowest Fourier frequencies (None: not made).
     """
 
     fit: BoundFit
@@ -67,6 +74,7 @@ class StatedBound(NamedTuple):
     model_set: ModelSet | None
     model_set_note: str
     low_frequency: LowFrequency
+    lowest: LowestFrequencies | None = None
 
 
 def fit_stated_bound(
@@ -80,6 +88,7 @@ def fit_stated_bound(
     n_grid: int = 64,
     power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]] | None = None,
     filtered: bool | None = None,
+    lowest: LowestOrdinates | None = None,
     **pool_options: Any,
 ) -> StatedBound:
     """Fit the pooled bound, its model set and its low-frequency statement.
@@ -109,6 +118,11 @@ def fit_stated_bound(
         :func:`identification_bands`); default: whether ``power_response``
         is given. Pass True for spectra whose filter response was divided
         out already (a campaign's days).
+    lowest : LowestOrdinates, optional
+        The windows' estimates at their lowest Fourier frequencies
+        (:func:`psdbound.spectra.lowest.lowest_ordinates`; unfiltered data
+        only): the bound's expectation there is held above each group's
+        upper limit (:func:`psdbound.spectra.lowest.cover_lowest`).
     **pool_options
         ``coverage``, ``shape_alpha``, ``bands_per_decade``, ``clusters``,
         ``cluster_correlation``, ``deviation_model``
@@ -153,9 +167,14 @@ def fit_stated_bound(
         n_grid=n_grid,
         reason=why,
     )
+    checked = None
+    if lowest is not None:
+        fit, checked = cover_lowest(
+            fit, lowest, limits, bands, low, objective=objective, n_grid=n_grid
+        )
     if ms is not None:  # the reported set contains the bound it accompanies
         ms = ms.with_model("bound", fit.sigma_gm_m, fit.tau_s, fit.sigma_wn_m)
-    return StatedBound(fit, bands, limits, ms, why, low)
+    return StatedBound(fit, bands, limits, ms, why, low, checked)
 
 
 def identification_bands(
@@ -209,7 +228,12 @@ def _merged_groups(limits: PooledLimits, bands: BandSpectra) -> list[int]:
     ]
 
 
-def statement(limits: PooledLimits, bands: BandSpectra, low: LowFrequency | None = None) -> str:
+def statement(
+    limits: PooledLimits,
+    bands: BandSpectra,
+    low: LowFrequency | None = None,
+    lowest: LowestFrequencies | None = None,
+) -> str:
     """Return what a bound above ``limits`` covers, in words (result.json ``bound.covers``).
 
     Parameters
@@ -220,6 +244,8 @@ def statement(limits: PooledLimits, bands: BandSpectra, low: LowFrequency | None
         Their bands.
     low : LowFrequency, optional
         What the bound covers below the lowest band (its sentence is added).
+    lowest : LowestFrequencies, optional
+        The check at the lowest Fourier frequencies (its sentence is added).
 
     Returns
     -------
@@ -242,4 +268,5 @@ def statement(limits: PooledLimits, bands: BandSpectra, low: LowFrequency | None
             f"; group(s) {', '.join(map(str, merged))} on merged bands of at least "
             f"{MIN_GROUP_DOF:g} pooled degrees of freedom"
         )
-    return text if low is None else f"{text}; {low.sentence()}"
+    parts = [text] + [p.sentence() for p in (low, lowest) if p is not None]
+    return "; ".join(parts)
