@@ -80,6 +80,7 @@ def band_spectra(
     bands_per_decade: int = 10,
     power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]] | None = None,
     below_resolved: bool = False,
+    edges_hz: NDArray[np.float64] | None = None,
 ) -> BandSpectra:
     """Average every PSD estimate over common log-spaced frequency bands.
 
@@ -106,6 +107,10 @@ def band_spectra(
         ``f_min_hz``). Their band averages are then not averages of the PSD
         near the band: only a comparison with the estimator's exact
         expectation (:mod:`psdbound.spectra.expectation`) may use them.
+    edges_hz : ndarray, optional
+        Band edges, Hz, increasing from ``f_min_hz`` to the Nyquist frequency,
+        in place of the log spacing (e.g. cells of the estimator's resolution,
+        :mod:`psdbound.spectra.cells`).
 
     Returns
     -------
@@ -130,8 +135,12 @@ def band_spectra(
         )
     if bands_per_decade < 1:
         raise InputError(f"bands_per_decade must be >= 1, got {bands_per_decade}")
-    n_bands = max(1, int(np.ceil(bands_per_decade * np.log10(nyq / f_min_hz))))
-    edges = np.geomspace(f_min_hz, nyq, n_bands + 1)
+    if edges_hz is None:
+        n_bands = max(1, int(np.ceil(bands_per_decade * np.log10(nyq / f_min_hz))))
+        edges = np.geomspace(f_min_hz, nyq, n_bands + 1)
+    else:
+        edges = np.array(edges_hz, dtype=float)
+        n_bands = edges.size - 1
     edges[-1] = nyq * (1.0 + 1e-12)
     width = np.diff(edges)
     values = np.full((len(psds), n_bands), np.nan)

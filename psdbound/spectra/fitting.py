@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 from psdbound.errors import InputError, NoDataError
 from psdbound.spectra.bands import BandSpectra, over_data_db, resolved_from_hz
 from psdbound.spectra.bound import RULES, BoundFit, fit_bound
+from psdbound.spectra.cells import CellCheck
 from psdbound.spectra.dependence import overlap_correlation, reference_clusters
 from psdbound.spectra.estimators import PSDEstimate, estimate_psd
 from psdbound.spectra.intervals import ModelSet
@@ -60,6 +61,10 @@ class BoundResults:
     low_frequency : LowFrequency or None
         What the bound covers below its lowest band
         (:mod:`psdbound.spectra.lowfreq`; None for the envelope rule).
+    cells : CellCheck or None
+        The groups' mean spectra on resolution cells against the bound
+        (:mod:`psdbound.spectra.cells`; None for the envelope rule or another
+        estimator than the multitaper).
     """
 
     bound: BoundFit
@@ -74,6 +79,7 @@ class BoundResults:
     model_set_note: str = ""
     dependence: dict[str, Any] = field(default_factory=dict)
     low_frequency: LowFrequency | None = None
+    cells: CellCheck | None = None
 
     @property
     def margins(self) -> NDArray[np.float64]:
@@ -109,7 +115,7 @@ class BoundResults:
                 "true PSD of the data"
             )
         assert self.pooled is not None and self.bands is not None
-        return statement(self.pooled, self.bands, self.low_frequency)
+        return statement(self.pooled, self.bands, self.low_frequency, cells=self.cells)
 
     def params(self) -> dict[str, float]:
         """Bound parameters with units in their names."""
@@ -315,6 +321,7 @@ class BoundModel:
             model_set_note=sb.model_set_note,
             dependence=dependence,
             low_frequency=sb.low_frequency,
+            cells=sb.cells,
             **common,
         )
 

@@ -41,7 +41,7 @@ References
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -50,7 +50,7 @@ from scipy import stats
 from scipy.signal import windows
 
 from psdbound.spectra.bands import BandSpectra
-from psdbound.spectra.bound import BoundFit
+from psdbound.spectra.bound import BoundFit, ExtraRows
 from psdbound.spectra.expectation import lag_kernels
 from psdbound.spectra.lowfreq import LowFrequency
 from psdbound.spectra.pooled import MIN_GROUP_DOF, PooledLimits, fit_limits
@@ -143,7 +143,10 @@ class LowestFrequencies:
     raised : bool
         Whether the bound was raised to meet the limits.
     confidence_level : float
-        Level of the limits (Bonferroni over the pairs).
+        Level of the limits (Bonferroni over the rows).
+    rows : callable or None
+        The constraints (``extra`` of :func:`psdbound.spectra.pooled.fit_limits`),
+        for a later refit to keep.
     """
 
     groups: NDArray[np.int64]
@@ -153,6 +156,7 @@ class LowestFrequencies:
     after: NDArray[np.float64]
     raised: bool
     confidence_level: float
+    rows: ExtraRows | None = field(default=None, repr=False, compare=False)
 
     def sentence(self) -> str:
         """Return this part of the statement, in words."""
@@ -295,18 +299,22 @@ def cover_lowest(
     before = req.ratio(fit)
     raised = bool(np.any(before < 1.0 - 1e-9))
     if raised:
-        floor = None
-        if low.f_hz is not None and low.envelope_m2_hz is not None and low.envelope_m2_hz.size:
-            floor = (low.f_hz, low.envelope_m2_hz)
         fit = fit_limits(
             limits,
             bands,
             lowest.dt_s,
             objective=objective,
             n_grid=n_grid,
-            floor=floor,
+            floor=low.floor(),
             extra=req.rows,
         )
     return fit, LowestFrequencies(
-        req.groups, req.j, req.upper, before, req.ratio(fit), raised, limits.confidence_level
+        req.groups,
+        req.j,
+        req.upper,
+        before,
+        req.ratio(fit),
+        raised,
+        limits.confidence_level,
+        req.rows,
     )

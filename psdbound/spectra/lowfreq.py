@@ -120,6 +120,12 @@ class LowFrequency:
     reason: str = ""
     parameter_set: dict[str, list[float]] | None = None
 
+    def floor(self) -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
+        """Return the envelope as constraint points (Hz, m^2/Hz) of a refit; None without one."""
+        if self.f_hz is None or self.envelope_m2_hz is None or not self.envelope_m2_hz.size:
+            return None
+        return self.f_hz, self.envelope_m2_hz
+
     @property
     def prior_binding(self) -> bool:
         """Whether the statement at 0 Hz rests on the prior ``tau <= tau_max_s``."""

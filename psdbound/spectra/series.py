@@ -19,6 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 from psdbound.errors import InputError
 from psdbound.spectra.bands import BandSpectra, resolved_from_hz
 from psdbound.spectra.bound import BoundFit
+from psdbound.spectra.cells import CellCheck
 from psdbound.spectra.estimators import MIN_SAMPLES, PSDEstimate, estimate_psd
 from psdbound.spectra.intervals import ModelSet
 from psdbound.spectra.lowest import LowestFrequencies, lowest_ordinates
@@ -74,6 +75,10 @@ class SeriesBound:
         frequencies against each shape group's upper limit
         (:mod:`psdbound.spectra.lowest`); None when no window has a Fourier
         frequency below ``f_min_hz``.
+    cells : CellCheck or None
+        The groups' mean spectra on cells of the estimator's resolution
+        against the bound (:mod:`psdbound.spectra.cells`); None for an
+        estimator other than the multitaper.
     """
 
     bound: GaussMarkovWhiteNoise
@@ -89,6 +94,7 @@ class SeriesBound:
     model_set: ModelSet | None = None
     low_frequency: LowFrequency | None = None
     lowest_frequencies: LowestFrequencies | None = None
+    cells: CellCheck | None = None
 
     @property
     def n_windows(self) -> int:
@@ -321,7 +327,7 @@ def bound_series(
         verdict=NOT_BOUNDED if reasons else BOUNDED,
         verdict_reasons=reasons,
         f_min_hz=float(fit.f_min_hz),
-        covers=statement(limits, bands, low, sb.lowest),
+        covers=statement(limits, bands, low, sb.lowest, sb.cells),
         fit=fit,
         psds=psds,
         bands=bands,
@@ -330,4 +336,5 @@ def bound_series(
         model_set=ms,
         low_frequency=low,
         lowest_frequencies=sb.lowest,
+        cells=sb.cells,
     )

@@ -12,7 +12,10 @@ One chain, used by :meth:`psdbound.spectra.BoundModel.fit`,
 4. :func:`~psdbound.spectra.lowest.cover_lowest` (unfiltered data, when the
    windows' lowest Fourier ordinates are given): the bound raised, where
    needed, so that its expected estimate there lies above each shape group's
-   upper limit, whatever the truth's shape.
+   upper limit, whatever the truth's shape;
+5. :func:`~psdbound.spectra.cells.cover_cells`: the bound raised above any
+   cell of the estimator's resolution whose group mean refutes it (a peak
+   narrower than its band).
 
 The model set is identified on more of the spectrum than the statement
 covers: from each window's lowest Fourier frequency ``1/T`` when the data
@@ -38,6 +41,7 @@ from numpy.typing import NDArray
 
 from psdbound.spectra.bands import BandSpectra, band_spectra
 from psdbound.spectra.bound import BoundFit
+from psdbound.spectra.cells import CellCheck, cover_cells
 from psdbound.spectra.estimators import PSDEstimate
 from psdbound.spectra.intervals import ModelSet, model_set
 from psdbound.spectra.lowest import LowestFrequencies, LowestOrdinates, cover_lowest
@@ -66,6 +70,8 @@ class StatedBound(NamedTuple):
         What the bound covers below its lowest band.
     lowest : LowestFrequencies or None
         The check at the lowest Fourier frequencies (None: not made).
+    cells : CellCheck or None
+        The check on resolution cells (None: not a multitaper estimate).
     """
 
     fit: BoundFit
@@ -75,6 +81,7 @@ class StatedBound(NamedTuple):
     model_set_note: str
     low_frequency: LowFrequency
     lowest: LowestFrequencies | None = None
+    cells: CellCheck | None = None
 
 
 def fit_stated_bound(
@@ -172,9 +179,21 @@ def fit_stated_bound(
         fit, checked = cover_lowest(
             fit, lowest, limits, bands, low, objective=objective, n_grid=n_grid
         )
+    fit, cells = cover_cells(
+        fit,
+        psds,
+        limits,
+        bands,
+        dt_s,
+        power_response=power_response,
+        floor=low.floor(),
+        extra=None if checked is None else checked.rows,
+        objective=objective,
+        n_grid=n_grid,
+    )
     if ms is not None:  # the reported set contains the bound it accompanies
         ms = ms.with_model("bound", fit.sigma_gm_m, fit.tau_s, fit.sigma_wn_m)
-    return StatedBound(fit, bands, limits, ms, why, low, checked)
+    return StatedBound(fit, bands, limits, ms, why, low, checked, cells)
 
 
 def identification_bands(
@@ -233,6 +252,7 @@ def statement(
     bands: BandSpectra,
     low: LowFrequency | None = None,
     lowest: LowestFrequencies | None = None,
+    cells: CellCheck | None = None,
 ) -> str:
     """Return what a bound above ``limits`` covers, in words (result.json ``bound.covers``).
 
@@ -246,6 +266,8 @@ def statement(
         What the bound covers below the lowest band (its sentence is added).
     lowest : LowestFrequencies, optional
         The check at the lowest Fourier frequencies (its sentence is added).
+    cells : CellCheck, optional
+        The check on resolution cells (its sentence is added).
 
     Returns
     -------
@@ -268,5 +290,5 @@ def statement(
             f"; group(s) {', '.join(map(str, merged))} on merged bands of at least "
             f"{MIN_GROUP_DOF:g} pooled degrees of freedom"
         )
-    parts = [text] + [p.sentence() for p in (low, lowest) if p is not None]
+    parts = [text] + [p.sentence() for p in (low, lowest, cells) if p is not None]
     return "; ".join(parts)
