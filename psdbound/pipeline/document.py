@@ -132,6 +132,9 @@ def _bound_section(res: BoundResults) -> dict[str, Any]:
         **_model_set_section(res),
         "low_frequency": None if res.low_frequency is None else res.low_frequency.to_dict(),
         "cells": None if res.cells is None else res.cells.to_dict(),
+        "lowest_frequencies": (
+            None if res.lowest_frequencies is None else res.lowest_frequencies.to_dict()
+        ),
         "gap_db_median": b.gap_db_median,
         "gap_db_p05": b.gap_db_p05,
         "over_data_db": res.over_data_db(),

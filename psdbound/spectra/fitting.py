@@ -23,6 +23,7 @@ from psdbound.spectra.cells import CellCheck
 from psdbound.spectra.dependence import overlap_correlation, reference_clusters
 from psdbound.spectra.estimators import PSDEstimate, estimate_psd
 from psdbound.spectra.intervals import ModelSet
+from psdbound.spectra.lowest import LowestFrequencies, lowest_ordinates
 from psdbound.spectra.lowfreq import TAU_MAX_S, LowFrequency
 from psdbound.spectra.pooled import PooledLimits
 from psdbound.spectra.stated import fit_stated_bound, statement
@@ -65,6 +66,10 @@ class BoundResults:
         The groups' mean spectra on resolution cells against the bound
         (:mod:`psdbound.spectra.cells`; None for the envelope rule or another
         estimator than the multitaper).
+    lowest_frequencies : LowestFrequencies or None
+        The bound's expected estimate at the windows' lowest Fourier
+        frequencies (:mod:`psdbound.spectra.lowest`): data that went through
+        no filter (dual antenna); None otherwise.
     """
 
     bound: BoundFit
@@ -80,6 +85,7 @@ class BoundResults:
     dependence: dict[str, Any] = field(default_factory=dict)
     low_frequency: LowFrequency | None = None
     cells: CellCheck | None = None
+    lowest_frequencies: LowestFrequencies | None = None
 
     @property
     def margins(self) -> NDArray[np.float64]:
@@ -115,7 +121,9 @@ class BoundResults:
                 "true PSD of the data"
             )
         assert self.pooled is not None and self.bands is not None
-        return statement(self.pooled, self.bands, self.low_frequency, cells=self.cells)
+        return statement(
+            self.pooled, self.bands, self.low_frequency, self.lowest_frequencies, self.cells
+        )
 
     def params(self) -> dict[str, float]:
         """Bound parameters with units in their names."""
@@ -297,6 +305,10 @@ class BoundModel:
         if f_min_hz is None:
             f_min_hz = min(resolved_from_hz(p) for p in psds)
         dependence = self.dependence()
+        lowest = None
+        if power_response is None:  # no filter shaped the lowest frequencies (dual antenna)
+            data = [self.windows.data(k) for k in range(len(self.windows))]
+            lowest = lowest_ordinates(data, dt, f_min_hz)
         sb = fit_stated_bound(
             psds,
             dt,
@@ -311,6 +323,7 @@ class BoundModel:
             clusters=dependence["labels"],
             cluster_correlation=dependence["correlation"],
             tau_max_s=tau_max_s,
+            lowest=lowest,
         )
         return BoundResults(
             sb.fit,
@@ -322,6 +335,7 @@ class BoundModel:
             dependence=dependence,
             low_frequency=sb.low_frequency,
             cells=sb.cells,
+            lowest_frequencies=sb.lowest,
             **common,
         )
 
