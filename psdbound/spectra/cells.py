@@ -32,7 +32,7 @@ those of the earlier steps, repeated while a new cell is refuted.
 Measured (40 truths per class): ``peak`` at 1 s covered in 97.5 % of runs, the
 worst 0.94 of the truth, median variance ratio 10.4 to 12.7 (a peak at high
 frequency sets the white floor); at 30 s (peaks that the 1-4 h windows
-resolve) 100 % before and after. Every first-order class unchanged, and no
+resolve) 100 % before and after. No first-order class moved with the cells, and no
 shared real day has a peak or a refuted cell. The refutation alone caught 5
 of 8 seeds of ``tests/spectra/test_cells.py``'s borderline peak; holding
 *every* cell's upper limit (a statement on cells) caught all but raised the
