@@ -213,14 +213,16 @@ def _runs(n_j: int, dof_each: float) -> list[NDArray[np.int64]]:
 
 
 def _group_kernels(lo: LowestOrdinates, rows: NDArray[np.int64]) -> NDArray[np.float64]:
-    """Mean lag kernels of a group's windows at each ordinate, shape (J, n_max)."""
-    f0 = 1.0 / (lo.n * lo.dt_s)
+    """Mean lag kernels of a group's windows at each ordinate, shape (J, n_max).
+
+    The kernels depend on a window's length only: each length is computed once.
+    """
     out = np.zeros((lo.j.size, int(lo.n.max())))
-    for i in rows:
-        n = int(lo.n[i])
-        out[:, :n] += lag_kernels(
-            n, lo.dt_s, (lo.j - 0.5) * f0[i], (lo.j + 0.5) * f0[i], nw=LOWEST_NW
-        )[0]
+    lengths, counts = np.unique(lo.n[rows], return_counts=True)
+    for n, count in zip(lengths.tolist(), counts.tolist(), strict=True):
+        f0 = 1.0 / (n * lo.dt_s)
+        k = lag_kernels(n, lo.dt_s, (lo.j - 0.5) * f0, (lo.j + 0.5) * f0, nw=LOWEST_NW)[0]
+        out[:, :n] += count * k
     return out / rows.size
 
 
