@@ -108,20 +108,45 @@ class SeriesBound:
             "=" * 72,
             "Gauss-Markov + white-noise bound of an error series".center(72),
             "=" * 72,
-            f"{'verdict':<26}{self.verdict}",
-            f"{'sigma_GM':<26}{b.sigma_gm_m:.4g} m",
-            f"{'tau':<26}{b.tau_s:.4g} s",
-            f"{'sigma_WN (per sample)':<26}{b.sigma_wn_m:.4g} m",
-            f"{'sampling interval':<26}{b.dt_s:g} s (Nyquist {b.nyquist_hz:.4g} Hz)",
-            f"{'stated from':<26}{self.f_min_hz:.4g} Hz to Nyquist",
-            f"{'windows':<26}{self.n_windows} in {self.limits.n_groups} shape group(s)",
-            f"{'bound over limits (median)':<26}{self.fit.gap_db_median:.1f} dB above the limits",
+            f"{'verdict':<28}{self.verdict}",
+            f"{'sigma_GM':<28}{b.sigma_gm_m:.4g} m",
+            f"{'tau':<28}{b.tau_s:.4g} s",
+            f"{'sigma_WN (per sample)':<28}{b.sigma_wn_m:.4g} m",
+            f"{'sampling interval':<28}{b.dt_s:g} s (Nyquist {b.nyquist_hz:.4g} Hz)",
+            f"{'stated from':<28}{self.f_min_hz:.4g} Hz to Nyquist",
+            f"{'windows':<28}{self.n_windows} in {self.limits.n_groups} shape group(s)",
+            f"{'bound over limits (median)':<28}{self.fit.gap_db_median:.1f} dB above the limits",
+            *self._check_lines(),
             "-" * 72,
             self.covers,
         ]
         lines += [f"not bounded: {r}" for r in self.verdict_reasons]
         lines += [f"note: {n}" for n in self.notes + self.limits.notes]
         return "\n".join(lines + ["=" * 72])
+
+    def _check_lines(self) -> list[str]:
+        """One line each for the checks below ``f_min`` and on resolution cells."""
+        out = []
+        if self.low_frequency is not None:
+            out.append(f"{'below f_min':<28}{self.low_frequency.status}")
+        low = self.lowest_frequencies
+        if low is not None:
+            what = (
+                f"raised (its expectation was {low.before.min():.2f} x the limit)"
+                if low.raised
+                else "met (no raise)"
+            )
+            out.append(f"{'lowest frequencies (j/T)':<28}{what}")
+        c = self.cells
+        if c is not None:
+            what = (
+                f"peak(s) in {c.shaped_hz.size} band(s) from {c.shaped_hz.min():.3g} Hz, held"
+                if c.shaped_hz.size
+                else "no peak"
+            )
+            what += f"; {c.refuted_hz.size} refuted cell(s)" if c.refuted_hz.size else ""
+            out.append(f"{'resolution cells':<28}{what}")
+        return out
 
 
 def _is_one_series(series: object) -> bool:

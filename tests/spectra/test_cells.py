@@ -61,6 +61,7 @@ def test_smooth_truths_are_not_raised() -> None:
         ]
         res = psdbound.bound_series(xs, 1.0)
         assert res.cells is not None and not res.cells.raised
+        assert "no peak" in res.summary().split("resolution cells", 1)[1].splitlines()[0]
         assert res.cells.worst_ratio < 1.0
 
 

@@ -88,6 +88,7 @@ def test_two_reflectors_bound_meets_the_data_at_the_lowest_frequencies() -> None
         assert check is not None and check.raised
         assert np.all(check.after >= 1.0 - 1e-9)
         assert "lowest Fourier frequencies" in res.covers
+        assert "raised (its expectation was" in res.summary()
         f = np.array([1.0 / (n * dt)])
         truth = gm_psd_sampled(f, sg, fast, dt) + gm_psd_sampled(f, sg, slow, dt) + 2 * dt * wn**2
         assert res.bound.sampled_psd(f)[0] >= 0.9 * truth[0]
