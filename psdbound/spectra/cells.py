@@ -210,7 +210,7 @@ def _cells(
     confidence_level: float,
     power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]] | None,
 ) -> _Cells | None:
-    """Pool each group on cells ``2 W`` wide: limits, and which bands fail the shape test."""
+    """Pool each group on cells ``2 W`` wide: their limits, and which cells hold a peak."""
     w, nyq, f_min = smoothing_hz(psds), psds[0].nyquist_hz, float(band_edges_hz[0])
     if w <= 0.0 or f_min + 2.0 * w >= nyq:
         return None
@@ -230,9 +230,10 @@ def _cells(
         peak = np.nan_to_num(z, nan=0.0) < cut
         factor = np.where(peak, _smoothing_factor(k, centre, w), 1.0)
         near = np.maximum.reduce([factor, np.r_[factor[1:], 1.0], np.r_[1.0, factor[:-1]]])
+        in_peak = peak | np.r_[peak[1:], False] | np.r_[False, peak[:-1]]
         have = np.isfinite(m) & (nu > 0)
-        rows.append((lo_all[have], hi_all[have], m[have], nu[have], near[have]))
-    lo, hi, mean, nu, factor = (np.concatenate(z) for z in zip(*rows, strict=True))
+        rows.append((lo_all[have], hi_all[have], m[have], nu[have], near[have], in_peak[have]))
+    lo, hi, mean, nu, factor, shaped = (np.concatenate(z) for z in zip(*rows, strict=True))
     alpha = (1.0 - confidence_level) / max(1, mean.size)
     return _Cells(
         lo,
@@ -240,7 +241,7 @@ def _cells(
         nu * mean / stats.chi2.isf(alpha, nu),
         nu * mean / stats.chi2.ppf(alpha, nu) * factor,
         np.maximum(lo - w, 0.5 * lo),
-        factor > 1.0,
+        shaped,
     )
 
 
