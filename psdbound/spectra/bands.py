@@ -57,6 +57,30 @@ class BandSpectra:
     duration_s: NDArray[np.float64] | None = None
     nu0: NDArray[np.float64] | None = None
 
+    def pooled(
+        self, rows: NDArray[np.bool_] | None = None
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Return the degrees-of-freedom weighted mean of the windows' band averages, and its dof.
+
+        Parameters
+        ----------
+        rows : ndarray of bool, shape (M,), optional
+            The windows pooled (default all).
+
+        Returns
+        -------
+        mean_m2_hz, dof : ndarray, shape (B,)
+            NaN and 0 where no window has data in the band.
+        """
+        s, nu = (
+            (self.psd_m2_hz, self.dof) if rows is None else (self.psd_m2_hz[rows], self.dof[rows])
+        )
+        ok = np.isfinite(s) & (nu > 0)
+        w = np.where(ok, nu, 0.0)
+        den = w.sum(axis=0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return (np.where(ok, s, 0.0) * w).sum(axis=0) / den, den
+
     def log_unbiased(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Return ``Z = log S_hat - E[log(chi2_nu / nu)]`` and its variance ``psi'(nu/2)``.
 
@@ -330,9 +354,7 @@ def over_data_db(
     """
     s, nu = bands.psd_m2_hz, bands.dof
     ok = np.isfinite(s) & (nu > 0)
-    w = np.where(ok, nu, 0.0)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        pooled = (np.where(ok, s, 0.0) * w).sum(axis=0) / w.sum(axis=0)
+    pooled, _ = bands.pooled()
     have = np.isfinite(pooled) & (pooled > 0)
     if not have.any():
         return {

@@ -159,16 +159,6 @@ class _Cells:
     shaped: NDArray[np.bool_]  # a peak's cell (its upper limit raised for the smoothing)
 
 
-def _pooled(cells: BandSpectra, rows: NDArray[np.bool_]) -> tuple[NDArray, NDArray]:
-    """One group's degrees-of-freedom weighted mean of every cell, and its dof."""
-    v, nu = cells.psd_m2_hz[rows], cells.dof[rows]
-    ok = np.isfinite(v) & (nu > 0)
-    den = np.where(ok, nu, 0.0).sum(axis=0)
-    num = np.where(ok, nu * np.where(ok, v, 0.0), 0.0).sum(axis=0)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(den > 0, num / den, np.nan), den
-
-
 def _curvature(
     u: NDArray[np.float64], y: NDArray[np.float64], var: NDArray[np.float64]
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -221,7 +211,7 @@ def _cells(
     cells = band_spectra(psds, f_min_hz=f_min, edges_hz=edges, power_response=power_response)
     lo_all, hi_all = cells.edges_hz[:-1], np.minimum(cells.edges_hz[1:], nyq)
     centre = 0.5 * (lo_all + hi_all)
-    per_group = [_pooled(cells, groups == g) for g in np.unique(groups[groups >= 0])]
+    per_group = [cells.pooled(groups == g) for g in np.unique(groups[groups >= 0])]
     tests = [_peaks(centre, m, nu) for m, nu in per_group]
     n_tests = int(sum(np.isfinite(z).sum() for z, _ in tests))
     cut = -stats.norm.isf((1.0 - confidence_level) / max(1, n_tests))

@@ -57,8 +57,11 @@ from psdbound.spectra.pooled import MIN_GROUP_DOF, PooledLimits, fit_limits
 
 __all__ = ["LOWEST_NW", "LowestFrequencies", "LowestOrdinates", "cover_lowest", "lowest_ordinates"]
 
-#: Time-half-bandwidth product of the lowest-frequency estimate (two DPSS tapers).
+#: Time-half-bandwidth product of the lowest-frequency estimate.
 LOWEST_NW = 1.5
+#: Its DPSS tapers, ``floor(2 NW) - 1`` (as :func:`psdbound.spectra.expectation.lag_kernels`
+#: takes for ``nw``): two, each estimate has 4 degrees of freedom.
+LOWEST_TAPERS = max(1, int(2.0 * LOWEST_NW) - 1)
 #: Most Fourier frequencies checked per window.
 MAX_ORDINATES = 4
 
@@ -83,11 +86,6 @@ class LowestOrdinates:
     j: NDArray[np.int64]
     estimate_m2_hz: NDArray[np.float64]
     dt_s: float
-
-    @property
-    def n_tapers(self) -> int:
-        """Tapers per estimate (``floor(2 NW) - 1``)."""
-        return max(1, int(np.floor(2.0 * LOWEST_NW)) - 1)
 
 
 def lowest_ordinates(
@@ -118,7 +116,7 @@ def lowest_ordinates(
     est = np.zeros((n.size, n_j))
     for i, x in enumerate(stretches):
         y = np.asarray(x, dtype=float) - float(np.mean(x))
-        tapers = np.atleast_2d(windows.dpss(y.size, LOWEST_NW, Kmax=2))
+        tapers = np.atleast_2d(windows.dpss(y.size, LOWEST_NW, Kmax=LOWEST_TAPERS))
         phase = np.exp(-2j * np.pi * np.outer(j, np.arange(y.size)) / y.size)
         eig = np.abs((tapers[:, None, :] * y[None, None, :] * phase[None]).sum(axis=2)) ** 2
         est[i] = 2.0 * dt_s * eig.mean(axis=0)
@@ -238,14 +236,14 @@ def _requirement(
     """
     gs = np.unique(groups[groups >= 0])
     per = {int(g): np.flatnonzero(groups == g) for g in gs}
-    runs = {g: _runs(lo.j.size, 2.0 * lo.n_tapers * r.size) for g, r in per.items()}
+    runs = {g: _runs(lo.j.size, 2.0 * LOWEST_TAPERS * r.size) for g, r in per.items()}
     alpha = (1.0 - confidence_level) / sum(len(v) for v in runs.values())
     out_g, out_j, kern, upper = [], [], [], []
     for g, rows in per.items():
         k_all = _group_kernels(lo, rows)
         mean = lo.estimate_m2_hz[rows].mean(axis=0)
         for run in runs[g]:
-            nu = 2.0 * lo.n_tapers * rows.size * run.size
+            nu = 2.0 * LOWEST_TAPERS * rows.size * run.size
             out_g.append(g)
             out_j.append(int(lo.j[run[0]]))
             kern.append(k_all[run].mean(axis=0))
