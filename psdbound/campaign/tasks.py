@@ -98,14 +98,14 @@ def _psd_values(res: Any) -> list[np.ndarray]:
     values = [p.psd_m2_hz for p in psds]
     if cutoff is None:
         return values
-    from psdbound.spectra.bands import smoothed_response
+    from psdbound.spectra.bands import smoothed_responses
 
     def gain(f: np.ndarray) -> np.ndarray:
         return res.config.filter.response(f, b.dt_s, cutoff.f_c_hz) ** 2
 
-    gains = [
-        smoothed_response(gain, p.f_hz, float(p.params.get("bandwidth_hz", 0.0))) for p in psds
-    ]
+    gains = smoothed_responses(
+        gain, [p.f_hz for p in psds], [float(p.params.get("bandwidth_hz", 0.0)) for p in psds]
+    )
     return [
         np.where(g >= 0.5, v / np.maximum(g, 0.5), v) for v, g in zip(values, gains, strict=True)
     ]

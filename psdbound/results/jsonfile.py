@@ -19,9 +19,10 @@ import numpy as np
 
 from psdbound.common import atomic_write_text
 
-__all__ = ["COMPACT_SECTIONS", "json_text", "to_jsonable", "write_json"]
+__all__ = ["COMPACT_SECTIONS", "json_text", "plain_json_text", "to_jsonable", "write_json"]
 
 _PLAIN = (int, str, bool, type(None))
+_NUMBERS = frozenset({float, int})
 
 #: Top-level sections of a result document written on one line (its plot data).
 COMPACT_SECTIONS = frozenset({"figures"})
@@ -29,6 +30,18 @@ COMPACT_SECTIONS = frozenset({"figures"})
 
 def _finite_or_none(x: float) -> float | None:
     return x if math.isfinite(x) else None
+
+
+def _finite_numbers(seq: list[Any] | tuple[Any, ...]) -> bool:
+    """Whether a sequence holds only Python floats and ints, all finite (nothing to convert).
+
+    Checked in C (the set of the element types, then one array of the
+    values) for the long float lists of a result's plot data, which the
+    element-by-element conversion walks slowly.
+    """
+    if len(seq) < 16 or not set(map(type, seq)) <= _NUMBERS:
+        return False
+    return bool(np.isfinite(np.array(seq, dtype=np.float64)).all())
 
 
 def to_jsonable(obj: Any) -> Any:
@@ -39,6 +52,8 @@ def to_jsonable(obj: Any) -> Any:
     if isinstance(obj, dict):
         return {str(k): to_jsonable(v) for k, v in obj.items()}
     if isinstance(obj, list | tuple):
+        if _finite_numbers(obj):
+            return list(obj)
         return [
             v if type(v) in _PLAIN else _finite_or_none(v) if type(v) is float else to_jsonable(v)
             for v in obj
@@ -84,7 +99,24 @@ def json_text(obj: Any, *, compact: frozenset[str] | set[str] = frozenset()) -> 
     str
         The JSON text, ending with a newline.
     """
-    data = to_jsonable(obj)
+    return plain_json_text(to_jsonable(obj), compact=compact)
+
+
+def plain_json_text(data: Any, *, compact: frozenset[str] | set[str] = frozenset()) -> str:
+    """:func:`json_text` of data that is plain JSON already (:func:`to_jsonable` applied).
+
+    Parameters
+    ----------
+    data : dict or any plain JSON value
+        No numpy value, no non-finite float.
+    compact : set of str, optional
+        Top-level keys whose values are written on one line.
+
+    Returns
+    -------
+    str
+        The JSON text, ending with a newline.
+    """
     if not isinstance(data, dict) or not compact:
         return json.dumps(data, indent=1, allow_nan=False) + "\n"
     parts = []

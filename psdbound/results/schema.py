@@ -10,7 +10,7 @@ from typing import Any
 
 from psdbound.common import atomic_write_text
 from psdbound.errors import InputError
-from psdbound.results.jsonfile import COMPACT_SECTIONS, json_text, to_jsonable
+from psdbound.results.jsonfile import COMPACT_SECTIONS, plain_json_text, to_jsonable
 
 __all__ = [
     "SCHEMA_VERSION",
@@ -133,7 +133,7 @@ def write_document(path: str | os.PathLike[str], document: dict[str, Any]) -> Pa
         raise ValueError(
             "refusing to write a result whose documented numbers are not numbers: " + ", ".join(bad)
         )
-    return atomic_write_text(path, json_text(data, compact=COMPACT_SECTIONS))
+    return atomic_write_text(path, plain_json_text(data, compact=COMPACT_SECTIONS))
 
 
 def read_document(path: str | os.PathLike[str]) -> dict[str, Any]:

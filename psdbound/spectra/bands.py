@@ -26,6 +26,7 @@ __all__ = [
     "over_data_db",
     "resolved_from_hz",
     "smoothed_response",
+    "smoothed_responses",
 ]
 
 
@@ -170,23 +171,17 @@ def band_spectra(
     values = np.full((len(psds), n_bands), np.nan)
     dof = np.zeros((len(psds), n_bands))
     durations, nu0s = np.zeros(len(psds)), np.zeros(len(psds))
-    for k, p in enumerate(psds):
+    picked = [_in_bands(p, edges, f_min_hz, below_resolved) for p in psds]
+    if power_response is not None:
+        gains = smoothed_responses(
+            power_response,
+            [f for f, _, _ in picked],
+            [float(p.params.get("bandwidth_hz", 0.0)) for p in psds],
+        )
+        picked = [(f, s / _checked(g, f), i) for (f, s, i), g in zip(picked, gains, strict=True)]
+    for k, (p, (_, s, idx)) in enumerate(zip(psds, picked, strict=True)):
         nu0 = float(np.median(np.atleast_1d(p.dof)))
         n = p.n_samples if p.n_samples > 0 else int(round(2 * p.f_hz.size))
-        use = p.f_hz >= (f_min_hz if below_resolved else max(resolved_from_hz(p), f_min_hz))
-        idx = np.searchsorted(edges, p.f_hz[use], side="right") - 1
-        inside = (idx >= 0) & (idx < n_bands)
-        idx, s = idx[inside], p.psd_m2_hz[use][inside]
-        if power_response is not None:
-            gain = smoothed_response(
-                power_response, p.f_hz[use][inside], float(p.params.get("bandwidth_hz", 0.0))
-            )
-            if gain.size and gain.min() < 0.5:
-                raise InputError(
-                    f"the filter passes only {gain.min():.2f} of the power at "
-                    f"{p.f_hz[use][inside][np.argmin(gain)]:.3g} Hz; start the bands higher"
-                )
-            s = s / gain
         counts = np.bincount(idx, minlength=n_bands)
         sums = np.bincount(idx, weights=s, minlength=n_bands)
         have = counts > 0
@@ -199,6 +194,26 @@ def band_spectra(
         durations[k], nu0s[k] = n * p.dt_s, nu0
     centres = np.sqrt(edges[:-1] * edges[1:])
     return BandSpectra(edges, centres, values, dof, durations, nu0s)
+
+
+def _in_bands(
+    p: PSDEstimate, edges: NDArray[np.float64], f_min_hz: float, below_resolved: bool
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.int64]]:
+    """One estimate's frequencies and values inside the bands, and each one's band index."""
+    use = p.f_hz >= (f_min_hz if below_resolved else max(resolved_from_hz(p), f_min_hz))
+    idx = np.searchsorted(edges, p.f_hz[use], side="right") - 1
+    inside = (idx >= 0) & (idx < edges.size - 1)
+    return p.f_hz[use][inside], p.psd_m2_hz[use][inside], idx[inside]
+
+
+def _checked(gain: NDArray[np.float64], f_hz: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Return the filter's smoothed power response; refuse it where it passes under half."""
+    if gain.size and gain.min() < 0.5:
+        raise InputError(
+            f"the filter passes only {gain.min():.2f} of the power at "
+            f"{f_hz[np.argmin(gain)]:.3g} Hz; start the bands higher"
+        )
+    return gain
 
 
 def merge_bands(
@@ -319,12 +334,47 @@ def smoothed_response(
         boxcar approximation of the multitaper spectral window (flat within
         ``W``, small outside; Percival and Walden 1993, chapter 7).
     """
-    f = np.asarray(f_hz, dtype=float)
-    if half_width_hz <= 0.0:
-        return np.asarray(power_response(f), dtype=float)
-    offsets = np.linspace(-half_width_hz, half_width_hz, _SMOOTH_POINTS)
-    grid = np.abs(f[:, None] + offsets[None, :])
-    return np.asarray(power_response(grid.ravel()), dtype=float).reshape(grid.shape).mean(axis=1)
+    return smoothed_responses(power_response, [f_hz], [half_width_hz])[0]
+
+
+def smoothed_responses(
+    power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]],
+    f_hz: Sequence[NDArray[np.float64]],
+    half_width_hz: Sequence[float],
+) -> list[NDArray[np.float64]]:
+    """:func:`smoothed_response` of several estimates, with one call of ``power_response``.
+
+    A filter's response costs a fixed overhead per call (its design and
+    evaluation set-up): the windows of a fit ask it once, not once each.
+
+    Parameters
+    ----------
+    power_response : callable
+        ``|H(f)|^2``.
+    f_hz : sequence of ndarray
+        Frequencies of each estimate, Hz.
+    half_width_hz : sequence of float
+        Smoothing half-width ``W`` of each estimate, Hz (0: the point value).
+
+    Returns
+    -------
+    list of ndarray
+        The smoothed response of each estimate at its frequencies.
+    """
+    grids = []
+    for f, w in zip(f_hz, half_width_hz, strict=True):
+        f = np.asarray(f, dtype=float)
+        offsets = np.linspace(-w, w, _SMOOTH_POINTS) if w > 0.0 else np.zeros(1)
+        grids.append(np.abs(f[:, None] + offsets[None, :]))
+    if not grids:
+        return []
+    flat = np.concatenate([g.ravel() for g in grids])
+    values = np.asarray(power_response(flat), dtype=float)
+    out, start = [], 0
+    for g in grids:
+        out.append(values[start : start + g.size].reshape(g.shape).mean(axis=1))
+        start += g.size
+    return out
 
 
 def over_data_db(

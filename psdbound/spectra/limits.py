@@ -231,13 +231,21 @@ def _design(x: NDArray[np.float64], model: str) -> NDArray[np.float64]:
     return np.stack(cols, axis=1)
 
 
-def _fit_window(
-    r: NDArray[np.float64], w: NDArray[np.float64], design: NDArray[np.float64]
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Weighted least squares of one window's residuals: coefficients and covariance."""
-    xtw = design.T * w
-    cov = np.linalg.pinv(xtw @ design)
-    return cov @ (xtw @ r), cov
+def _normal_inverses(
+    w: NDArray[np.float64], design: NDArray[np.float64], n_params: NDArray[np.int64]
+) -> NDArray[np.float64]:
+    """Each window's weighted least-squares covariance, ``pinv(X' W X)``, shape (M, 2, 2).
+
+    ``w`` is 0 in the cells without an estimate, so they add nothing; a
+    window with ``n_params`` 1 uses the first (level) column only.
+    """
+    cov = np.zeros((w.shape[0], 2, 2))
+    for p in (1, 2):
+        rows = n_params == p
+        if rows.any():
+            d = design[:, :p]
+            cov[rows, :p, :p] = np.linalg.pinv(np.einsum("mb,bi,bj->mij", w[rows], d, d))
+    return cov
 
 
 def window_deviations(
@@ -281,18 +289,17 @@ def window_deviations(
     zz = np.where(ok, z, 0.0)
     n_ok = ok.sum(axis=1)
     models = ["tilt" if model == "tilt" and k >= _MIN_BANDS_TILT else "level" for k in n_ok]
-    designs = {name: _design(x, name) for name in set(models)}
+    n_par = np.array([1 if name == "level" else 2 for name in models], dtype=np.int64)
     wsum = np.maximum(w.sum(axis=0), 1e-300)
     mu = (w * zz).sum(axis=0) / wsum
     full = _design(x, "tilt")
+    # the weights and designs do not change between backfitting sweeps: invert once
+    cov = _normal_inverses(w, full, n_par)
+    fitted = np.stack([np.ones(m, dtype=bool), n_par == 2], axis=1)  # the parameters refitted
     coef = np.zeros((m, 2))
-    cov = np.zeros((m, 2, 2))
     dev = np.zeros((m, n_b))
     for _ in range(_BACKFIT_ITER):
-        for i in range(m):
-            p = designs[models[i]].shape[1]
-            c, cv = _fit_window((zz[i] - mu)[ok[i]], w[i, ok[i]], designs[models[i]][ok[i]])
-            coef[i, :p], cov[i, :p, :p] = c, cv
+        coef = np.where(fitted, np.einsum("mij,mj->mi", cov, (w * (zz - mu)) @ full), coef)
         coef -= coef.mean(axis=0)  # identifiability: deviations average to 0 over the windows
         new = coef @ full.T
         mu_new = (w * (zz - new)).sum(axis=0) / wsum
@@ -303,7 +310,6 @@ def window_deviations(
     if m == 1:
         cov = np.zeros_like(cov)  # one window: its deviation from itself is 0 exactly
     se = np.sqrt(np.maximum(np.einsum("bi,mij,bj->mb", full, cov, full), 0.0))
-    n_par = np.array([designs[name].shape[1] for name in models], dtype=np.int64)
     std = (zz - mu[None, :] - dev) * np.sqrt(w)
     if dof is not None:
         nu = np.where(ok, dof, 2.0)
