@@ -44,6 +44,16 @@ def _finite_numbers(seq: list[Any] | tuple[Any, ...]) -> bool:
     return bool(np.isfinite(np.array(seq, dtype=np.float64)).all())
 
 
+def _plain_sequence(seq: list[Any] | tuple[Any, ...]) -> list[Any]:
+    """Return a list or tuple as a JSON list (its elements converted)."""
+    if _finite_numbers(seq):
+        return list(seq)
+    return [
+        v if type(v) in _PLAIN else _finite_or_none(v) if type(v) is float else to_jsonable(v)
+        for v in seq
+    ]
+
+
 def to_jsonable(obj: Any) -> Any:
     """Convert numpy arrays/scalars, tuples and paths to plain JSON data.
 
@@ -52,12 +62,7 @@ def to_jsonable(obj: Any) -> Any:
     if isinstance(obj, dict):
         return {str(k): to_jsonable(v) for k, v in obj.items()}
     if isinstance(obj, list | tuple):
-        if _finite_numbers(obj):
-            return list(obj)
-        return [
-            v if type(v) in _PLAIN else _finite_or_none(v) if type(v) is float else to_jsonable(v)
-            for v in obj
-        ]
+        return _plain_sequence(obj)
     if isinstance(obj, np.ndarray):
         if obj.dtype.kind in "biu":
             return obj.tolist()

@@ -23,8 +23,9 @@ from psdbound.spectra.cells import CellCheck
 from psdbound.spectra.dependence import overlap_correlation, reference_clusters
 from psdbound.spectra.estimators import PSDEstimate, estimate_psd
 from psdbound.spectra.intervals import ModelSet
-from psdbound.spectra.lowest import LowestFrequencies, lowest_ordinates
+from psdbound.spectra.lowest import LowestFrequencies
 from psdbound.spectra.lowfreq import TAU_MAX_S, LowFrequency
+from psdbound.spectra.ordinates import lowest_ordinates
 from psdbound.spectra.pooled import PooledLimits
 from psdbound.spectra.stated import fit_stated_bound, statement
 from psdbound.stationarity.windowing import WindowSet

@@ -12,14 +12,18 @@ sigmas, 1 s, 15-40 windows): the bound lay 1.5-4 times under the truth's PSD
 at ``1 / T`` in 9 of 12 seeds with the low-frequency status "covered".
 
 **Check.** Each window (mean removed) is estimated at its lowest Fourier
-frequencies ``j / T_i`` below ``f_min`` with a narrow multitaper (``NW =``
-:data:`LOWEST_NW`, two tapers: resolution ``+- 1.5 / T``). A sum of such
+frequencies ``j / T_i`` below ``f_min`` with a narrow multitaper
+(:func:`psdbound.spectra.ordinates.lowest_ordinates`, ``NW = 1.5``, two
+tapers: resolution ``+- 1.5 / T``). A sum of such
 estimates over a shape group's windows has, under a model, an exact
 expectation (:func:`psdbound.spectra.expectation.lag_kernels`: taper, mean
 removal and the sampled autocovariance) that is linear in the two variances
 and monotone in the PSD (its kernel is non-negative): a bound that lies above
 the truth at every frequency has the larger expectation. The sum is about
-``E chi^2_nu / nu`` with ``nu = 4 M_g``; its upper limit at ``(1 -
+``E chi^2_nu / nu`` with ``nu`` the windows' effective degrees of freedom
+(:meth:`~psdbound.spectra.ordinates.LowestOrdinates.dof`: overlapping
+ordinates carry fewer than four each; counted as four, a small group's limit
+was too low); its upper limit at ``(1 -
 confidence_level) / R`` (Bonferroni over the ``R`` rows; a small group's
 ordinates merged until a row has 40 degrees of freedom, as its bands are) is
 required of the bound's expectation, a linear constraint of its programs
@@ -40,87 +44,21 @@ References
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 from scipy import stats
-from scipy.signal import windows
 
 from psdbound.spectra.bands import BandSpectra
 from psdbound.spectra.bound import BoundFit, ExtraRows
 from psdbound.spectra.expectation import lag_kernels
 from psdbound.spectra.lowfreq import LowFrequency
+from psdbound.spectra.ordinates import LOWEST_NW, LowestOrdinates
 from psdbound.spectra.pooled import MIN_GROUP_DOF, PooledLimits, fit_limits
 
-__all__ = ["LOWEST_NW", "LowestFrequencies", "LowestOrdinates", "cover_lowest", "lowest_ordinates"]
-
-#: Time-half-bandwidth product of the lowest-frequency estimate.
-LOWEST_NW = 1.5
-#: Its DPSS tapers, ``floor(2 NW) - 1`` (as :func:`psdbound.spectra.expectation.lag_kernels`
-#: takes for ``nw``): two, each estimate has 4 degrees of freedom.
-LOWEST_TAPERS = max(1, int(2.0 * LOWEST_NW) - 1)
-#: Most Fourier frequencies checked per window.
-MAX_ORDINATES = 4
-
-
-@dataclass(frozen=True)
-class LowestOrdinates:
-    """Narrow multitaper estimates of each window at its lowest Fourier frequencies.
-
-    Attributes
-    ----------
-    n : ndarray of int, shape (M,)
-        Window lengths, samples.
-    j : ndarray of int, shape (J,)
-        Fourier indices ``j`` (frequency ``j / (n dt)`` of each window).
-    estimate_m2_hz : ndarray, shape (M, J)
-        One-sided estimates, m^2/Hz.
-    dt_s : float
-        Sampling interval, seconds.
-    """
-
-    n: NDArray[np.int64]
-    j: NDArray[np.int64]
-    estimate_m2_hz: NDArray[np.float64]
-    dt_s: float
-
-
-def lowest_ordinates(
-    stretches: Sequence[NDArray[np.float64]], dt_s: float, f_min_hz: float
-) -> LowestOrdinates | None:
-    """Estimate every window at the Fourier frequencies ``j / T`` below ``f_min``.
-
-    Parameters
-    ----------
-    stretches : sequence of ndarray
-        The windows (evenly sampled, finite).
-    dt_s : float
-        Sampling interval, seconds.
-    f_min_hz : float
-        Lowest frequency of the statement, Hz.
-
-    Returns
-    -------
-    LowestOrdinates or None
-        ``j = 1 ..`` up to :data:`MAX_ORDINATES`, as far as ``j / T`` lies
-        below ``f_min`` for every window; None when not even ``j = 1`` does.
-    """
-    n = np.array([x.size for x in stretches], dtype=np.int64)
-    n_j = min(MAX_ORDINATES, int(np.ceil(f_min_hz * float(n.min()) * dt_s)) - 1)
-    if n_j < 1:
-        return None
-    j = np.arange(1, n_j + 1)
-    est = np.zeros((n.size, n_j))
-    for i, x in enumerate(stretches):
-        y = np.asarray(x, dtype=float) - float(np.mean(x))
-        tapers = np.atleast_2d(windows.dpss(y.size, LOWEST_NW, Kmax=LOWEST_TAPERS))
-        phase = np.exp(-2j * np.pi * np.outer(j, np.arange(y.size)) / y.size)
-        eig = np.abs((tapers[:, None, :] * y[None, None, :] * phase[None]).sum(axis=2)) ** 2
-        est[i] = 2.0 * dt_s * eig.mean(axis=0)
-    return LowestOrdinates(n, j, est, float(dt_s))
+__all__ = ["LowestFrequencies", "cover_lowest"]
 
 
 @dataclass(frozen=True)
@@ -204,10 +142,18 @@ class _Requirement:
         return (a @ np.array([fit.sigma_gm_m**2, fit.sigma_wn_m**2])) / b
 
 
-def _runs(n_j: int, dof_each: float) -> list[NDArray[np.int64]]:
-    """Consecutive ordinates merged until each run has :data:`MIN_GROUP_DOF` (or all are one)."""
-    size = min(n_j, max(1, int(np.ceil(MIN_GROUP_DOF / dof_each))))
-    return [np.arange(a, min(a + size, n_j)) for a in range(0, n_j, size)]
+def _runs(lo: LowestOrdinates, rows: NDArray[np.int64]) -> list[NDArray[np.int64]]:
+    """Consecutive ordinates merged until each run has :data:`MIN_GROUP_DOF` (the last: the rest).
+
+    Degrees of freedom of the group's windows together (:meth:`LowestOrdinates.dof`).
+    """
+    out, start = [], 0
+    for stop in range(1, lo.j.size + 1):
+        run = np.arange(start, stop)
+        if lo.dof(rows, run) >= MIN_GROUP_DOF or stop == lo.j.size:
+            out.append(run)
+            start = stop
+    return out
 
 
 def _group_kernels(lo: LowestOrdinates, rows: NDArray[np.int64]) -> NDArray[np.float64]:
@@ -229,21 +175,22 @@ def _requirement(
 ) -> _Requirement:
     """Mean lag kernels and upper limits of every group's runs of ordinates.
 
-    A run's summed estimate over the group's ``M_g`` windows and its ``r``
-    ordinates has ``nu = 2 K M_g r`` degrees of freedom (a small group's
-    ordinates are merged, as its bands are, :data:`MIN_GROUP_DOF`); the upper
-    limit is ``nu mean / chi^2_nu(alpha)`` at ``alpha = (1 - level) / R``.
+    A run's summed estimate over the group's windows and its ordinates has
+    the degrees of freedom of :meth:`LowestOrdinates.dof` (adjacent ordinates
+    overlap: fewer than ``2 K`` each); a small group's ordinates are merged
+    until a run has :data:`MIN_GROUP_DOF`, as its bands are. The upper limit is
+    ``nu mean / chi^2_nu(alpha)`` at ``alpha = (1 - level) / R``.
     """
     gs = np.unique(groups[groups >= 0])
     per = {int(g): np.flatnonzero(groups == g) for g in gs}
-    runs = {g: _runs(lo.j.size, 2.0 * LOWEST_TAPERS * r.size) for g, r in per.items()}
+    runs = {g: _runs(lo, r) for g, r in per.items()}
     alpha = (1.0 - confidence_level) / sum(len(v) for v in runs.values())
     out_g, out_j, kern, upper = [], [], [], []
     for g, rows in per.items():
         k_all = _group_kernels(lo, rows)
         mean = lo.estimate_m2_hz[rows].mean(axis=0)
         for run in runs[g]:
-            nu = 2.0 * LOWEST_TAPERS * rows.size * run.size
+            nu = lo.dof(rows, run)
             out_g.append(g)
             out_j.append(int(lo.j[run[0]]))
             kern.append(k_all[run].mean(axis=0))

@@ -67,6 +67,7 @@ from psdbound.spectra.limits import (
     tolerance_factor,
     window_deviations,
 )
+from psdbound.spectra.ordinates import LowestOrdinates
 
 __all__ = [
     "MIN_GROUP_DOF",
@@ -477,7 +478,11 @@ def _check_pool_data(ok: NDArray[np.bool_], clusters: NDArray[np.int64] | None, 
 
 
 def _shape_groups(
-    bands: BandSpectra, smoothing_hz: float, shape_alpha: float, max_groups: int
+    bands: BandSpectra,
+    smoothing_hz: float,
+    shape_alpha: float,
+    max_groups: int,
+    lowest: LowestOrdinates | None,
 ) -> tuple[BandSpectra, NDArray[np.int64]]:
     """Return the bands of the shape tests (at least ``2 W`` wide) and the windows' groups."""
     test_bands = (
@@ -494,6 +499,7 @@ def _shape_groups(
         test_bands.dof,
         shape_alpha,
         max_groups,
+        lowest,
     )
     return test_bands, labels
 
@@ -582,6 +588,7 @@ def pool_bands(
     max_groups: int = 8,
     smoothing_hz: float = 0.0,
     deviation_model: str = DEVIATION_MODEL,
+    lowest: LowestOrdinates | None = None,
 ) -> PooledLimits:
     """Pool the windows' band spectra into limits that cover a fraction of the windows.
 
@@ -624,6 +631,12 @@ def pool_bands(
         ``2 W`` width, whose averages are nearly independent (narrower bands
         share multitaper ordinates: treated as independent they understate
         a level's standard error and make the shape tests reject too often).
+    lowest : LowestOrdinates, optional
+        The windows' narrow estimates at their lowest Fourier frequencies
+        (:func:`psdbound.spectra.ordinates.lowest_ordinates`, data that went
+        through no filter), in the order of the bands' windows: a window whose
+        estimate there exceeds its group's more than its level says is
+        another shape too (:func:`psdbound.spectra.groups.shape_groups`).
 
     Returns
     -------
@@ -649,7 +662,9 @@ def pool_bands(
     ok = np.isfinite(z)
     n_w, n_b = z.shape
     _check_pool_data(ok, clusters, n_w)
-    test_bands, labels = _shape_groups(bands, smoothing_hz, shape_alpha, max_groups)
+    if lowest is not None and lowest.n.size != n_w:
+        raise InputError(f"lowest has {lowest.n.size} windows, the bands {n_w}")
+    test_bands, labels = _shape_groups(bands, smoothing_hz, shape_alpha, max_groups, lowest)
     n_g = int(labels.max()) + 1
     levels = _error_levels(confidence_level, n_g)
     pooled = _pool_groups(
@@ -718,6 +733,7 @@ def fit_pooled_bound(
     deviation_model: str = DEVIATION_MODEL,
     objective: str = "variance",
     n_grid: int = 64,
+    lowest: LowestOrdinates | None = None,
 ) -> tuple[BoundFit, BandSpectra, PooledLimits]:
     """Fit the tightest GM + white-noise bound over the pooled limits of the windows.
 
@@ -755,6 +771,9 @@ def fit_pooled_bound(
         Tightness objective (:func:`fit_bound`).
     n_grid : int, default 64
         ``tau`` grid size.
+    lowest : LowestOrdinates, optional
+        The windows' lowest-frequency estimates, for the shape groups
+        (:func:`pool_bands`).
 
     Returns
     -------
@@ -784,6 +803,7 @@ def fit_pooled_bound(
         deviation_model=deviation_model,
         clusters=clusters,
         cluster_correlation=cluster_correlation,
+        lowest=lowest,
     )
     fit = fit_limits(limits, bands, dt_s, objective=objective, n_grid=n_grid)
     return fit, bands, limits

@@ -22,9 +22,10 @@ from psdbound.spectra.bound import BoundFit
 from psdbound.spectra.cells import CellCheck
 from psdbound.spectra.estimators import MIN_SAMPLES, PSDEstimate, estimate_psd
 from psdbound.spectra.intervals import ModelSet
-from psdbound.spectra.lowest import LowestFrequencies, lowest_ordinates
+from psdbound.spectra.lowest import LowestFrequencies
 from psdbound.spectra.lowfreq import POLICIES, TAU_MAX_S, LowFrequency, low_frequency_reasons
 from psdbound.spectra.models import GaussMarkovWhiteNoise
+from psdbound.spectra.ordinates import lowest_ordinates
 from psdbound.spectra.pooled import PooledLimits
 from psdbound.spectra.stated import fit_stated_bound, statement
 

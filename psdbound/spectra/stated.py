@@ -44,8 +44,9 @@ from psdbound.spectra.bound import BoundFit
 from psdbound.spectra.cells import CellCheck, cover_cells
 from psdbound.spectra.estimators import PSDEstimate
 from psdbound.spectra.intervals import ModelSet, model_set
-from psdbound.spectra.lowest import LowestFrequencies, LowestOrdinates, cover_lowest
+from psdbound.spectra.lowest import LowestFrequencies, cover_lowest
 from psdbound.spectra.lowfreq import TAU_MAX_S, LowFrequency, bound_below
+from psdbound.spectra.ordinates import LowestOrdinates
 from psdbound.spectra.pooled import MIN_GROUP_DOF, PooledLimits, fit_pooled_bound, smoothing_hz
 
 __all__ = ["StatedBound", "fit_stated_bound", "identification_bands", "statement"]
@@ -127,7 +128,7 @@ def fit_stated_bound(
         out already (a campaign's days).
     lowest : LowestOrdinates, optional
         The windows' estimates at their lowest Fourier frequencies
-        (:func:`psdbound.spectra.lowest.lowest_ordinates`; unfiltered data
+        (:func:`psdbound.spectra.ordinates.lowest_ordinates`; unfiltered data
         only): the bound's expectation there is held above each group's
         upper limit (:func:`psdbound.spectra.lowest.cover_lowest`).
     **pool_options
@@ -147,6 +148,7 @@ def fit_stated_bound(
         power_response=power_response,
         objective=objective,
         n_grid=n_grid,
+        lowest=lowest,
         **pool_options,
     )
     id_bands = identification_bands(

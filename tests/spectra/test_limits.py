@@ -85,21 +85,14 @@ def _covered(res, truths, dt) -> int:
     )
 
 
-@pytest.mark.xfail(
-    strict=False,
-    reason=(
-        "known gap (issue 27): 7 of these 10 seeds have every window covered against the stated "
-        "95 %: the pair's excess lies in the lowest resolution cells; a tilt tested at 5 % per "
-        "window found it in 9 of 10 but loosened the ESBC bound from 2.3 to 6.0 mm, so the tilt "
-        "test is family-wise (benchmarks/bound_coverage.py: slow classes 0.965-0.975 covered)"
-    ),
-)
 def test_bound_series_covers_a_minority_of_slow_strong_reflectors() -> None:
-    """22 windows of 3 mm / 30 s and 2 of 6 mm / 200 s: the earlier rule missed the two.
+    """22 windows of 3 mm / 30 s and 2 of 6 mm / 200 s: the earlier rules missed the two.
 
-    With a level only per window (no tilt) 6 of these 10 seeds had every window covered:
-    the pair's excess lies in the lowest resolution cells, which a level averages away.
-    The test asserts the stated level (9 of 10 allows Monte-Carlo error).
+    With a level only per window (no tilt) 6 of these 10 seeds had every window covered,
+    with the tests on the bands 7 of 10: the pair's excess lies below the lowest band.
+    The shape groups now also test each window's narrow estimate at its lowest Fourier
+    frequencies against the others' (``psdbound.spectra.ordinates.low_excess_p``): 10 of
+    10. The test asserts the stated level (9 of 10 allows Monte-Carlo error).
     """
     dt, n, ok = 1.0, 1800, 0
     for seed in range(10):

@@ -11,7 +11,7 @@ from psdbound.spectra import gm_psd_sampled
 from psdbound.spectra.bound import fit_bound
 from psdbound.spectra.estimators import estimate_psd
 from psdbound.spectra.expectation import gm_band_expectation, lag_kernels
-from psdbound.spectra.lowest import LOWEST_NW, lowest_ordinates
+from psdbound.spectra.ordinates import LOWEST_NW, lowest_ordinates
 
 
 def _gm(rng: np.random.Generator, n: int, dt: float, sigma: float, tau: float) -> np.ndarray:
@@ -95,14 +95,20 @@ def test_two_reflectors_bound_meets_the_data_at_the_lowest_frequencies() -> None
 
 
 @pytest.mark.parametrize("dt", [1.0, 30.0])
-def test_first_order_truths_are_rarely_raised(dt: float) -> None:
-    """On homogeneous GM + white truths the low-frequency rule already covers the ordinates."""
-    raised = 0
+def test_first_order_truths_are_raised_little(dt: float) -> None:
+    """On homogeneous GM + white truths the low-frequency rule nearly covers the ordinates.
+
+    With the ordinates' effective degrees of freedom (overlapping ordinates carry fewer
+    than four each) the limits are higher than with four each: 2 of these 8 seeds at 1 s
+    are raised, by 3 % and 1.4 %.
+    """
+    worst = []
     for seed in range(8):
         rng = np.random.default_rng(200 + seed)
         n = 1800 if dt == 1.0 else 240
         xs = [_gm(rng, n, dt, 3e-3, 10 * dt) + rng.normal(0, 1e-3, n) for _ in range(20)]
         res = psdbound.bound_series(xs, dt)
         assert res.lowest_frequencies is not None
-        raised += res.lowest_frequencies.raised
-    assert raised <= 1
+        worst.append(res.lowest_frequencies.before.min())
+    assert min(worst) >= 0.9
+    assert sum(w < 1.0 for w in worst) <= 2
