@@ -265,8 +265,13 @@ def bound_series(
     bands_per_decade : int, default 10
         Frequency bands per decade.
     shape_alpha : float, default 0.05
-        Level of the tests that give a window of another spectral shape a
-        group of its own.
+        Family-wise level of the tests that give a window of another spectral
+        shape a group of its own: its bands above its group's shape, a
+        significant tilt, or its narrow estimate at its lowest Fourier
+        frequencies above the other windows' of about its length (a slow
+        strong reflector, :func:`psdbound.spectra.ordinates.low_excess_p`).
+        A test that misses such a window costs coverage; one that splits a
+        window off by chance costs tightness only.
     clusters : array_like of int, optional
         One label per stretch used: stretches that share an error source
         (their pooled degrees of freedom are reduced).
