@@ -18,6 +18,7 @@ from scipy import special
 
 from psdbound.errors import InputError
 from psdbound.spectra.estimators import PSDEstimate
+from psdbound.spectra.limits import log_chi2_bias
 
 __all__ = [
     "BandSpectra",
@@ -91,9 +92,7 @@ class BandSpectra:
         ok = (self.dof > 0) & (self.psd_m2_hz > 0)
         nu = np.where(ok, self.dof, 2.0)
         with np.errstate(invalid="ignore", divide="ignore"):
-            z = np.log(np.where(ok, self.psd_m2_hz, 1.0)) - (
-                special.digamma(nu / 2.0) - np.log(nu / 2.0)
-            )
+            z = np.log(np.where(ok, self.psd_m2_hz, 1.0)) - log_chi2_bias(nu)
         var = special.polygamma(1, nu / 2.0)
         return np.where(ok, z, np.nan), np.where(ok, var, np.inf)
 

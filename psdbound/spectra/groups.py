@@ -12,7 +12,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy import stats
 
-from psdbound.spectra.limits import WindowDeviations, window_deviations
+from psdbound.spectra.limits import WindowDeviations, bonferroni_p, window_deviations
 from psdbound.spectra.ordinates import LowestOrdinates, low_excess_p
 
 __all__ = ["TILT_ALPHA", "log_frequency", "shape_groups", "tilted"]
@@ -92,10 +92,9 @@ def _shape_p(
     """
     if lowest is None:
         return dev.shape_p
-    assert dev.coef is not None and dev.cov is not None
+    assert dev.coef is not None and dev.cov is not None and dev.shape_tests is not None
     p_low = low_excess_p(lowest, members, dev.coef[:, 0], np.sqrt(dev.cov[:, 0, 0]))
-    # shape_p is twice the smaller of the bands' two p-values: 1.5 x it is three times
-    return np.minimum(1.0, np.minimum(1.5 * dev.shape_p, 3.0 * p_low))
+    return bonferroni_p(np.column_stack([dev.shape_tests, p_low]))
 
 
 def tilted(dev: WindowDeviations) -> NDArray[np.bool_]:

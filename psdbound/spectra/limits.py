@@ -73,7 +73,9 @@ from psdbound.errors import InputError
 __all__ = [
     "SHAPE_MODELS",
     "WindowDeviations",
+    "bonferroni_p",
     "design_effect_dof",
+    "log_chi2_bias",
     "mean_upper_limit",
     "chi_bar_squared_sf",
     "end_excess_p",
@@ -88,6 +90,42 @@ SHAPE_MODELS = ("level", "tilt")
 #: Fewest bands a window needs for a tilt of its own (else its deviation is a level only).
 _MIN_BANDS_TILT = 3
 _BACKFIT_ITER = 50
+
+
+def log_chi2_bias(nu: float | NDArray[np.float64]) -> NDArray[np.float64]:
+    """Return ``E ln(chi^2_nu / nu) = psi(nu / 2) - ln(nu / 2)``, the log-estimate's bias.
+
+    How far the log of an estimate of ``nu`` degrees of freedom lies, on
+    average, below the log of what it estimates.
+
+    Parameters
+    ----------
+    nu : float or ndarray
+        Degrees of freedom (> 0).
+
+    Returns
+    -------
+    ndarray
+        The bias (negative), the shape of ``nu``.
+    """
+    nu = np.asarray(nu, dtype=float)
+    return np.asarray(special.digamma(nu / 2.0) - np.log(nu / 2.0))
+
+
+def bonferroni_p(p: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Combine ``k`` tests of one hypothesis: the smallest p-value times ``k``, at most 1.
+
+    Parameters
+    ----------
+    p : ndarray, shape (..., k)
+        The p-values of each test, along the last axis.
+
+    Returns
+    -------
+    ndarray, shape (...)
+    """
+    p = np.asarray(p, dtype=float)
+    return np.minimum(1.0, p.shape[-1] * p.min(axis=-1))
 
 
 def mean_upper_limit(
@@ -204,6 +242,9 @@ class WindowDeviations:
         (the mean removal empties the lowest frequencies of some windows) is
         covered by the group's limits; one above is not. 1 when nothing is
         left to test.
+    shape_tests : ndarray, shape (M, 2)
+        The two p-values ``shape_p`` combines (:func:`bonferroni_p`), for a
+        caller that adds a test of its own.
     """
 
     mu: NDArray[np.float64]
@@ -213,6 +254,7 @@ class WindowDeviations:
     shape_p: NDArray[np.float64]
     coef: NDArray[np.float64] | None = None
     cov: NDArray[np.float64] | None = None
+    shape_tests: NDArray[np.float64] | None = None
 
     def at(self, x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Deviations and their standard errors at standardised log frequencies ``x``.
@@ -288,8 +330,7 @@ def window_deviations(
     w = np.where(ok, 1.0 / np.where(ok, v, 1.0), 0.0)
     zz = np.where(ok, z, 0.0)
     n_ok = ok.sum(axis=1)
-    models = ["tilt" if model == "tilt" and k >= _MIN_BANDS_TILT else "level" for k in n_ok]
-    n_par = np.array([1 if name == "level" else 2 for name in models], dtype=np.int64)
+    n_par = np.where((model == "tilt") & (n_ok >= _MIN_BANDS_TILT), 2, 1).astype(np.int64)
     wsum = np.maximum(w.sum(axis=0), 1e-300)
     mu = (w * zz).sum(axis=0) / wsum
     full = _design(x, "tilt")
@@ -313,7 +354,7 @@ def window_deviations(
     std = (zz - mu[None, :] - dev) * np.sqrt(w)
     if dof is not None:
         nu = np.where(ok, dof, 2.0)
-        log_ratio = zz - mu[None, :] - dev + special.digamma(nu / 2.0) - np.log(nu / 2.0)
+        log_ratio = zz - mu[None, :] - dev + log_chi2_bias(nu)
         with np.errstate(over="ignore", invalid="ignore"):
             spread = np.sqrt(2.0 / (9.0 * nu))
             std = (np.cbrt(np.exp(log_ratio)) - (1.0 - 2.0 / (9.0 * nu))) / spread
@@ -326,8 +367,8 @@ def window_deviations(
         ]
     )
     p_end = np.array([end_excess_p(std[i, ok[i]]) if n_ok[i] > n_par[i] else 1.0 for i in range(m)])
-    shape_p = np.minimum(1.0, 2.0 * np.minimum(p_spread, p_end))  # Bonferroni over the two
-    return WindowDeviations(mu, dev, se, n_par, shape_p, coef, cov)
+    tests = np.column_stack([p_spread, p_end])
+    return WindowDeviations(mu, dev, se, n_par, bonferroni_p(tests), coef, cov, tests)
 
 
 def spread_upper_limit(d: NDArray[np.float64], se: NDArray[np.float64], a: float) -> float:

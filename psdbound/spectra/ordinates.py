@@ -42,6 +42,8 @@ from numpy.typing import NDArray
 from scipy import special, stats
 from scipy.signal import windows
 
+from psdbound.spectra.limits import log_chi2_bias
+
 __all__ = [
     "LENGTH_MATCH",
     "LOWEST_NW",
@@ -123,11 +125,22 @@ def lowest_ordinates(
     est = np.zeros((n.size, n_j))
     for i, x in enumerate(stretches):
         y = np.asarray(x, dtype=float) - float(np.mean(x))
-        tapers = np.atleast_2d(windows.dpss(y.size, LOWEST_NW, Kmax=LOWEST_TAPERS))
-        phase = np.exp(-2j * np.pi * np.outer(j, np.arange(y.size)) / y.size)
-        eig = np.abs((tapers[:, None, :] * y[None, None, :] * phase[None]).sum(axis=2)) ** 2
+        eig = np.abs(_tapered_fourier(y.size, tuple(j.tolist())) @ y) ** 2
         est[i] = 2.0 * dt_s * eig.mean(axis=0)
     return LowestOrdinates(n, j, est, float(dt_s))
+
+
+@lru_cache(maxsize=32)
+def _tapered_fourier(n: int, js: tuple[int, ...]) -> NDArray[np.complex128]:
+    """Return the estimate's vectors, each taper times ``exp(-2 pi i j t / n)``, (K, J, n).
+
+    Windows of one length share them (read-only).
+    """
+    tapers = np.atleast_2d(windows.dpss(n, LOWEST_NW, Kmax=LOWEST_TAPERS))
+    phase = np.exp(-2j * np.pi * np.outer(np.asarray(js), np.arange(n)) / n)
+    out = tapers[:, None, :] * phase[None]
+    out.setflags(write=False)
+    return out
 
 
 @lru_cache(maxsize=256)
@@ -150,22 +163,11 @@ def ordinate_dof(n: int, js: tuple[int, ...]) -> float:
     -------
     float
     """
-    tapers = np.atleast_2d(windows.dpss(n, LOWEST_NW, Kmax=LOWEST_TAPERS))
-    t = np.arange(n)
-    rows = []
-    for j in js:
-        v = tapers * np.exp(-2j * np.pi * j * t / n)[None, :]
-        v = v - v.mean(axis=1, keepdims=True)  # the estimate's window had its mean removed
-        rows += [v.real, v.imag]
-    vec = np.vstack(rows)
+    v = _tapered_fourier(n, js).reshape(-1, n)
+    v = v - v.mean(axis=1, keepdims=True)  # the estimate's window had its mean removed
+    vec = np.vstack([v.real, v.imag])
     gram = vec @ vec.T
     return float(np.trace(gram) ** 2 / np.sum(gram * gram))
-
-
-def _log_mean_bias(nu: float | NDArray[np.float64]) -> NDArray[np.float64]:
-    """``E ln(chi^2_nu / nu)``: the log of a mean estimate lies this far below the log PSD."""
-    nu = np.asarray(nu, dtype=float)
-    return np.asarray(special.digamma(nu / 2.0) - np.log(nu / 2.0))
 
 
 def low_excess_p(
@@ -201,9 +203,9 @@ def low_excess_p(
         1 for a member with no other of about its length.
     """
     n = lowest.n[members].astype(float)
-    every = np.arange(lowest.j.size)
+    js = tuple(lowest.j.tolist())
     mean = lowest.estimate_m2_hz[members].mean(axis=1)
-    nu = np.array([lowest.dof(np.array([w]), every) for w in members])
+    nu = np.array([ordinate_dof(int(k), js) for k in lowest.n[members]])
     positive = mean > 0.0
     log_mean = np.log(np.where(positive, mean, 1.0))
     median_log = np.log(stats.chi2.median(nu) / nu)
@@ -215,7 +217,7 @@ def low_excess_p(
         if not peers.any() or not positive[i]:
             continue
         ref = np.median(log_mean[peers] - level[peers] - median_log[peers]) + level[i]
-        excess = log_mean[i] - _log_mean_bias(nu[i]) - ref
+        excess = log_mean[i] - log_chi2_bias(nu[i]) - ref
         var = spread[i] + 0.5 * np.pi * float(np.mean(spread[peers])) / peers.sum()
         out[i] = float(stats.norm.sf(excess / np.sqrt(var + level_se[i] ** 2)))
     return out
