@@ -296,13 +296,18 @@ def resolved_from_hz(psd: PSDEstimate) -> float:
     Multitaper: ``W + 1 / T`` (``W = NW / T`` the smoothing half-width, ``T``
     the window length): the estimate there averages the PSD over ``[1/T,
     2W + 1/T]``, clear of the zero frequency the window's mean removal
-    empties. Other estimators: ``nu_0 / (2 T)``.
+    empties. Other estimators: their equivalent bandwidth ``B = nu_0 / (2 T)``
+    (Percival and Walden 1993, eq. 255a), and never below ``1 / T + B / 2``,
+    the same clearance: the Blackman-Tukey estimate with the thesis's
+    full-length lags (``nu_0`` about 1.14) would otherwise be stated from
+    ``0.57 / T``, inside the emptied zero frequency.
     """
     n = psd.n_samples if psd.n_samples > 0 else int(round(2 * psd.f_hz.size))
     t = n * psd.dt_s
     if psd.method == "multitaper" and "bandwidth_hz" in psd.params:
         return float(psd.params["bandwidth_hz"]) + 1.0 / t
-    return float(np.median(np.atleast_1d(psd.dof))) / (2.0 * t)
+    bandwidth_hz = float(np.median(np.atleast_1d(psd.dof))) / (2.0 * t)
+    return max(bandwidth_hz, 1.0 / t + 0.5 * bandwidth_hz)
 
 
 #: Points of the average over ``f +- W`` in :func:`smoothed_response`.

@@ -185,6 +185,11 @@ def split_stretches(
     items = [series] if _is_one_series(series) else list(series)  # type: ignore[arg-type]
     out, short, short_n = [], 0, 0
     for k, item in enumerate(items):
+        if np.iscomplexobj(item):  # numpy would drop the imaginary part with a warning only
+            raise InputError(
+                f"series {k}: samples must be real numbers, got complex values "
+                "(bound the real and imaginary parts as two series)"
+            )
         try:
             x = np.asarray(item, dtype=float)
         except (TypeError, ValueError) as exc:

@@ -1,0 +1,81 @@
+"""psdbound.bound_series: what it accepts, what it refuses (one line naming the item), its f_min."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import psdbound
+from psdbound.errors import InputError
+from psdbound.spectra import estimate_psd
+from psdbound.spectra.bands import resolved_from_hz
+from psdbound.spectra.series import split_stretches
+
+RNG_SEED = 11
+
+
+def _white(n: int, seed: int = RNG_SEED) -> np.ndarray:
+    return np.random.default_rng(seed).normal(0.0, 0.002, n)
+
+
+@pytest.mark.parametrize(
+    ("series", "match"),
+    [
+        ([np.r_[_white(300), np.inf, _white(300)]], r"series 0: infinite value at index 300"),
+        ([_white(300), _white(300) + 1j * _white(300)], r"series 1: .*complex"),
+        ([np.array(["a"] * 100)], r"series 0: samples must be real numbers"),
+        ([np.zeros((3, 100)) + _white(100)], r"series 0: must be 1-D"),
+        ([], r"no stretch of at least 64"),
+        ([np.full(300, np.nan)], r"no stretch of at least 64"),
+        ([_white(30)], r"1 stretch\(es\) shorter than 64 samples left out \(30 samples\)"),
+    ],
+)
+def test_bad_series_are_named(series: list, match: str) -> None:
+    with pytest.raises(InputError, match=match):
+        psdbound.bound_series(series, 1.0)
+
+
+@pytest.mark.parametrize("dt_s", [0.0, -1.0, np.nan, np.inf])
+def test_bad_sampling_interval_is_named(dt_s: float) -> None:
+    with pytest.raises(InputError, match="sampling interval"):
+        psdbound.bound_series([_white(300)], dt_s)
+
+
+def test_nan_gaps_split_and_short_pieces_are_reported() -> None:
+    x = np.r_[_white(200, 1), np.nan, _white(40, 2), np.nan, np.nan, _white(150, 3)]
+    stretches, notes = split_stretches(x, min_samples=64)
+    assert [s.size for s in stretches] == [200, 150]
+    assert len(notes) == 1 and "40 samples" in notes[0]
+
+
+def test_two_dimensional_array_is_one_window_per_row() -> None:
+    rows = np.stack([_white(256, seed) for seed in range(4)])
+    stretches, _ = split_stretches(rows, min_samples=64)
+    assert len(stretches) == 4
+    np.testing.assert_array_equal(stretches[2], rows[2])
+
+
+@pytest.mark.parametrize(
+    ("estimator", "options"),
+    [
+        ("multitaper", {}),
+        ("welch", {}),
+        ("blackman-tukey", {}),  # the thesis's full-length lags: nu_0 about 1.14
+        ("blackman-tukey", {"max_lag_fraction": 0.1}),
+    ],
+)
+def test_f_min_is_clear_of_the_emptied_zero_frequency(estimator: str, options: dict) -> None:
+    """Every estimator is stated from at least 1 / T plus half its bandwidth (T = 600 s)."""
+    x = _white(600)
+    psd = estimate_psd(x, 1.0, method=estimator, **options)
+    bandwidth_hz = float(np.median(np.atleast_1d(psd.dof))) / (2.0 * 600.0)
+    if estimator == "multitaper":
+        bandwidth_hz = 2.0 * float(psd.params["bandwidth_hz"])
+    assert resolved_from_hz(psd) >= 1.0 / 600.0 + 0.5 * bandwidth_hz - 1e-12
+    res = psdbound.bound_series(
+        [x] + [_white(600, s) for s in range(5)],
+        1.0,
+        estimator=estimator,
+        estimator_options=options,
+    )
+    assert res.f_min_hz >= 1.0 / 600.0
