@@ -399,6 +399,8 @@ def _given_files(
         data = demo_data()
         return [data.obs_paths[0]], [data.nav_path], data.truth_meta()
     for p in obs_paths:
+        if p.is_dir():
+            raise InputError("is a folder, not an observation file", path=p)
         if not p.is_file():
             raise InputError("observation file not found", path=p)
     _refuse_repeats(obs_paths)

@@ -168,6 +168,7 @@ def test_config_file_is_applied_and_saved(tmp_path, demo_run):
     ("args", "message"),
     [
         (["fit", "missing.rnx", "--nav", "nav.rnx"], "missing.rnx: observation file not found"),
+        (["fit", "reports", "--nav", "nav.rnx"], "reports: is a folder, not an observation file"),
         (["fit", "--frobnicate"], "unrecognized arguments: --frobnicate"),
         (
             ["fit", "a.rnx", "--method", "da"],
@@ -179,11 +180,13 @@ def test_config_file_is_applied_and_saved(tmp_path, demo_run):
 )
 def test_cli_errors_one_line_exit_2_no_output(tmp_path, args, message):
     (tmp_path / "a.rnx").write_text("x")
+    if "folder" in message:  # a folder given as the observation file: nothing written in it
+        (tmp_path / "reports").mkdir()
     r = run_cli(*args, cwd=tmp_path)
     assert r.returncode == 2, r.stderr
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and message in lines[0], r.stderr
-    assert not (tmp_path / "reports").exists()
+    assert not (tmp_path / "reports").exists() or not any((tmp_path / "reports").iterdir())
 
 
 def test_bad_toml_option(tmp_path):
