@@ -202,7 +202,14 @@ class ErrorModel:
         float
             ``m(el)`` of the fit's mapping for an elevation-mapped component,
             1 otherwise.
+
+        Raises
+        ------
+        InputError
+            An elevation that is not a finite number of degrees in [0, 90].
         """
+        if elevation_deg is not None and not 0.0 <= float(elevation_deg) <= 90.0:
+            raise InputError(f"elevation_deg must lie in [0, 90] degrees, got {elevation_deg!r}")
         if elevation_deg is None or not c.elevation_mapped or self.mapping is None:
             return 1.0
         from psdbound.stationarity.mapping import ElevationMapping
@@ -262,8 +269,8 @@ class ErrorModel:
         return sum(m.variance_m2(dt_s, white_noise=white_noise) for m in parts)
 
     def _check_band(self, f: NDArray[np.float64], nyquist_hz: float) -> None:
-        if (f < 0).any():
-            raise InputError("frequencies must be >= 0 Hz")
+        if not (f >= 0).all():  # NaN fails too
+            raise InputError("frequencies must be finite numbers >= 0 Hz")
         if (f > nyquist_hz * (1 + 1e-9)).any():
             warnings.warn(
                 f"frequencies above the data's Nyquist frequency {nyquist_hz:g} Hz: "
@@ -319,7 +326,7 @@ class ErrorModel:
         parts = self._parts(elevation_deg)
         dt = parts[0].checked_dt_s(dt_s)
         f = np.asarray(f_hz, dtype=float)
-        if (f < 0).any() or (f > 0.5 / dt * (1 + 1e-9)).any():
+        if not ((f >= 0) & (f <= 0.5 / dt * (1 + 1e-9))).all():  # NaN fails too
             raise InputError(f"frequencies must lie in [0, {0.5 / dt:g}] Hz for dt = {dt:g} s")
         if dt < self.dt_s * (1 - 1e-9):
             self._check_band(f, self.nyquist_hz)

@@ -145,3 +145,24 @@ def test_reading_only_the_bound_warns_about_the_slow_component(demo):
         pytest.skip("this fit has no slow component")
     with pytest.warns(UserWarning, match="slow component"):
         GaussMarkovBound.from_result(path)
+
+
+@pytest.mark.parametrize("elevation_deg", [-5.0, 90.5, 200.0, math.nan, math.inf])
+def test_elevations_outside_0_90_are_refused(demo, elevation_deg):
+    em = demo[0].error_model
+    for call in (
+        lambda: em.to_state_space(elevation_deg=elevation_deg),
+        lambda: em.variance_m2(elevation_deg=elevation_deg),
+        lambda: em.psd([0.01], elevation_deg=elevation_deg),
+    ):
+        with pytest.raises(psdbound.InputError, match=r"elevation_deg must lie in \[0, 90\]"):
+            call()
+
+
+@pytest.mark.parametrize("f_hz", [[-1.0], [math.nan], [0.01, math.nan]])
+def test_frequencies_that_are_not_finite_and_non_negative_are_refused(demo, f_hz):
+    em = demo[0].error_model
+    with pytest.raises(psdbound.InputError, match="frequencies must"):
+        em.psd(f_hz)
+    with pytest.raises(psdbound.InputError, match="frequencies must"):
+        em.sampled_psd(f_hz)
