@@ -82,6 +82,29 @@ def test_smoothed_responses_equal_one_call_each() -> None:
     np.testing.assert_array_equal(many[1], response(fs[1]))  # W = 0: the point value
 
 
+def test_smoothed_responses_in_bounded_calls(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Many windows are evaluated in calls of at most about _RESPONSE_POINTS (memory)."""
+    import psdbound.spectra.bands as bands_module
+
+    sizes: list[int] = []
+
+    def response(f: np.ndarray) -> np.ndarray:
+        sizes.append(f.size)
+        return (f / 0.01) ** 8 / (1.0 + (f / 0.01) ** 8)
+
+    rng = np.random.default_rng(4)
+    fs = [np.sort(rng.uniform(0.0, 0.5, n)) for n in (30, 50, 10, 70, 20)]
+    ws = [0.002] * len(fs)
+    whole = smoothed_responses(response, fs, ws)
+    assert sizes == [180 * 17]
+    sizes.clear()
+    monkeypatch.setattr(bands_module, "_RESPONSE_POINTS", 60 * 17)
+    chunked = smoothed_responses(response, fs, ws)
+    assert sizes == [80 * 17, 80 * 17, 20 * 17]  # a call closes once it reaches the size
+    for a, b in zip(whole, chunked, strict=True):
+        np.testing.assert_array_equal(a, b)
+
+
 def test_smoothed_response_of_a_line_is_its_value() -> None:
     f = np.array([0.1, 0.2, 0.3])
     got = smoothed_response(lambda g: 2.0 + 5.0 * g, f, 0.05)  # symmetric average, f > W
