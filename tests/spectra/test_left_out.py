@@ -70,6 +70,7 @@ def test_a_window_split_off_by_chance_among_a_thousand_costs_nothing() -> None:
     assert res.limits.uncovered_windows == (840,)
     assert res.limits.n_groups == 1 and res.limits.groups[840] == -1
     assert "window(s) 840" in res.covers
+    assert "1000 in 1 shape group(s); 1 left out" in res.summary()
     b = res.bound
     assert (b.sigma_gm_m**2 + b.sigma_wn_m**2) / (0.003**2 + 0.001**2) < 2.5
     f = np.geomspace(res.f_min_hz, 0.5, 200)
