@@ -249,7 +249,6 @@ def _pooled_section(res: BoundResults) -> dict[str, Any] | None:
         "band_span_hz": pl.band_span_hz,
         "n_groups": pl.n_groups,
         "group_sizes": pl.sizes(),
-        "uncovered_windows": list(pl.uncovered_windows),
         "upper_m2_hz": pl.upper_m2_hz,
         "mean_upper_m2_hz": pl.mean_upper_m2_hz,
         "effective_dof": pl.effective_dof,

@@ -24,9 +24,7 @@ as data grow, and it states no confidence. The pooled rule states instead
    merged until it has :data:`MIN_GROUP_DOF` in each, :func:`group_bands`),
    times the largest simultaneous upper deviation of the windows that must be
    covered (all but ``floor((1 - coverage) M)`` of them, at ``a_window /
-   M``; a small group of another shape whose limits lie above the main
-   group's may instead be left out whole within that allowance,
-   :func:`left_out_groups`). The two error
+   M``). The two error
    probabilities add up to ``1 - confidence_level`` (Bonferroni), so the
    statement holds whatever the windows' levels and however they are
    distributed.
@@ -78,7 +76,6 @@ __all__ = [
     "fit_limits",
     "fit_pooled_bound",
     "group_bands",
-    "left_out_groups",
     "pool_bands",
     "random_effects_mean",
 ]
@@ -169,10 +166,6 @@ class PooledLimits:
         The band each limit holds for, Hz (lower and upper edge): the common
         band, or for a small group the merged band it lies in
         (:func:`group_bands`); NaN where the group has no data.
-    uncovered_windows : tuple of int
-        Windows of small groups of another shape that the limits leave out,
-        within the statement's allowance (:func:`left_out_groups`); their
-        group label is -1.
     """
 
     f_hz: NDArray[np.float64]
@@ -194,7 +187,6 @@ class PooledLimits:
     notes: tuple[str, ...] = ()
     shape_alpha: float = 0.05
     band_span_hz: NDArray[np.float64] | None = None
-    uncovered_windows: tuple[int, ...] = ()
 
     @property
     def n_groups(self) -> int:
@@ -390,7 +382,7 @@ def _group_limits(
     test_bands: BandSpectra,
     rows: NDArray[np.intp],
     levels: tuple[float, float],
-    allowed: int,
+    coverage: float,
     clusters: NDArray[np.int64] | None,
     rho: float,
     model: str,
@@ -399,14 +391,14 @@ def _group_limits(
 
     The windows' levels come from ``test_bands`` (bands at least the estimator's smoothing
     wide, whose averages are nearly independent); the limits are stated on the group's
-    bands (:func:`group_bands`) and returned on the common ``bands``. ``allowed`` of its
-    windows may lie above the limits (their largest own upper deviations are dropped).
+    bands (:func:`group_bands`) and returned on the common ``bands``.
     """
     a_mean, a_window = levels
     a_spread = a_count = a_window / 2.0  # the tolerance diagnostics (no share of their own)
     gb, index = group_bands(bands, rows)
     dev, tilt, use = _deviations(test_bands, rows, model)
     m = rows.size
+    allowed = int(np.floor((1.0 - coverage) * m + 1e-9))
     k = np.where(
         use, simultaneous_factor(a_window, m, n_params=2), simultaneous_factor(a_window, m)
     )[:, None]
@@ -544,15 +536,12 @@ def _pool_groups(
     labels: NDArray[np.int64],
     ok: NDArray[np.bool_],
     levels: tuple[float, float],
-    allowed: NDArray[np.int64],
+    coverage: float,
     clusters: NDArray[np.int64] | None,
     rho: float,
     model: str,
 ) -> _Pooled:
-    """Return the limits of each shape group (:func:`_group_limits`) and its largest window.
-
-    ``allowed[g]`` of group ``g``'s windows may lie above its limits.
-    """
+    """Return the limits of each shape group (:func:`_group_limits`) and its largest window."""
     n_w, n_b = ok.shape
     n_g = int(labels.max()) + 1
     keys = ("mean_upper", "tau2", "p_hom", "eff_dof", "window_max", "upper")
@@ -562,7 +551,7 @@ def _pool_groups(
     span = np.full((n_g, n_b, 2), np.nan)
     for g in range(n_g):
         rows = np.flatnonzero(labels == g)
-        gl = _group_limits(bands, test_bands, rows, levels, int(allowed[g]), clusters, rho, model)
+        gl = _group_limits(bands, test_bands, rows, levels, coverage, clusters, rho, model)
         out["mean_upper"][g], out["tau2"][g], out["p_hom"][g], out["eff_dof"][g] = (
             gl.mean_upper,
             gl.tau2,
@@ -676,32 +665,20 @@ def pool_bands(
     if lowest is not None and lowest.n.size != n_w:
         raise InputError(f"lowest has {lowest.n.size} windows, the bands {n_w}")
     test_bands, labels = _shape_groups(bands, smoothing_hz, shape_alpha, max_groups, lowest)
-    levels = _error_levels(confidence_level, int(labels.max()) + 1)
-
-    def pool(lab: NDArray[np.int64], allowed: NDArray[np.int64]) -> _Pooled:
-        return _pool_groups(
-            bands,
-            test_bands,
-            lab,
-            ok,
-            levels,
-            allowed,
-            clusters,
-            cluster_correlation,
-            deviation_model,
-        )
-
-    sizes = np.bincount(labels[labels >= 0])
-    allowed = np.floor((1.0 - coverage) * sizes + 1e-9).astype(np.int64)
-    pooled = pool(labels, allowed)
-    n_allowed = int(np.floor((1.0 - coverage) * sizes.sum() + 1e-9))
-    left_out, allowed = left_out_groups(pooled.upper, sizes, allowed, n_allowed)
-    uncovered = np.flatnonzero(np.isin(labels, left_out))
-    if left_out.size:  # their windows leave every group; the others' limits are recomputed
-        kept = np.setdiff1d(np.arange(sizes.size), left_out)
-        labels = np.where(np.isin(labels, kept), np.searchsorted(kept, labels), -1)
-        pooled = pool(labels, allowed[kept])
-    sizes = np.bincount(labels[labels >= 0], minlength=pooled.upper.shape[0])
+    n_g = int(labels.max()) + 1
+    levels = _error_levels(confidence_level, n_g)
+    pooled = _pool_groups(
+        bands,
+        test_bands,
+        labels,
+        ok,
+        levels,
+        coverage,
+        clusters,
+        cluster_correlation,
+        deviation_model,
+    )
+    sizes = np.bincount(labels[labels >= 0], minlength=n_g)
     return PooledLimits(
         f_hz=bands.centres_hz,
         groups=labels,
@@ -724,67 +701,7 @@ def pool_bands(
         ),
         shape_alpha=shape_alpha,
         band_span_hz=pooled.span_hz,
-        uncovered_windows=tuple(int(i) for i in uncovered),
     )
-
-
-def left_out_groups(
-    upper_m2_hz: NDArray[np.float64],
-    sizes: NDArray[np.int64],
-    allowed: NDArray[np.int64],
-    n_allowed: int,
-) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
-    """Choose the groups of another shape the statement leaves uncovered, within its allowance.
-
-    The statement covers all but ``n_allowed = floor((1 - coverage) M)`` of the
-    ``M`` windows. A small group whose limits lie above the main group's (group 0)
-    may be left out whole when its windows fit in that allowance: without it a
-    single window split off by chance among a thousand homogeneous ones (the
-    family-wise shape tests do so in about 5 % of runs) set the bound with its
-    own few degrees of freedom, 5-19 times the truth in variance. Only a group
-    whose bands the main group's data also cover can go (else a band would be
-    left with no limit), by its largest excess over the main group's limits,
-    the highest first;
-    what is left of the allowance goes to the kept groups' own allowances,
-    the main group's first, so that the windows left out and those each kept
-    group may leave above its limits together stay within ``n_allowed``.
-
-    Parameters
-    ----------
-    upper_m2_hz : ndarray, shape (G, B)
-        Each group's limits (NaN where it has no data).
-    sizes : ndarray of int, shape (G,)
-        Windows per group.
-    allowed : ndarray of int, shape (G,)
-        Each group's own allowance (``floor((1 - coverage) m_g)``).
-    n_allowed : int
-        The statement's allowance over all windows.
-
-    Returns
-    -------
-    left_out : ndarray of int
-        Groups left uncovered (never 0), ascending.
-    allowed : ndarray of int, shape (G,)
-        The kept groups' allowances (0 for the groups left out).
-    """
-    has = np.isfinite(upper_m2_hz)
-    main = np.where(has[0], upper_m2_hz[0], np.inf)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        excess = np.where(has, np.log(upper_m2_hz / main), -np.inf).max(axis=1)
-    # a group with data in a band the main group has none in stays: its limits state that band
-    within = ~(has & ~has[0]).any(axis=1)
-    out, budget = [], n_allowed
-    for g in np.argsort(-excess, kind="stable"):
-        if g > 0 and within[g] and excess[g] > 0.0 and sizes[g] <= budget:
-            out.append(int(g))
-            budget -= int(sizes[g])
-    if not out:
-        return np.zeros(0, dtype=np.int64), allowed
-    kept = np.zeros_like(allowed)
-    for g in (g for g in range(sizes.size) if g not in out):
-        kept[g] = min(int(allowed[g]), budget)
-        budget -= int(kept[g])
-    return np.array(sorted(out), dtype=np.int64), kept
 
 
 def smoothing_hz(psds: Sequence[PSDEstimate]) -> float:

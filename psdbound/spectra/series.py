@@ -115,8 +115,7 @@ class SeriesBound:
             f"{'sigma_WN (per sample)':<28}{b.sigma_wn_m:.4g} m",
             f"{'sampling interval':<28}{b.dt_s:g} s (Nyquist {b.nyquist_hz:.4g} Hz)",
             f"{'stated from':<28}{self.f_min_hz:.4g} Hz to Nyquist",
-            f"{'windows':<28}{self.n_windows} in {self.limits.n_groups} shape group(s)"
-            + self._left_out(),
+            f"{'windows':<28}{self.n_windows} in {self.limits.n_groups} shape group(s)",
             f"{'bound over limits (median)':<28}{self.fit.gap_db_median:.1f} dB above the limits",
             *self._check_lines(),
             "-" * 72,
@@ -125,11 +124,6 @@ class SeriesBound:
         lines += [f"not bounded: {r}" for r in self.verdict_reasons]
         lines += [f"note: {n}" for n in self.notes + self.limits.notes]
         return "\n".join(lines + ["=" * 72])
-
-    def _left_out(self) -> str:
-        """``"; k left out (a small group of another shape)"`` when the limits leave windows out."""
-        k = len(self.limits.uncovered_windows)
-        return f"; {k} left out (a small group of another shape)" if k else ""
 
     def _check_lines(self) -> list[str]:
         """One line each for the checks below ``f_min`` and on resolution cells."""

@@ -292,11 +292,5 @@ def statement(
             f"; group(s) {', '.join(map(str, merged))} on merged bands of at least "
             f"{MIN_GROUP_DOF:g} pooled degrees of freedom"
         )
-    if limits.uncovered_windows:
-        text += (
-            f"; window(s) {', '.join(map(str, limits.uncovered_windows))} (a small group of "
-            "another shape whose limits lay above the main group's) are left out of the limits, "
-            "counted in the windows the statement allows above the bound"
-        )
     parts = [text] + [p.sentence() for p in (low, lowest, cells) if p is not None]
     return "; ".join(parts)
