@@ -461,7 +461,8 @@ def _check_pool_options(
     _check_levels(confidence_level, coverage, shape_alpha)
     if deviation_model not in (*SHAPE_MODELS, "auto"):
         raise InputError(
-            f"unknown deviation model {deviation_model!r}; choose from {', '.join(SHAPE_MODELS)}"
+            f"unknown deviation model {deviation_model!r}; choose from auto, "
+            f"{', '.join(SHAPE_MODELS)}"
         )
     if not 0.0 <= cluster_correlation <= 1.0:
         raise InputError(f"cluster correlation must lie in [0, 1], got {cluster_correlation!r}")

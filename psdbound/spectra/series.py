@@ -150,6 +150,54 @@ class SeriesBound:
         return out
 
 
+def _positive(name: str, value: object, unit: str) -> None:
+    """Raise :class:`InputError` unless ``value`` is a positive, finite real number."""
+    number = isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
+        value, bool
+    )
+    if not (number and np.isfinite(value) and value > 0):  # type: ignore[operator, arg-type]
+        raise InputError(f"{name} must be a positive, finite number of {unit}, got {value!r}")
+
+
+def _check_options(
+    dt_s: object,
+    tau_max_s: object,
+    f_min_hz: object,
+    min_samples: int,
+    low_frequency_policy: str,
+) -> None:
+    """Raise :class:`InputError` for a sampling interval or an option out of its range."""
+    _positive("sampling interval dt_s", dt_s, "seconds")
+    _positive("tau_max_s", tau_max_s, "seconds")
+    if f_min_hz is not None:
+        _positive("f_min_hz", f_min_hz, "Hz")
+    if low_frequency_policy not in POLICIES:
+        raise InputError(
+            f"low_frequency_policy must be one of {POLICIES}, got {low_frequency_policy!r}"
+        )
+    if min_samples < MIN_SAMPLES:
+        raise InputError(f"min_samples must be at least {MIN_SAMPLES}, got {min_samples}")
+
+
+def _cluster_labels(
+    clusters: ArrayLike | None, cluster_correlation: float
+) -> NDArray[np.int64] | None:
+    """Integer cluster labels, or None; a correlation without labels is an error (no effect)."""
+    if clusters is None:
+        if cluster_correlation:
+            raise InputError(
+                f"cluster_correlation {cluster_correlation!r} needs clusters (one label per "
+                "stretch used): without them it would change nothing"
+            )
+        return None
+    labels = np.asarray(clusters)
+    if labels.dtype.kind not in "iu" and not (
+        labels.dtype.kind == "f" and np.all(np.isfinite(labels)) and np.all(labels % 1 == 0)
+    ):
+        raise InputError(f"clusters must be integer labels, one per stretch used, got {clusters!r}")
+    return labels.astype(np.int64)
+
+
 def _is_one_series(series: object) -> bool:
     """Whether the input is one series (an array or a flat list of numbers)."""
     if isinstance(series, np.ndarray):
@@ -319,16 +367,7 @@ def bound_series(
     >>> res.verdict
     'bounded'
     """
-    if not (np.isfinite(dt_s) and dt_s > 0):
-        raise InputError(f"sampling interval must be positive and finite, got {dt_s!r} s")
-    if low_frequency_policy not in POLICIES:
-        raise InputError(
-            f"low_frequency_policy must be one of {POLICIES}, got {low_frequency_policy!r}"
-        )
-    if not (np.isfinite(tau_max_s) and tau_max_s > 0):
-        raise InputError(f"tau_max_s must be positive and finite, got {tau_max_s!r} s")
-    if min_samples < MIN_SAMPLES:
-        raise InputError(f"min_samples must be at least {MIN_SAMPLES}, got {min_samples}")
+    _check_options(dt_s, tau_max_s, f_min_hz, min_samples, low_frequency_policy)
     stretches, notes = split_stretches(series, min_samples=min_samples)
     if not stretches:
         raise InputError(
@@ -339,7 +378,7 @@ def bound_series(
     psds = tuple(estimate_psd(x, dt_s, method=estimator, **opts) for x in stretches)
     if f_min_hz is None:
         f_min_hz = min(resolved_from_hz(p) for p in psds)
-    cl = None if clusters is None else np.asarray(clusters, dtype=np.int64)
+    cl = _cluster_labels(clusters, cluster_correlation)
     sb = fit_stated_bound(
         psds,
         dt_s,

@@ -79,3 +79,28 @@ def test_f_min_is_clear_of_the_emptied_zero_frequency(estimator: str, options: d
         estimator_options=options,
     )
     assert res.f_min_hz >= 1.0 / 600.0
+
+
+@pytest.mark.parametrize(
+    ("options", "match"),
+    [
+        ({"clusters": [0.5] * 6}, "clusters must be integer labels"),
+        ({"clusters": ["a"] * 6}, "clusters must be integer labels"),
+        ({"cluster_correlation": 0.5}, "cluster_correlation 0.5 needs clusters"),
+        ({"f_min_hz": float("nan")}, "f_min_hz must be a positive, finite number"),
+        ({"tau_max_s": float("nan")}, "tau_max_s must be a positive, finite number"),
+        ({"deviation_model": "x"}, "choose from auto, level, tilt"),
+    ],
+)
+def test_bad_options_are_named(options: dict, match: str) -> None:
+    with pytest.raises(InputError, match=match):
+        psdbound.bound_series([_white(300, s) for s in range(6)], 1.0, **options)
+
+
+def test_sampling_interval_must_be_a_number() -> None:
+    with pytest.raises(InputError, match="dt_s must be a positive, finite number of seconds"):
+        psdbound.bound_series([_white(300)], "1")  # type: ignore[arg-type]
+    labels = psdbound.bound_series(
+        [_white(300, s) for s in range(6)], np.float32(1.0), clusters=[0.0, 1.0] * 3
+    )
+    assert labels.verdict in ("bounded", "not-bounded")
