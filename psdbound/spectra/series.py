@@ -198,6 +198,17 @@ def _cluster_labels(
     return labels.astype(np.int64)
 
 
+def _f_min_note(given_hz: float | None, stated_hz: float) -> tuple[str, ...]:
+    """Return a note when a given ``f_min_hz`` lies below where the bound is stated from."""
+    if given_hz is None or stated_hz <= given_hz * (1.0 + 1e-9):
+        return ()
+    return (
+        f"f_min_hz {given_hz:.4g} Hz lies below what the windows' estimates resolve: the bound "
+        f"is stated from {stated_hz:.4g} Hz (resolved_from_hz of each estimate: below it an "
+        "estimate is not an average of the PSD near its frequency)",
+    )
+
+
 def _is_one_series(series: object) -> bool:
     """Whether the input is one series (an array or a flat list of numbers)."""
     if isinstance(series, np.ndarray):
@@ -380,6 +391,7 @@ def bound_series(
         )
     opts = dict(estimator_options or {})
     psds = tuple(estimate_psd(x, dt_s, method=estimator, **opts) for x in stretches)
+    given_f_min_hz = f_min_hz
     if f_min_hz is None:
         f_min_hz = min(resolved_from_hz(p) for p in psds)
     cl = _cluster_labels(clusters, cluster_correlation)
@@ -411,7 +423,7 @@ def bound_series(
         psds=psds,
         bands=bands,
         limits=limits,
-        notes=notes,
+        notes=notes + _f_min_note(given_f_min_hz, float(fit.f_min_hz)),
         model_set=ms,
         low_frequency=low,
         lowest_frequencies=sb.lowest,

@@ -104,3 +104,13 @@ def test_sampling_interval_must_be_a_number() -> None:
         [_white(300, s) for s in range(6)], np.float32(1.0), clusters=[0.0, 1.0] * 3
     )
     assert labels.verdict in ("bounded", "not-bounded")
+
+
+def test_a_given_f_min_below_the_resolved_frequency_is_raised_with_a_note() -> None:
+    x = [_white(600, s) for s in range(8)]
+    res = psdbound.bound_series(x, 1.0, f_min_hz=1e-5)
+    assert res.f_min_hz > 1.0 / 600.0
+    assert any("f_min_hz 1e-05 Hz lies below" in n for n in res.notes)
+    assert "f_min_hz" not in " ".join(psdbound.bound_series(x, 1.0).notes)
+    above = psdbound.bound_series(x, 1.0, f_min_hz=0.02)
+    assert above.f_min_hz == pytest.approx(0.02) and not above.notes
