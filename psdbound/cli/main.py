@@ -42,6 +42,9 @@ _COMMANDS = (
 class _Parser(argparse.ArgumentParser):
     """ArgumentParser whose usage errors are one line and exit code 2."""
 
+    #: The commands' parsers by name (set on the top-level parser by :func:`build_parser`).
+    commands: dict[str, argparse.ArgumentParser]
+
     def options(self) -> list[argparse.Action]:
         """Return every argument of this parser (what ``--config`` keys may name)."""
         return list(self._actions)
@@ -79,7 +82,22 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
 
     for name in (command,) if command in _COMMANDS else _COMMANDS:
         importlib.import_module(f"psdbound.cli.{name}").add_parser(sub)
+    parser.commands = dict(sub.choices)
     return parser
+
+
+def _parse(parser: argparse.ArgumentParser, argv: list[str]) -> argparse.Namespace:
+    """Parse ``argv``; arguments a command does not know are that command's usage error.
+
+    (``parse_args`` reports them as the top-level program's, ``psdbound: error:``,
+    without the command's name or usage.)
+    """
+    args, extra = parser.parse_known_args(argv)
+    if extra:
+        commands = getattr(parser, "commands", {})
+        sub = commands.get(getattr(args, "command", None) or "", parser)
+        sub.error(f"unrecognized arguments: {' '.join(extra)}")
+    return args
 
 
 def _one_line(text: str) -> str:
@@ -121,7 +139,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     argv = list(sys.argv[1:] if argv is None else argv)
     parser = build_parser(argv[0] if argv else None)
-    args = parser.parse_args(argv)  # a usage error: one line and SystemExit(2)
+    args = _parse(parser, argv)  # a usage error: one line and SystemExit(2)
     if not getattr(args, "command", None):
         parser.print_help()
         return EXIT_OK

@@ -165,6 +165,12 @@ def read_document(path: str | os.PathLike[str]) -> dict[str, Any]:
     if not isinstance(data, dict):
         raise InputError("not a psdbound result (top level is not an object)", path=p)
     version = data.get("schema_version")
+    if version is None:
+        raise InputError(
+            "not a psdbound result: it has no schema_version (give the result.json a "
+            "psdbound command wrote)",
+            path=p,
+        )
     if version != SCHEMA_VERSION:
         raise InputError(
             f"result schema version {version!r} is not supported (expected {SCHEMA_VERSION!r})",

@@ -84,6 +84,12 @@ def test_missing_file_and_unknown_option(tmp_path):
     assert r.returncode == 2 and "nothing.rnx: file not found" in r.stderr
     r = run("inspect", "--frobnicate", "x")
     assert r.returncode == 2 and "unrecognized arguments: --frobnicate" in r.stderr
+    # an argument the command does not take is that command's error, with its name
+    assert r.stderr.startswith("psdbound inspect: error:"), r.stderr
+    r = run("cutoff", "obs.rnx")
+    assert r.returncode == 2 and r.stderr.strip() == (
+        "psdbound cutoff: error: unrecognized arguments: obs.rnx"
+    )
 
 
 def test_unknown_signal_and_absent_system(tmp_path):

@@ -90,7 +90,7 @@ def test_from_result_reads_the_schema(tmp_path):
         ({"mapping": KeyError}, "lacks the field 'mapping'"),
         ({"schema_version": "2"}, "result schema version '2' is not supported"),
         ({"schema_version": 1}, "result schema version 1 is not supported"),
-        ({"schema_version": KeyError}, "result schema version None is not supported"),
+        ({"schema_version": KeyError}, "not a psdbound result: it has no schema_version"),
         ({"bound": [1, 2]}, "lacks the field 'bound.sigma_gm_m'"),
         # the bound's own checks
         ({"bound__dt_s": KeyError}, "missing key 'bound.dt_s'"),
