@@ -28,14 +28,35 @@ from scipy.signal import windows
 
 from psdbound.errors import InputError
 
-__all__ = ["multitaper"]
+__all__ = ["dpss_tapers", "multitaper"]
 
 _MAX_ADAPTIVE_ITER = 100
 
 
 @lru_cache(maxsize=4)
-def _tapers(n: int, nw: float, k: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """DPSS tapers (``k`` x ``n``, unit energy) and concentration ratios, read-only."""
+def dpss_tapers(n: int, nw: float, k: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Return DPSS tapers and their concentration ratios, cached and read-only.
+
+    The one home of the spectra stage's tapers: the estimates, their exact
+    expectation (:mod:`psdbound.spectra.expectation`) and the narrow
+    lowest-frequency estimates (:mod:`psdbound.spectra.ordinates`) share it.
+
+    Parameters
+    ----------
+    n : int
+        Window length, samples.
+    nw : float
+        Time-half-bandwidth product.
+    k : int
+        Number of tapers.
+
+    Returns
+    -------
+    tapers : ndarray, shape (k, n)
+        Unit-energy tapers (:func:`scipy.signal.windows.dpss`).
+    ratios : ndarray, shape (k,)
+        Their concentration ratios.
+    """
     tapers, ratios = windows.dpss(n, nw, Kmax=k, return_ratios=True)
     tapers = np.atleast_2d(tapers)
     ratios = np.atleast_1d(ratios)
@@ -114,7 +135,7 @@ def multitaper(
     if nfft < n:
         raise InputError(f"nfft must be at least the number of samples {n}, got {nfft}")
 
-    tapers, ratios = _tapers(n, nw, k)
+    tapers, ratios = dpss_tapers(n, nw, k)
     xc = x - x.mean()
     spec = sp_fft.rfft(tapers * xc, nfft, axis=-1)
     eigen = 2.0 * dt_s * (spec.real**2 + spec.imag**2)

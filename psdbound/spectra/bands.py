@@ -372,13 +372,15 @@ def smoothed_responses(
     """
     out: list[NDArray[np.float64]] = []
     grids: list[NDArray[np.float64]] = []
+    points = 0
     for f, w in zip(f_hz, half_width_hz, strict=True):
         f = np.asarray(f, dtype=float)
         offsets = np.linspace(-w, w, _SMOOTH_POINTS) if w > 0.0 else np.zeros(1)
         grids.append(np.abs(f[:, None] + offsets[None, :]))
-        if sum(g.size for g in grids) >= _RESPONSE_POINTS:
+        points += grids[-1].size
+        if points >= _RESPONSE_POINTS:
             out += _averaged(power_response, grids)
-            grids = []
+            grids, points = [], 0
     return out + (_averaged(power_response, grids) if grids else [])
 
 

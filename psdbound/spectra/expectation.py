@@ -20,12 +20,12 @@ the expected band average of a unit-variance sampled Gauss-Markov process.
 from __future__ import annotations
 
 from collections.abc import Iterator
-from functools import lru_cache
 
 import numpy as np
 from numpy.typing import NDArray
 from scipy import fft as sp_fft
-from scipy.signal import windows
+
+from psdbound.spectra._multitaper import dpss_tapers
 
 __all__ = ["far_lag_kernels", "gm_band_expectation", "lag_kernels", "mean_cosine"]
 
@@ -34,15 +34,9 @@ __all__ = ["far_lag_kernels", "gm_band_expectation", "lag_kernels", "mean_cosine
 EXACT_BELOW = 12.0
 
 
-@lru_cache(maxsize=8)
 def _tapers(n: int, nw: float) -> NDArray[np.float64]:
-    """Return the default multitaper's DPSS tapers, ``K = max(1, floor(2 NW) - 1)`` (read-only).
-
-    Cached: the exact and the far kernels of one window length share them.
-    """
-    tapers = np.atleast_2d(windows.dpss(n, nw, Kmax=max(1, int(np.floor(2.0 * nw)) - 1)))
-    tapers.setflags(write=False)
-    return tapers
+    """Return the default multitaper's DPSS tapers, ``K = max(1, floor(2 NW) - 1)`` (read-only)."""
+    return dpss_tapers(n, nw, max(1, int(np.floor(2.0 * nw)) - 1))[0]
 
 
 def _band_ordinates(

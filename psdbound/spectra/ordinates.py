@@ -40,8 +40,8 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import NDArray
 from scipy import special, stats
-from scipy.signal import windows
 
+from psdbound.spectra._multitaper import dpss_tapers
 from psdbound.spectra.limits import log_chi2_bias
 
 __all__ = [
@@ -136,7 +136,7 @@ def _tapered_fourier(n: int, js: tuple[int, ...]) -> NDArray[np.complex128]:
 
     Windows of one length share them (read-only).
     """
-    tapers = np.atleast_2d(windows.dpss(n, LOWEST_NW, Kmax=LOWEST_TAPERS))
+    tapers = dpss_tapers(n, LOWEST_NW, LOWEST_TAPERS)[0]
     phase = np.exp(-2j * np.pi * np.outer(np.asarray(js), np.arange(n)) / n)
     out = tapers[:, None, :] * phase[None]
     out.setflags(write=False)
