@@ -41,7 +41,7 @@ from psdbound.spectra._multitaper import multitaper
 from psdbound.spectra._welch import welch
 from psdbound.spectra.names import METHODS
 
-__all__ = ["PSDEstimate", "estimate_psd", "METHODS", "MIN_SAMPLES"]
+__all__ = ["PSDEstimate", "estimate_psd", "real_samples", "METHODS", "MIN_SAMPLES"]
 
 
 MIN_SAMPLES = 16
@@ -147,11 +147,43 @@ class PSDEstimate:
         return np.minimum(lo, hi), np.maximum(lo, hi)
 
 
-def _check_input(x_m: ArrayLike, dt_s: float) -> tuple[NDArray[np.float64], float]:
+def real_samples(x: object, *, name: str = "samples") -> NDArray[np.float64]:
+    """Return samples as floats, a masked sample (:mod:`numpy.ma`) as NaN.
+
+    ``numpy.asarray`` would keep a masked sample's value as data and drop an
+    imaginary part with a warning only: both are refused or made a gap here.
+
+    Parameters
+    ----------
+    x : array_like
+        Samples (any shape); a masked array's masked samples become NaN.
+    name : str, default "samples"
+        What the samples are called in the error message (e.g. ``"series 3"``).
+
+    Returns
+    -------
+    ndarray of float64
+
+    Raises
+    ------
+    InputError
+        Complex or non-numeric samples.
+    """
+    if np.iscomplexobj(x):
+        raise InputError(
+            f"{name}: samples must be real numbers, got complex values "
+            "(bound the real and imaginary parts as two series)"
+        )
     try:
-        x = np.asarray(x_m, dtype=float)
+        if np.ma.isMaskedArray(x):
+            return np.ma.asarray(x, dtype=float).filled(np.nan)
+        return np.asarray(x, dtype=float)
     except (TypeError, ValueError) as exc:
-        raise InputError(f"samples must be real numbers: {exc}") from None
+        raise InputError(f"{name}: samples must be real numbers ({exc})") from None
+
+
+def _check_input(x_m: ArrayLike, dt_s: float) -> tuple[NDArray[np.float64], float]:
+    x = real_samples(x_m)
     if x.ndim != 1:
         raise InputError(f"samples must be a 1-D series, got shape {x.shape}")
     if x.size < MIN_SAMPLES:
@@ -159,7 +191,7 @@ def _check_input(x_m: ArrayLike, dt_s: float) -> tuple[NDArray[np.float64], floa
     bad = ~np.isfinite(x)
     if bad.any():
         raise InputError(
-            f"samples contain {int(bad.sum())} NaN/infinite values "
+            f"samples contain {int(bad.sum())} NaN, infinite or masked values "
             f"(first at index {int(np.argmax(bad))}); split the series into gap-free windows"
         )
     try:

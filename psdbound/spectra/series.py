@@ -20,7 +20,7 @@ from psdbound.errors import InputError
 from psdbound.spectra.bands import BandSpectra, resolved_from_hz
 from psdbound.spectra.bound import BoundFit
 from psdbound.spectra.cells import CellCheck
-from psdbound.spectra.estimators import MIN_SAMPLES, PSDEstimate, estimate_psd
+from psdbound.spectra.estimators import MIN_SAMPLES, PSDEstimate, estimate_psd, real_samples
 from psdbound.spectra.intervals import ModelSet
 from psdbound.spectra.lowest import LowestFrequencies
 from psdbound.spectra.lowfreq import POLICIES, TAU_MAX_S, LowFrequency, low_frequency_reasons
@@ -226,7 +226,8 @@ def split_stretches(
     Parameters
     ----------
     series : array_like or sequence of array_like
-        One 1-D series or several; NaN marks a gap.
+        One 1-D series or several; NaN (or a masked sample of a
+        :class:`numpy.ma.MaskedArray`) marks a gap.
     min_samples : int, default 64
         Shortest stretch kept.
 
@@ -244,15 +245,7 @@ def split_stretches(
     items = [series] if _is_one_series(series) else list(series)  # type: ignore[arg-type]
     out, short, short_n = [], 0, 0
     for k, item in enumerate(items):
-        if np.iscomplexobj(item):  # numpy would drop the imaginary part with a warning only
-            raise InputError(
-                f"series {k}: samples must be real numbers, got complex values "
-                "(bound the real and imaginary parts as two series)"
-            )
-        try:
-            x = np.asarray(item, dtype=float)
-        except (TypeError, ValueError) as exc:
-            raise InputError(f"series {k}: samples must be real numbers ({exc})") from None
+        x = real_samples(item, name=f"series {k}")
         if x.ndim != 1:
             raise InputError(f"series {k}: must be 1-D, got shape {x.shape}")
         if np.isinf(x).any():
@@ -309,8 +302,8 @@ def bound_series(
     ----------
     series : array_like or sequence of array_like
         Stationary stretches of an error, metres (or any unit: the bound is
-        in the same unit); NaN gaps split a stretch. Each stretch is one
-        window.
+        in the same unit); NaN gaps, and masked samples of a masked array,
+        split a stretch. Each stretch is one window.
     dt_s : float
         Sampling interval, seconds.
     confidence_level : float, default 0.95

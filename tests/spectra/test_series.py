@@ -48,6 +48,23 @@ def test_nan_gaps_split_and_short_pieces_are_reported() -> None:
     assert len(notes) == 1 and "40 samples" in notes[0]
 
 
+def test_masked_samples_are_gaps_not_data() -> None:
+    # np.asarray keeps a masked sample's value: a glitch masked by the user
+    # (here 1 km) must split the stretch as NaN does, one series or several
+    x = _white(400, 4)
+    x[190:210] = 1e3
+    mask = np.zeros(x.size, dtype=bool)
+    mask[190:210] = True
+    one = np.ma.masked_array(x, mask=mask)
+    for given in (one, [one, one], np.ma.stack([one, one])):
+        stretches, _ = split_stretches(given, min_samples=64)
+        assert [s.size for s in stretches] == [190, 190] * (1 if given is one else 2)
+        assert max(float(np.max(np.abs(s))) for s in stretches) < 1.0
+    res = psdbound.bound_series([one, one, one], 1.0)
+    assert len(res.psds) == 6
+    assert res.bound.sigma_gm_m + res.bound.sigma_wn_m < 1.0
+
+
 def test_two_dimensional_array_is_one_window_per_row() -> None:
     rows = np.stack([_white(256, seed) for seed in range(4)])
     stretches, _ = split_stretches(rows, min_samples=64)

@@ -311,7 +311,9 @@ def test_methods_tuple_and_case_insensitive_name():
     [
         (np.zeros(MIN_SAMPLES - 1), 1.0, {}, "at least 16 samples"),
         (np.r_[np.zeros(20), np.nan], 1.0, {}, "NaN"),
-        (np.r_[np.zeros(20), np.inf], 1.0, {}, "NaN/infinite"),
+        (np.r_[np.zeros(20), np.inf], 1.0, {}, "NaN, infinite or masked"),
+        (np.ma.masked_array(np.zeros(32), mask=np.arange(32) == 5), 1.0, {}, "first at index 5"),
+        (np.zeros(32) + 1j, 1.0, {}, "complex"),
         (np.zeros((4, 20)), 1.0, {}, "1-D"),
         (np.zeros(32), 0.0, {}, "positive"),
         (np.zeros(32), -1.0, {}, "positive"),
