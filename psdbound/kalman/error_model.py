@@ -268,9 +268,18 @@ class ErrorModel:
         parts = self._parts(elevation_deg)
         return sum(m.variance_m2(dt_s, white_noise=white_noise) for m in parts)
 
-    def _check_band(self, f: NDArray[np.float64], nyquist_hz: float) -> None:
-        if not (f >= 0).all():  # NaN fails too
+    @staticmethod
+    def _frequencies(f_hz: ArrayLike) -> NDArray[np.float64]:
+        """``f_hz`` as floats; non-numeric, negative, NaN or infinite values refused."""
+        try:
+            f = np.asarray(f_hz, dtype=float)
+        except (TypeError, ValueError):
+            raise InputError(f"f_hz must be real numbers in Hz, got {f_hz!r}") from None
+        if np.iscomplexobj(f_hz) or not (np.isfinite(f) & (f >= 0)).all():
             raise InputError("frequencies must be finite numbers >= 0 Hz")
+        return f
+
+    def _check_band(self, f: NDArray[np.float64], nyquist_hz: float) -> None:
         if (f > nyquist_hz * (1 + 1e-9)).any():
             warnings.warn(
                 f"frequencies above the data's Nyquist frequency {nyquist_hz:g} Hz: "
@@ -294,7 +303,7 @@ class ErrorModel:
         -------
         ndarray
         """
-        f = np.asarray(f_hz, dtype=float)
+        f = self._frequencies(f_hz)
         self._check_band(f, self.nyquist_hz)
         return sum(m.psd(f) for m in self._parts(elevation_deg))
 
@@ -325,8 +334,8 @@ class ErrorModel:
         """
         parts = self._parts(elevation_deg)
         dt = parts[0].checked_dt_s(dt_s)
-        f = np.asarray(f_hz, dtype=float)
-        if not ((f >= 0) & (f <= 0.5 / dt * (1 + 1e-9))).all():  # NaN fails too
+        f = self._frequencies(f_hz)
+        if not (f <= 0.5 / dt * (1 + 1e-9)).all():
             raise InputError(f"frequencies must lie in [0, {0.5 / dt:g}] Hz for dt = {dt:g} s")
         if dt < self.dt_s * (1 - 1e-9):
             self._check_band(f, self.nyquist_hz)

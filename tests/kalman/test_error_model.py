@@ -159,10 +159,18 @@ def test_elevations_outside_0_90_are_refused(demo, elevation_deg):
             call()
 
 
-@pytest.mark.parametrize("f_hz", [[-1.0], [math.nan], [0.01, math.nan]])
+@pytest.mark.parametrize("f_hz", [[-1.0], [math.nan], [0.01, math.nan], [math.inf], math.inf])
 def test_frequencies_that_are_not_finite_and_non_negative_are_refused(demo, f_hz):
     em = demo[0].error_model
     with pytest.raises(psdbound.InputError, match="frequencies must"):
         em.psd(f_hz)
     with pytest.raises(psdbound.InputError, match="frequencies must"):
         em.sampled_psd(f_hz)
+
+
+@pytest.mark.parametrize("f_hz", ["a", [0.01 + 1j], 0.01j])
+def test_frequencies_that_are_not_real_numbers_are_named(demo, f_hz):
+    em = demo[0].error_model
+    for call in (em.psd, em.sampled_psd):
+        with pytest.raises(psdbound.InputError, match="f_hz must be real numbers in Hz"):
+            call(f_hz)
