@@ -91,7 +91,8 @@ def check_writable_folder(path: str | os.PathLike[str], *, option: str = "output
     ------
     InputError
         ``path`` is an existing file, lies below a file, or cannot be
-        written (nothing is created by the check).
+        written (the check leaves nothing behind: its probe folder is
+        removed at once).
     """
     p = Path(path)
     if p.is_symlink() and not p.exists():
@@ -105,6 +106,7 @@ def check_writable_folder(path: str | os.PathLike[str], *, option: str = "output
             )
         if not os.access(p, os.W_OK | os.X_OK):
             raise InputError(f"{option}: the folder is not writable (permission denied)", path=p)
+        _probe(p, f"{option}: the folder is not writable", p)
         return p
     anc = _first_existing(p.parent if p.parent != p else p)
     if not anc.is_dir():
@@ -116,7 +118,24 @@ def check_writable_folder(path: str | os.PathLike[str], *, option: str = "output
         raise InputError(
             f"{option} cannot be created: {anc} is not writable (permission denied)", path=p
         )
+    _probe(anc, f"{option} cannot be created: {anc} is not writable", p)
     return p
+
+
+def _probe(folder: Path, message: str, path: Path) -> None:
+    """Create and remove an empty folder in ``folder``: what ``os.access`` cannot tell.
+
+    ``os.access`` answers from permissions: for root, or on a file system that
+    refuses new entries whatever they say (``/proc``, a read-only or full
+    mount, some network shares), it says yes and the run would fail at its
+    end, after the analysis.
+    """
+    try:
+        os.rmdir(tempfile.mkdtemp(prefix=".psdbound-probe-", dir=folder))
+    except OSError as exc:
+        raise InputError(
+            f"{message} ({exc.strerror or exc}; nothing was written)", path=path
+        ) from None
 
 
 def check_output_file(

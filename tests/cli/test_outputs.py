@@ -143,3 +143,20 @@ def test_fit_default_folder_is_checked_too(obs, capsys):
     code, err = _fit(capsys)
     assert code == 2
     assert "reports/a: --out is an existing folder that is not a psdbound output" in err
+
+
+def test_a_folder_the_file_system_refuses_is_named_before_the_fit(obs, capsys, monkeypatch):
+    # os.access answers from permissions (yes for root, or on /proc, a read-only
+    # or full mount): the probe folder is what the file system really says
+    import errno
+    import tempfile
+
+    def refuse(*args, **kwargs):
+        raise OSError(errno.EROFS, "Read-only file system")
+
+    monkeypatch.setattr(tempfile, "mkdtemp", refuse)
+    for out in ("new/run", "."):
+        code, err = _fit(capsys, "--out", out, "--overwrite")
+        assert code == 2 and "not writable (Read-only file system; nothing was written)" in err
+        assert len(err.splitlines()) == 1 and "reading" not in err
+    assert sorted(p.name for p in obs.iterdir()) == ["a.rnx", "nav.rnx"]
