@@ -52,18 +52,17 @@ def read_samples(path: str | Path) -> tuple[NDArray[np.float64], NDArray[np.floa
     p = Path(path)
     if not p.is_file():
         raise InputError("no such file", path=p)
+    if p.stat().st_size == 0:
+        raise InputError(
+            "file is empty; expected a header line naming an error column "
+            f"({', '.join(_ERROR_NAMES)}), then one row of numbers per sample, or a .npy array",
+            path=p,
+        )
     try:
-        if p.suffix == ".npy":
-            a = np.load(p, allow_pickle=False).astype(float)
-            if a.ndim == 1:
-                return a, None
-            if a.ndim == 2 and a.shape[1] in (1, 2):
-                return a[:, 0], (a[:, 1] if a.shape[1] == 2 else None)
-            raise InputError(f"array shape {a.shape}: expected (n,), (n, 1) or (n, 2)", path=p)
-        text = p.read_text()
-        delim = "," if "," in text.splitlines()[0] else None
-        data = np.genfromtxt(io.StringIO(text), delimiter=delim, names=True, dtype=float)
+        columns = _read_npy(p) if p.suffix == ".npy" else _read_text(p)
     except (OSError, ValueError, IndexError) as exc:
+        if isinstance(exc, InputError):
+            raise
         raise InputError(
             f"cannot read samples ({' '.join(str(exc).split())[:160]}); expected a header line "
             f"naming an error column ({', '.join(_ERROR_NAMES)}) and optionally an elevation "
@@ -71,17 +70,55 @@ def read_samples(path: str | Path) -> tuple[NDArray[np.float64], NDArray[np.floa
             "whitespace-separated, or a .npy array",
             path=p,
         ) from None
-    names = [n.lower() for n in (data.dtype.names or ())]
+    if columns[0][1].size == 0:
+        raise InputError("no samples: the file has its header line only", path=p)
+    for name, column in columns:
+        _check_numbers(p, name, column)
+    return columns[0][1], (columns[1][1] if len(columns) > 1 else None)
+
+
+_Columns = list[tuple[str, NDArray[np.float64]]]
+
+
+def _read_npy(p: Path) -> _Columns:
+    """Return the error column and, when present, the elevation column of a ``.npy`` array."""
+    a = np.load(p, allow_pickle=False).astype(float)
+    if a.ndim == 1:
+        return [("error", a)]
+    if a.ndim == 2 and a.shape[1] in (1, 2):
+        return [("error", a[:, 0])] + ([("elevation", a[:, 1])] if a.shape[1] == 2 else [])
+    raise InputError(f"array shape {a.shape}: expected (n,), (n, 1) or (n, 2)", path=p)
+
+
+def _read_text(p: Path) -> _Columns:
+    """Return the named error column and, when present, the elevation column of a table."""
+    text = p.read_text()
+    delim = "," if "," in text.splitlines()[0] else None
+    data = np.genfromtxt(io.StringIO(text), delimiter=delim, names=True, dtype=float)
+    cols = data.dtype.names or ()
+    names = [n.lower() for n in cols]
     err = next((n for n in names if n in _ERROR_NAMES), None)
     if err is None:
         raise InputError(
             f"no error column: header has {names}, expected one of {_ERROR_NAMES}", path=p
         )
+    out = [(err, np.atleast_1d(data[cols[names.index(err)]]).astype(float))]
     el = next((n for n in names if n in _EL_NAMES), None)
-    cols = data.dtype.names or ()
-    e = np.atleast_1d(data[cols[names.index(err)]]).astype(float)
-    elev = None if el is None else np.atleast_1d(data[cols[names.index(el)]]).astype(float)
-    return e, elev
+    if el is not None:
+        out.append((el, np.atleast_1d(data[cols[names.index(el)]]).astype(float)))
+    return out
+
+
+def _check_numbers(p: Path, name: str, column: NDArray[np.float64]) -> None:
+    """Refuse a column with missing or non-numeric cells (read as NaN), naming the first."""
+    bad = np.flatnonzero(~np.isfinite(column))
+    if bad.size:
+        raise InputError(
+            f"column {name!r}: {bad.size} of {column.size} samples are missing, not numbers "
+            f"or infinite (the first is sample {int(bad[0]) + 1}, counted from 1 below the "
+            "header); fix or remove those rows",
+            path=p,
+        )
 
 
 def _qq_png(result: OverboundResult) -> bytes:

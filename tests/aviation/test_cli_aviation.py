@@ -51,8 +51,35 @@ def test_overbound_nan_is_input_error(tmp_path):
     f = tmp_path / "e.csv"
     f.write_text("error,elevation\n" + "1.0,20\n" * 200 + "nan,20\n")
     args = _parse(overbound, ["overbound", str(f)])
-    with pytest.raises(InputError, match=r"\[15, 30\) deg: 1 sample\(s\) are NaN"):
+    with pytest.raises(InputError, match=r"column 'error': 1 of 201 .* sample 201, counted"):
         overbound.run(args)
+
+
+@pytest.mark.parametrize(
+    ("text", "match"),
+    [
+        ("", r"e\.csv: file is empty; expected a header line"),
+        ("error,elevation\n", r"e\.csv: no samples: the file has its header line only"),
+        (  # a cell that is not a number was read as NaN and used: now named
+            "error,elevation\n0.1,30\n0.2,abc\n",
+            r"column 'elevation': 1 of 2 samples are missing, not numbers .* sample 2,",
+        ),
+        ("error,elevation\n0.1,30\n,40\n", r"column 'error': 1 of 2 .* sample 2,"),
+    ],
+)
+def test_overbound_unusable_tables_are_named(tmp_path, text, match):
+    f = tmp_path / "e.csv"
+    f.write_text(text)
+    with pytest.raises(InputError, match=match):
+        overbound.run(_parse(overbound, ["overbound", str(f)]))
+
+
+def test_overbound_nan_in_npy_is_named(tmp_path):
+    a = np.column_stack([np.ones(300), np.full(300, 50.0)])
+    a[7, 0] = np.inf
+    np.save(tmp_path / "e.npy", a)
+    with pytest.raises(InputError, match=r"column 'error': 1 of 300 .* sample 8,"):
+        overbound.run(_parse(overbound, ["overbound", str(tmp_path / "e.npy")]))
 
 
 def test_budget_prints_vpl(capsys):
