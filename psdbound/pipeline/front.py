@@ -350,14 +350,19 @@ class FitResults:
 
 
 def _names(
-    paths: Sequence[str | os.PathLike[str]] | str | os.PathLike[str] | None,
+    paths: Sequence[str | os.PathLike[str]] | str | os.PathLike[str] | None, argument: str
 ) -> tuple[str, ...]:
     """File names of a path, a sequence of paths or None."""
     if paths is None:
         return ()
     if isinstance(paths, str | os.PathLike):
         paths = [paths]
-    return tuple(os.fspath(p) for p in paths)
+    try:
+        return tuple(os.fspath(p) for p in paths)  # type: ignore[union-attr]
+    except TypeError:
+        raise InputError(
+            f"{argument} must be a file name or a list of file names, got {paths!r}"
+        ) from None
 
 
 def _config_from(
@@ -367,7 +372,7 @@ def _config_from(
     options: dict[str, Any],
 ) -> FitConfig:
     cfg = config if config is not None else FitConfig()
-    files = {"obs": _names(obs), "nav": _names(nav)}
+    files = {"obs": _names(obs, "obs"), "nav": _names(nav, "nav")}
     cfg = cfg.updated("inputs", **{k: v for k, v in files.items() if v})
     sections = {f.name for f in fields(FitConfig)}
     owners: dict[str, list[str]] = {}

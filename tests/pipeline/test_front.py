@@ -113,6 +113,12 @@ def test_options_by_section_or_unique_name():
         _config_from([], None, None, {"frobnicate": 1})
 
 
+@pytest.mark.parametrize(("obs", "nav", "named"), [(1, None, "obs"), ("a.rnx", 123, "nav")])
+def test_file_arguments_that_are_not_file_names_are_named(obs, nav, named):
+    with pytest.raises(InputError, match=f"{named} must be a file name or a list of file names"):
+        _config_from(obs, nav, None, {})
+
+
 def test_import_psdbound_is_light():
     code = "import sys, psdbound; print('matplotlib' in sys.modules, 'scipy' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
