@@ -79,6 +79,20 @@ __all__ = [
 ]
 
 _REL_TOL = 1e-6
+#: The fields of a result file the bound is read from (the rest need not be there):
+#: ``read_document``'s check, before the bound's own checks of each value.
+RESULT_FIELDS = (
+    "schema_version",
+    "bound",
+    "bound.sigma_gm_m",
+    "bound.tau_s",
+    "bound.sigma_wn_m",
+    "bound.n_wn_two_sided_m2_hz",
+    "sampling",
+    "sampling.interval_s",
+    "sampling.nyquist_hz",
+    "mapping",
+)
 
 
 class GMStateSpace(NamedTuple):
@@ -280,7 +294,8 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
             inconsistent. The message names the file and the key.
         """
         p = Path(path)
-        return cls._from_document(read_document(p), p, allow_not_bounded, stacklevel=3)
+        doc = read_document(p, required=RESULT_FIELDS)
+        return cls._from_document(doc, p, allow_not_bounded, stacklevel=3)
 
     @classmethod
     def from_document(

@@ -24,6 +24,7 @@ from dataclasses import fields
 from pathlib import Path
 from typing import Any
 
+from psdbound.common.outputs import check_output_file
 from psdbound.errors import InputError
 from psdbound.pipeline.config import FitConfig
 from psdbound.pipeline.document import build_document
@@ -324,7 +325,14 @@ class FitResults:
 
     # ------------------------------------------------------------- output
     def to_json(self, path: str | os.PathLike[str]) -> Path:
-        """Write ``result.json`` atomically; return its path."""
+        """Write ``result.json`` atomically (replacing a file there); return its path.
+
+        Raises
+        ------
+        InputError
+            ``path`` is a folder, or its folder cannot be created or written.
+        """
+        check_output_file(path, overwrite=True, option="result file")
         return write_document(path, self.document)
 
     def report(self, out_dir: str | os.PathLike[str], *, pdf: bool = True) -> dict[str, Path]:

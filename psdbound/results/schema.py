@@ -5,17 +5,20 @@ from __future__ import annotations
 import json
 import math
 import os
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
 from psdbound.common import atomic_write_text
 from psdbound.errors import InputError
 from psdbound.results.jsonfile import COMPACT_SECTIONS, plain_json_text, to_jsonable
+from psdbound.results.jsonschema import load_schema
 
 __all__ = [
     "SCHEMA_VERSION",
     "NUMBER_FIELDS",
     "REQUIRED_FIELDS",
+    "missing_field",
     "number_problems",
     "get_field",
     "write_document",
@@ -24,30 +27,17 @@ __all__ = [
 
 SCHEMA_VERSION = "1"
 
-#: Dotted paths every result file must contain.
-REQUIRED_FIELDS = (
-    "schema_version",
-    "method",
-    "bound.sigma_gm_m",
-    "bound.tau_s",
-    "bound.sigma_wn_m",
-    "bound.n_wn_two_sided_m2_hz",
-    "cutoff.f_c_hz",
-    "cutoff.source",
-    "sampling.interval_s",
-    "sampling.nyquist_hz",
-    "mapping",
-    "windows.count",
-    "windows.total_duration_s",
-    "windows.per_window",
-    "validation",
-    "warnings",
-    "provenance.inputs",
-    "provenance.versions",
-    "provenance.configuration",
-    "provenance.created_utc",
-    "figures",
-)
+
+def _required_paths(spec: dict[str, Any], prefix: str = "") -> Iterator[str]:
+    """Dotted paths of every field the schema requires, parents before children."""
+    for key in spec.get("required", ()):
+        yield prefix + key
+        yield from _required_paths(spec.get("properties", {}).get(key, {}), f"{prefix}{key}.")
+
+
+#: Dotted paths every result file must contain: every field ``result.schema.json``
+#: requires (its one home), parents before their children.
+REQUIRED_FIELDS: tuple[str, ...] = tuple(_required_paths(load_schema("result")))
 
 #: Dotted paths documented as numbers: always finite numbers in a result, never ``null``.
 #: The values of ``NULLABLE_WHEN`` may be ``null`` for the method named there.
@@ -104,6 +94,37 @@ def get_field(document: dict[str, Any], dotted: str) -> Any:
     return cur
 
 
+def missing_field(
+    document: dict[str, Any], required: Sequence[str] = REQUIRED_FIELDS
+) -> str | None:
+    """Return the first of the required fields the document lacks, or None.
+
+    A field inside an object is required only where that object is not
+    ``null``: the schema allows ``null`` for some (``bound.pooled`` of the
+    envelope rule).
+
+    Parameters
+    ----------
+    document : dict
+        A result document.
+    required : sequence of str, default :data:`REQUIRED_FIELDS`
+        Dotted fields, parents before their children.
+
+    Returns
+    -------
+    str or None
+    """
+    for f in required:
+        parent, _, key = f.rpartition(".")
+        try:
+            node = get_field(document, parent) if parent else document
+        except KeyError:  # its parent is missing: reported as that, earlier in the list
+            continue
+        if node is not None and not (isinstance(node, dict) and key in node):
+            return f
+    return None
+
+
 def write_document(path: str | os.PathLike[str], document: dict[str, Any]) -> Path:
     """Write a result document as JSON, atomically.
 
@@ -136,13 +157,18 @@ def write_document(path: str | os.PathLike[str], document: dict[str, Any]) -> Pa
     return atomic_write_text(path, plain_json_text(data, compact=COMPACT_SECTIONS))
 
 
-def read_document(path: str | os.PathLike[str]) -> dict[str, Any]:
+def read_document(
+    path: str | os.PathLike[str], *, required: Sequence[str] = REQUIRED_FIELDS
+) -> dict[str, Any]:
     """Read and check a result file.
 
     Parameters
     ----------
     path : str or path-like
         A ``result.json`` written by psdbound.
+    required : sequence of str, default :data:`REQUIRED_FIELDS`
+        Dotted fields it must hold (parents before children); a reader that
+        needs only some (the bound export) names those.
 
     Returns
     -------
@@ -176,11 +202,9 @@ def read_document(path: str | os.PathLike[str]) -> dict[str, Any]:
             f"result schema version {version!r} is not supported (expected {SCHEMA_VERSION!r})",
             path=p,
         )
-    for f in REQUIRED_FIELDS:
-        try:
-            get_field(data, f)
-        except KeyError:
-            raise InputError(f"result file lacks the field {f!r}", path=p) from None
+    missing = missing_field(data, required)
+    if missing is not None:
+        raise InputError(f"result file lacks the field {missing!r}", path=p)
     bad = number_problems(data)
     if bad:
         raise InputError(f"no number where the schema documents one: {bad[0]}", path=p)

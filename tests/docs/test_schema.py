@@ -67,6 +67,30 @@ def test_schema_requires_what_the_reader_requires():
             spec = spec["properties"][part]
 
 
+def test_the_reader_requires_every_field_the_schema_requires(demo_doc, tmp_path):
+    from psdbound.results import REQUIRED_FIELDS
+
+    # REQUIRED_FIELDS is derived from the schema (its one home), nested ones included
+    assert {"verdict", "error_model.state_space.phi", "bound.pooled.coverage"} <= set(
+        REQUIRED_FIELDS
+    )
+    p = tmp_path / "result.json"
+    for dotted in ("verdict", "error_model", "bound.pooled.coverage", "screening.excluded"):
+        doc = copy.deepcopy(_json_roundtrip(demo_doc))
+        *parents, leaf = dotted.split(".")
+        node = doc
+        for key in parents:
+            node = node[key]
+        del node[leaf]
+        p.write_text(json.dumps(doc))
+        with pytest.raises(InputError, match=f"lacks the field '{dotted}'"):
+            psdbound.load(p)  # was a KeyError from FitResults for 'verdict'
+    doc = _json_roundtrip(demo_doc)
+    doc["bound"]["pooled"] = None  # null is allowed (the envelope rule): nothing inside required
+    p.write_text(json.dumps(doc))
+    assert psdbound.load(p).verdict == demo_doc["verdict"]
+
+
 def test_schema_is_shipped_as_package_data():
     from importlib import resources
 

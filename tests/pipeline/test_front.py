@@ -137,3 +137,11 @@ def test_kalman_bound_in_memory_equals_the_file_s(demo_fit, tmp_path):
         from_file.tau_s,
         from_file.sigma_wn_m,
     )
+
+
+def test_to_json_names_a_folder_and_replaces_a_file(demo_fit, tmp_path):
+    with pytest.raises(InputError, match="result file is an existing folder"):
+        demo_fit.to_json(tmp_path)  # was IsADirectoryError from the atomic rename
+    target = tmp_path / "r.json"
+    target.write_text("old")
+    assert psdbound.load(demo_fit.to_json(target)).verdict == demo_fit.verdict

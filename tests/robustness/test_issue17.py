@@ -164,7 +164,8 @@ def test_documented_numbers_are_never_null(tmp_path):
     }
     assert number_problems(da) == []  # no high-pass for dual-antenna: null by design
     full: dict = {}
-    for f in REQUIRED_FIELDS:  # a complete document, every field filled with a number
+    leaves = [f for f in REQUIRED_FIELDS if not any(g.startswith(f + ".") for g in REQUIRED_FIELDS)]
+    for f in leaves:  # a complete document, every required leaf filled with a number
         *parents, leaf = f.split(".")
         node = full
         for k in parents:
