@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -279,10 +280,15 @@ class SatellitePass:
         """Pass length, s."""
         return float(self.t_gps_s[-1] - self.t_gps_s[0])
 
-    @property
+    @cached_property
     def max_rate_rad_s(self) -> float:
         """Largest ``|d el / dt|``, rad/s."""
         return float(np.max(np.abs(np.gradient(self.elevation_rad, self.t_gps_s))))
+
+    @cached_property
+    def _spline(self) -> CubicSpline:
+        """The elevation's cubic spline (built once: every reflector resamples the pass)."""
+        return CubicSpline(self.t_gps_s, self.elevation_rad)
 
     @property
     def label(self) -> str:
@@ -302,7 +308,7 @@ class SatellitePass:
         t_gps_s, elevation_rad : ndarray of float64
         """
         t = np.arange(self.t_gps_s[0], self.t_gps_s[-1], float(dt_s))
-        return t, CubicSpline(self.t_gps_s, self.elevation_rad)(t)
+        return t, self._spline(t)
 
 
 def pass_track(
