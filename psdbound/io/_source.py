@@ -18,7 +18,7 @@ __all__ = ["read_bytes"]
 _GZIP_MAGIC = b"\x1f\x8b"
 _Z_MAGIC = b"\x1f\x9d"
 _BZ2_MAGIC = b"BZh"
-_ZIP_MAGIC = b"PK\x03\x04"
+_ZIP_MAGIC = (b"PK\x03\x04", b"PK\x05\x06")  # a member's header; an empty archive's end
 
 
 def read_bytes(path: str | os.PathLike[str]) -> bytes:
@@ -74,11 +74,15 @@ def _decompress(p: Path, raw: bytes) -> bytes:
     try:
         if raw[:2] == _GZIP_MAGIC:
             raw = gzip.decompress(raw)
-        elif raw[:2] == _Z_MAGIC or raw[:3] == _BZ2_MAGIC or raw[:4] == _ZIP_MAGIC:
+        elif raw[:4] in _ZIP_MAGIC:
+            raw = _zip_member(p)
+            if raw[:2] in (_GZIP_MAGIC, _Z_MAGIC) or raw[:3] == _BZ2_MAGIC:
+                raw = _decompress(p, raw)  # a compressed file inside the archive
+        elif raw[:2] == _Z_MAGIC or raw[:3] == _BZ2_MAGIC:
             import hatanaka
 
             raw = hatanaka.decompress(raw)
-    except MemoryError:
+    except (MemoryError, InputError):
         raise
     except Exception as exc:  # gzip/zlib/bz2/zip/LZW errors: the compressed stream is damaged
         detail = " ".join(str(exc).split()) or type(exc).__name__
@@ -88,9 +92,20 @@ def _decompress(p: Path, raw: bytes) -> bytes:
     return raw
 
 
+def _zip_member(p: Path) -> bytes:
+    """Return the bytes of a zip archive's one file member (refused when it has none)."""
+    import zipfile
+
+    names = zip_members(p)
+    if not names:
+        raise InputError("zip archive holds no file; expected one RINEX or SP3 file", path=p)
+    with zipfile.ZipFile(p) as z:
+        return z.read(names[0])
+
+
 def _one_member(p: Path, raw: bytes) -> None:
     """Refuse a zip archive of several files, listing them (the readers take one file)."""
-    names = zip_members(p) if raw[:4] == _ZIP_MAGIC else []
+    names = zip_members(p) if raw[:4] in _ZIP_MAGIC else []
     if len(names) > 1:
         shown = ", ".join(names[:6]) + (f" and {len(names) - 6} more" if len(names) > 6 else "")
         raise InputError(

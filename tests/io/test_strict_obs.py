@@ -316,6 +316,25 @@ def test_damaged_gzip_and_unreadable_files(tmp_path, monkeypatch):
         read_obs(p)
 
 
+def test_zip_archives_of_one_file_read_like_the_file(tmp_path):
+    import zipfile
+
+    text = _text()
+    plain = read_obs(_write(tmp_path, text, "a.rnx"))
+    for name, data in (("a.rnx", text.encode()), ("a.rnx.gz", gzip.compress(text.encode()))):
+        with zipfile.ZipFile(tmp_path / f"{name}.zip", "w", zipfile.ZIP_DEFLATED) as z:
+            z.writestr(name, data)  # a plain member, and a gzip file inside the archive
+        got = read_obs(tmp_path / f"{name}.zip")
+        np.testing.assert_array_equal(got.blocks["G"].values, plain.blocks["G"].values)
+    zipfile.ZipFile(tmp_path / "empty.zip", "w").close()  # was 'not a RINEX file ... PK'
+    with pytest.raises(InputError, match=r"empty\.zip: zip archive holds no file"):
+        read_obs(tmp_path / "empty.zip")
+    with zipfile.ZipFile(tmp_path / "note.zip", "w") as z:
+        z.writestr("note.txt", "hello\n")  # was 'cannot decompress: file is too short ...'
+    with pytest.raises(InputError, match=r"note\.zip, line 1: not a RINEX file.*'hello'"):
+        read_obs(tmp_path / "note.zip")
+
+
 def test_clean_files_give_no_warning(tmp_path):
     with warnings.catch_warnings():
         warnings.simplefilter("error")
