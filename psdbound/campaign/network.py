@@ -104,6 +104,9 @@ def _time_figure(doc: dict[str, Any]) -> Any:
     )
     fig, axes = plt.subplots(1, 3, figsize=(11, 3.6))
     pooled = {s["station"]: s for s in doc["stations"]}
+    dates = [dt.date.fromisoformat(d["day"]) for d in doc["days"]] or [dt.date(2000, 1, 1)]
+    first, last = min(dates), max(dates)
+    step = max(1, math.ceil(((last - first).days + 1) / 10))  # at most about 10 labels
     for k, station in enumerate(dict.fromkeys(d["station"] for d in doc["days"])):
         days = [d for d in doc["days"] if d["station"] == station and d.get("fitted")]
         x = [dt.date.fromisoformat(d["day"]) for d in days]
@@ -114,7 +117,13 @@ def _time_figure(doc: dict[str, Any]) -> Any:
                 ax.axhline(scale * st[key], color=f"C{k % 10}", ls="--", lw=1)
             ax.set_ylabel(label)
     for ax in axes:
-        ax.xaxis.set_major_locator(mdates.DayLocator())
+        # the days' own span, half a day either side: one day alone would otherwise be
+        # widened by matplotlib to years, with a tick per day (thousands of them)
+        ax.set_xlim(
+            dt.datetime.combine(first, dt.time()) - dt.timedelta(hours=12),
+            dt.datetime.combine(last, dt.time()) + dt.timedelta(hours=12),
+        )
+        ax.xaxis.set_major_locator(mdates.DayLocator(interval=step))
         ax.xaxis.set_major_formatter(mdates.DateFormatter("%Y-%m-%d"))
         ax.set_xlabel("day")
         ax.tick_params(axis="x", labelrotation=30, labelsize=8)

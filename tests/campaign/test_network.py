@@ -118,3 +118,27 @@ def test_network_page_as_a_person_sees_it(network, tmp_path):
     assert shot.stat().st_size > 20_000 and not_blank(shot) > 0.05
     dom = chromium(page, tmp_path / "ud2", "--dump-dom")
     assert all(name in dom for name in STATIONS) and "station-map" in dom
+
+
+def test_one_day_campaign_time_figure_spans_that_day_without_thousands_of_ticks():
+    # a campaign of one station-day: matplotlib widened the single date to about four
+    # years and the day locator asked for 1,461 ticks (33 MAXTICKS warnings in the log)
+    import datetime as dt
+    import warnings
+
+    from matplotlib.dates import num2date
+
+    from psdbound.campaign.network import _time_figure
+
+    day = {"station": "ESBC", "day": "2020-06-25", "fitted": True}
+    doc = {
+        "stations": [{"station": "ESBC", "n_pooled": 1, "sigma_gm_m": 0.0067, "tau_s": 288.8}],
+        "days": [{**day, "sigma_gm_m": 0.0067, "tau_s": 288.8, "sigma_wn_m": 0.0}],
+    }
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fig = _time_figure(doc)
+    for ax in fig.axes:
+        lo, hi = (num2date(x).replace(tzinfo=None) for x in ax.get_xlim())
+        assert hi - lo == dt.timedelta(days=1)
+        assert len(ax.get_xticks()) == 1
