@@ -347,7 +347,11 @@ def bound_series(
         Prior upper limit of the time constant, seconds: where the data do
         not bound it, the bound covers the admitted models with time
         constants up to this below the lowest band
-        (:mod:`psdbound.spectra.lowfreq`).
+        (:mod:`psdbound.spectra.lowfreq`). The default is carrier-phase
+        multipath's (raw time constants of 10-900 s); for another error (an
+        inertial sensor's, a clock's) give the longest time constant it can
+        have. Where the data admit only longer ones the verdict is
+        ``"not-bounded"`` and its reason names this option.
     low_frequency_policy : {"prior", "refuse"}, default "prior"
         ``"refuse"``: not bounded when the statement below the lowest band
         would rest on the prior.
