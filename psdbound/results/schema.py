@@ -204,7 +204,11 @@ def read_document(
         )
     missing = missing_field(data, required)
     if missing is not None:
-        raise InputError(f"result file lacks the field {missing!r}", path=p)
+        raise InputError(
+            f"result file lacks the field {missing!r}, which schema version {SCHEMA_VERSION} "
+            "requires (a file written by an older psdbound, or edited: fit again)",
+            path=p,
+        )
     bad = number_problems(data)
     if bad:
         raise InputError(f"no number where the schema documents one: {bad[0]}", path=p)
