@@ -30,6 +30,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import NDArray
 
 from psdbound.errors import InputError
 from psdbound.io._body_fast import Scan, scan_v3
@@ -64,6 +65,13 @@ class RawBlock:
     values: np.ndarray
     lli: np.ndarray
     ssi: np.ndarray
+
+
+#: What a data section's parser returns: epochs (GPS s), epoch flags, the blocks of the
+#: systems read, warnings, and the system letters of every record of the file (read or not).
+Parsed = tuple[
+    NDArray[np.float64], NDArray[np.int8], dict[str, RawBlock], tuple[str, ...], tuple[str, ...]
+]
 
 
 def _error_line(header: ObsHeader, idx: int) -> int:
@@ -257,19 +265,21 @@ class _Collector:
                     self.lines[k],
                 )
 
-    def finish(
-        self, codes_wanted: Collection[str] | None, offset: int
-    ) -> tuple[np.ndarray, np.ndarray, dict[str, RawBlock], tuple[str, ...]]:
-        """Return epochs (GPS s), epoch flags, the per-system blocks and warnings."""
+    def finish(self, codes_wanted: Collection[str] | None, offset: int) -> Parsed:
+        """Return epochs (GPS s), epoch flags, the per-system blocks, warnings and the systems.
+
+        The systems are those of every record of the file, read or not.
+        """
+        seen = tuple(sorted(self.seen))
         if len(self.times) == 0:
-            return np.zeros(0), np.zeros(0, np.int8), {}, ()
+            return np.zeros(0), np.zeros(0, np.int8), {}, (), seen
         labels = self._epochs(offset == 3)
         absent = set(self.systems or ()) - set(self.records)
         if absent:
             raise missing_systems(self.path, absent, self.seen, "its observed satellites")
         t = _to_gps_s(labels, self.header)
         blocks = _build_blocks(self, len(self.flags), codes_wanted, offset)
-        return t, np.asarray(self.flags, dtype=np.int8), blocks, tuple(self.warnings)
+        return t, np.asarray(self.flags, dtype=np.int8), blocks, tuple(self.warnings), seen
 
 
 # ------------------------------------------------------------------- records
@@ -473,8 +483,8 @@ def parse_v3(
     path: Path,
     systems: Collection[str] | None,
     codes_wanted: Collection[str] | None,
-) -> tuple[np.ndarray, np.ndarray, dict[str, RawBlock], tuple[str, ...]]:
-    """Parse a RINEX 3 data section; return epochs (GPS s), flags, blocks and warnings."""
+) -> Parsed:
+    """Parse a RINEX 3 data section; return epochs (GPS s), flags, blocks, warnings, systems."""
     widths = {s: 3 + FIELD_WIDTH * len(t) for s, t in header.obs_types.items()}
     scan = scan_v3(body, systems, widths)
     if scan is not None:  # a regular data section, scanned at once
@@ -609,8 +619,8 @@ def parse_v2(
     path: Path,
     systems: Collection[str] | None,
     codes_wanted: Collection[str] | None,
-) -> tuple[np.ndarray, np.ndarray, dict[str, RawBlock], tuple[str, ...]]:
-    """Parse a RINEX 2.1x data section; return epochs (GPS s), flags, blocks and warnings."""
+) -> Parsed:
+    """Parse a RINEX 2.1x data section; return epochs (GPS s), flags, blocks, warnings, systems."""
     lines = _lines(body)
     n_lines = len(lines)
     lay = _v2_layout(header)

@@ -198,4 +198,5 @@ def merge_observations(files: Sequence[Observations]) -> Observations:
         epoch_flag=flags,
         blocks=blocks,
         warnings=tuple(notes),
+        systems_in_file=tuple(sorted({s for o in order for s in o.systems_in_file})),
     )

@@ -92,6 +92,9 @@ class Observations:
         What the reader repaired or ignored (repeated epochs dropped, header
         values that disagree with the data), one line each, naming the file
         and line; also issued as :class:`~psdbound.common.notices.PsdboundWarning`.
+    systems_in_file : tuple of str
+        System letters of every satellite record in the file, sorted, read or
+        not (``systems=`` of :func:`read_obs` reads some); empty when not known.
     """
 
     path: str
@@ -100,6 +103,7 @@ class Observations:
     epoch_flag: NDArray[np.int8]
     blocks: Mapping[str, SystemBlock]
     warnings: tuple[str, ...] = ()
+    systems_in_file: tuple[str, ...] = ()
 
     @property
     def systems(self) -> tuple[str, ...]:
@@ -498,9 +502,10 @@ def read_obs(
     want_codes = _wanted_codes(p, header, want_sys, codes, optional_codes)
     read_codes = _with_reference_codes(header, want_sys, want_codes)
     if header.version >= 3:  # a view, not a copy of the data section (tens of MB a day at 1 Hz)
-        t, flags, raw, notes = parse_v3(memoryview(text)[start:], header, p, want_sys, read_codes)
+        parsed = parse_v3(memoryview(text)[start:], header, p, want_sys, read_codes)
     else:
-        t, flags, raw, notes = parse_v2(text[start:], header, p, want_sys, read_codes)
+        parsed = parse_v2(text[start:], header, p, want_sys, read_codes)
+    t, flags, raw, notes, in_file = parsed
     if t.size == 0:
         raise NoDataError("no observation epochs after the header", path=p)
     check_phase_rates(t, raw, header, p)
@@ -514,7 +519,7 @@ def read_obs(
     blocks = {
         s: SystemBlock(b.system, b.sats, b.codes, b.values, b.lli, b.ssi) for s, b in raw.items()
     }
-    return Observations(str(p), header, t, flags, blocks, _issue(notes, p))
+    return Observations(str(p), header, t, flags, blocks, _issue(notes, p), in_file)
 
 
 def epoch_interval_s(

@@ -21,6 +21,7 @@ from psdbound.io import Observations, orbit_coverage, read_obs, read_orbit
 from psdbound.io.archive import extract_zip, file_kind, member_label, relabel, zip_members
 from psdbound.io.geometry import ecef_to_geodetic
 from psdbound.io.merge import merge_observations, same_station, station_key
+from psdbound.io.obs import SYSTEM_NAMES
 from psdbound.pipeline.config import InputsConfig
 from psdbound.pipeline.products import InputData
 
@@ -376,8 +377,24 @@ def read_inputs(
     )
     year = int(str(obs[0].times[0])[:4])
     notes += [str(w) for o in (*obs, orbit) for w in getattr(o, "warnings", ()) or ()]
-    notes += merged + coverage_notes
+    notes += merged + coverage_notes + _unanalysed(obs, options.system)
     return InputData(method, obs, orbit, files, rx, lat, lon, year, demo, tuple(notes))
+
+
+def _unanalysed(obs: Sequence[Observations], system: str) -> list[str]:
+    """Say which systems the files hold besides the one analysed (never left out silently)."""
+    notes = []
+    for o in obs:
+        others = [s for s in o.systems_in_file if s != system]
+        if others:
+            names = ", ".join(f"{SYSTEM_NAMES.get(s, s)} ({s})" for s in others)
+            notes.append(
+                f"{Path(o.path.split(' + ')[0]).name}: the file also holds {names} "
+                f"observations, not analysed: a fit analyses one system, here "
+                f"{SYSTEM_NAMES.get(system, system)} ({system}); give another with --system "
+                "(system= in psdbound.fit)"
+            )
+    return notes
 
 
 def _given_files(

@@ -69,4 +69,5 @@ def test_fit_on_rinex4_gives_the_rinex3_bound(tmp_path):
     assert 1e-3 < a["bound"]["sigma_gm_m"] < 0.05 and a["bound"]["tau_s"] > 0
     skipped = [w for w in b["warnings"] if "RINEX 4 navigation record(s) skipped" in w]
     assert len(skipped) == 1 and "EPH G CNAV 1" in skipped[0]
-    assert [w for w in b["warnings"] if w not in skipped] == a["warnings"]
+    same = [w.replace("ESBC4.crx", "ESBC3.rnx") for w in b["warnings"] if w not in skipped]
+    assert same == a["warnings"]  # the files' names aside (the systems not analysed)
