@@ -209,6 +209,25 @@ def _f_min_note(given_hz: float | None, stated_hz: float) -> tuple[str, ...]:
     )
 
 
+def _unresolved_note(psds: tuple[PSDEstimate, ...], stated_hz: float) -> tuple[str, ...]:
+    """Return a note when some windows do not resolve the lowest stated frequency.
+
+    Measured (``slowuneq`` of ``benchmarks/bound_coverage.py``): a slow
+    reflector in such a short window can lie above the bound there, unseen.
+    """
+    resolved = np.array([resolved_from_hz(p) for p in psds])
+    short = resolved > stated_hz * (1.0 + 1e-9)
+    if not short.any():
+        return ()
+    return (
+        f"{int(short.sum())} of {resolved.size} windows resolve only from "
+        f"{resolved.max():.4g} Hz, above the lowest stated frequency {stated_hz:.4g} Hz (set by "
+        "the longest windows): between the two the statement rests on the longer windows, "
+        "and a window of another shape that is short is not seen there; to state the bound "
+        f"only where every window resolves, give f_min_hz={resolved.max():.4g}",
+    )
+
+
 def _is_one_series(series: object) -> bool:
     """Whether the input is one series (an array or a flat list of numbers)."""
     if isinstance(series, np.ndarray):
@@ -420,7 +439,9 @@ def bound_series(
         psds=psds,
         bands=bands,
         limits=limits,
-        notes=notes + _f_min_note(given_f_min_hz, float(fit.f_min_hz)),
+        notes=notes
+        + _f_min_note(given_f_min_hz, float(fit.f_min_hz))
+        + _unresolved_note(psds, float(fit.f_min_hz)),
         model_set=ms,
         low_frequency=low,
         lowest_frequencies=sb.lowest,

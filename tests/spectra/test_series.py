@@ -131,3 +131,21 @@ def test_a_given_f_min_below_the_resolved_frequency_is_raised_with_a_note() -> N
     assert "f_min_hz" not in " ".join(psdbound.bound_series(x, 1.0).notes)
     above = psdbound.bound_series(x, 1.0, f_min_hz=0.02)
     assert above.f_min_hz == pytest.approx(0.02) and not above.notes
+
+
+def test_windows_that_do_not_resolve_the_lowest_stated_frequency_are_noted():
+    # f_min comes from the longest window; a short window of another shape is not seen
+    # below its own resolution (the slowuneq class of benchmarks/bound_coverage.py)
+    lengths = (900, 1800, 3600, 3600)
+    windows = [_white(n, seed) for seed, n in enumerate(lengths)]
+    res = psdbound.bound_series(windows, 1.0)
+    resolved = [resolved_from_hz(p) for p in res.psds]
+    assert res.f_min_hz == pytest.approx(min(resolved))
+    (note,) = [n for n in res.notes if "windows resolve only from" in n]
+    assert note.startswith("2 of 4 windows resolve only from 0.005556 Hz")
+    assert f"give f_min_hz={max(resolved):.4g}" in note
+    again = psdbound.bound_series(windows, 1.0, f_min_hz=max(resolved))
+    assert again.f_min_hz == pytest.approx(max(resolved))
+    assert not [n for n in again.notes if "windows resolve only from" in n]
+    same = psdbound.bound_series([_white(1800, seed) for seed in range(4)], 1.0)
+    assert not [n for n in same.notes if "windows resolve only from" in n]
