@@ -96,7 +96,7 @@ the last line::
     RESULT n_per_class=... worst_coverage=... worst_class=... hom30_var_ratio=...
     hom1hz_var_ratio=... fmin_T_max=... errors=... not_bounded=... all_classes_pass=...
 
-Speed (measured, one core, 2026-11): a run takes 0.1 s median, 0.4 s at
+Speed (measured, one core, 2026-11-27): a run takes 0.25-0.5 s median, 0.9 s at
 most, so the default 200 runs x 22 class-variants take about 30 min; no caps
 on the window counts or lengths were needed. Runs go one after another in
 this process.

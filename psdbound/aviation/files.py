@@ -60,9 +60,9 @@ def read_samples(path: str | Path) -> tuple[NDArray[np.float64], NDArray[np.floa
         )
     try:
         columns = _read_npy(p) if p.suffix == ".npy" else _read_text(p)
+    except InputError:
+        raise
     except (OSError, ValueError, IndexError) as exc:
-        if isinstance(exc, InputError):
-            raise
         raise InputError(
             f"cannot read samples ({' '.join(str(exc).split())[:160]}); expected a header line "
             f"naming an error column ({', '.join(_ERROR_NAMES)}) and optionally an elevation "

@@ -272,10 +272,12 @@ class ErrorModel:
     def _frequencies(f_hz: ArrayLike) -> NDArray[np.float64]:
         """``f_hz`` as floats; non-numeric, negative, NaN or infinite values refused."""
         try:
+            if np.iscomplexobj(f_hz):  # numpy would drop the imaginary part with a warning
+                raise TypeError
             f = np.asarray(f_hz, dtype=float)
         except (TypeError, ValueError):
             raise InputError(f"f_hz must be real numbers in Hz, got {f_hz!r}") from None
-        if np.iscomplexobj(f_hz) or not (np.isfinite(f) & (f >= 0)).all():
+        if not (np.isfinite(f) & (f >= 0)).all():
             raise InputError("frequencies must be finite numbers >= 0 Hz")
         return f
 

@@ -209,13 +209,14 @@ def _f_min_note(given_hz: float | None, stated_hz: float) -> tuple[str, ...]:
     )
 
 
-def _unresolved_note(psds: tuple[PSDEstimate, ...], stated_hz: float) -> tuple[str, ...]:
+def _unresolved_note(resolved_hz: list[float], stated_hz: float) -> tuple[str, ...]:
     """Return a note when some windows do not resolve the lowest stated frequency.
 
-    Measured (``slowuneq`` of ``benchmarks/bound_coverage.py``): a slow
-    reflector in such a short window can lie above the bound there, unseen.
+    ``resolved_hz``: where each window's estimate resolves from. Measured
+    (``slowuneq`` of ``benchmarks/bound_coverage.py``): a slow reflector in
+    such a short window can lie above the bound there, unseen.
     """
-    resolved = np.array([resolved_from_hz(p) for p in psds])
+    resolved = np.asarray(resolved_hz)
     short = resolved > stated_hz * (1.0 + 1e-9)
     if not short.any():
         return ()
@@ -408,8 +409,9 @@ def bound_series(
     opts = dict(estimator_options or {})
     psds = tuple(estimate_psd(x, dt_s, method=estimator, **opts) for x in stretches)
     given_f_min_hz = f_min_hz
+    resolved_hz = [resolved_from_hz(p) for p in psds]
     if f_min_hz is None:
-        f_min_hz = min(resolved_from_hz(p) for p in psds)
+        f_min_hz = min(resolved_hz)
     cl = _cluster_labels(clusters, cluster_correlation)
     sb = fit_stated_bound(
         psds,
@@ -441,7 +443,7 @@ def bound_series(
         limits=limits,
         notes=notes
         + _f_min_note(given_f_min_hz, float(fit.f_min_hz))
-        + _unresolved_note(psds, float(fit.f_min_hz)),
+        + _unresolved_note(resolved_hz, float(fit.f_min_hz)),
         model_set=ms,
         low_frequency=low,
         lowest_frequencies=sb.lowest,
