@@ -47,8 +47,10 @@ tau log-uniform in [3 dt, N dt / 4], sigma_WN uniform 0.3..3 mm:
 ``slowuneq``
     ``slow`` in windows of unequal lengths (each N drawn as in ``unequal``):
     a slow window shorter than the longest one does not resolve the lowest
-    stated frequencies (``f_min`` comes from the longest window), the gap
-    documented in ``docs/method/bound.rst``.
+    stated frequencies (``f_min`` comes from the longest window); drawn after
+    the method was built, it found the gap that :mod:`psdbound.spectra.unresolved`
+    and the cut peers of :mod:`psdbound.spectra.ordinates` narrow
+    (``docs/method/bound.rst``).
 ``two``
     Not first order: every window holds a fast reflector (tau log-uniform
     3..20 dt) and a slow one of the same sigma_GM (tau log-uniform

@@ -28,6 +28,7 @@ from psdbound.spectra.lowfreq import TAU_MAX_S, LowFrequency
 from psdbound.spectra.ordinates import lowest_ordinates
 from psdbound.spectra.pooled import PooledLimits
 from psdbound.spectra.stated import fit_stated_bound, statement
+from psdbound.spectra.unresolved import UnresolvedGroups
 from psdbound.stationarity.windowing import WindowSet
 
 __all__ = ["BoundModel", "BoundResults"]
@@ -71,6 +72,9 @@ class BoundResults:
         The bound's expected estimate at the windows' lowest Fourier
         frequencies (:mod:`psdbound.spectra.lowest`): data that went through
         no filter (dual antenna); None otherwise.
+    unresolved : UnresolvedGroups or None
+        The shape groups none of whose windows resolves the lowest stated
+        frequency, carried down to it (:mod:`psdbound.spectra.unresolved`).
     """
 
     bound: BoundFit
@@ -87,6 +91,7 @@ class BoundResults:
     low_frequency: LowFrequency | None = None
     cells: CellCheck | None = None
     lowest_frequencies: LowestFrequencies | None = None
+    unresolved: UnresolvedGroups | None = None
 
     @property
     def margins(self) -> NDArray[np.float64]:
@@ -123,7 +128,12 @@ class BoundResults:
             )
         assert self.pooled is not None and self.bands is not None
         return statement(
-            self.pooled, self.bands, self.low_frequency, self.lowest_frequencies, self.cells
+            self.pooled,
+            self.bands,
+            self.low_frequency,
+            self.lowest_frequencies,
+            self.cells,
+            self.unresolved,
         )
 
     def params(self) -> dict[str, float]:
@@ -337,6 +347,7 @@ class BoundModel:
             low_frequency=sb.low_frequency,
             cells=sb.cells,
             lowest_frequencies=sb.lowest,
+            unresolved=sb.unresolved,
             **common,
         )
 

@@ -49,8 +49,9 @@ def shape_groups(
     level (:attr:`WindowDeviations.shape_p`, two statistics), when its tilt is
     significant (:func:`tilted`), or, given ``lowest`` (the windows' narrow
     estimates below the bands, unfiltered data), when its estimate at its
-    lowest Fourier frequencies exceeds the other windows' more than its level
-    says (:func:`psdbound.spectra.ordinates.low_excess_p`; the three
+    lowest Fourier frequencies exceeds its peers' (windows of about its length,
+    and longer ones cut to it) more than its level says
+    (:func:`psdbound.spectra.ordinates.low_excess_p`; the three
     statistics then share ``shape_alpha``, Bonferroni). The tests on the bands
     miss a minority of slow strong reflectors whose excess lies below the
     lowest band (issue 27's example: 20 windows of 3 mm / 30 s and 2 of 6 mm /

@@ -176,10 +176,10 @@ class ModelSet:
 
 
 def _pooled_test_bands(
-    bands: BandSpectra, limits: PooledLimits, smoothing_hz: float
+    bands: BandSpectra, limits: PooledLimits, smoothing_hz: float, group: int
 ) -> tuple[BandSpectra, NDArray[np.float64], NDArray[np.float64]]:
-    """Group 0 on test bands: level-corrected pooled values and their degrees of freedom."""
-    rows = limits.groups == 0
+    """One group on test bands: level-corrected pooled values and their degrees of freedom."""
+    rows = limits.groups == group
     test = merge_bands(bands, min_window_dof=0.0, min_width_hz=2.0 * smoothing_hz)
     level = np.zeros(rows.sum()) if limits.level_log is None else limits.level_log[rows]
     s, nu = test.psd_m2_hz[rows], test.dof[rows]
@@ -308,10 +308,10 @@ def _corner_extents(corners: list[NDArray], idx: NDArray) -> NDArray[np.float64]
     )
 
 
-def _window_half_term(limits: PooledLimits) -> float:
-    """Return half the largest window term of group 0 (the sigmas' widening, log scale)."""
+def _window_half_term(limits: PooledLimits, group: int) -> float:
+    """Return half the largest window term of a group (the sigmas' widening, log scale)."""
     return (
-        float(np.nanmax(limits.window_term_log[0])) / 2.0
+        float(np.nanmax(limits.window_term_log[group])) / 2.0
         if (limits.window_term_log is not None)
         else 0.0
     )
@@ -325,6 +325,7 @@ def model_set(
     confidence_level: float = 0.95,
     smoothing_hz: float = 0.0,
     tau_max_s: float = 0.0,
+    group: int = 0,
 ) -> tuple[ModelSet | None, str]:
     """Return the GM + white-noise models consistent with the pooled spectrum.
 
@@ -346,6 +347,9 @@ def model_set(
         The search reaches at least twice this time constant, seconds (so
         that whether the data bound ``tau`` below a prior maximum can be
         read from the set).
+    group : int, default 0
+        The shape group whose windows the set describes (0: the main one;
+        :attr:`PooledLimits.groups`).
 
     Returns
     -------
@@ -358,7 +362,7 @@ def model_set(
     """
     if smoothing_hz <= 0 or bands.duration_s is None:
         return None, "the model set needs the multitaper estimator (its exact expectation)"
-    test, pooled, dof = _pooled_test_bands(bands, limits, smoothing_hz)
+    test, pooled, dof = _pooled_test_bands(bands, limits, smoothing_hz, group)
     have = np.isfinite(pooled) & (dof > 0)
     n_b = int(have.sum())
     if n_b < MIN_BANDS:
@@ -366,7 +370,7 @@ def model_set(
     lo, hi = test.edges_hz[:-1][have], np.minimum(test.edges_hz[1:][have], 0.5 / dt_s)
     pooled, dof = pooled[have], dof[have]
     lower, upper = _band_intervals(pooled, dof, confidence_level, n_b)
-    t_s = float(np.median(test.duration_s[limits.groups == 0]))
+    t_s = float(np.median(test.duration_s[limits.groups == group]))
     taus = _tau_grid(dt_s, float(lo[0]), t_s, tau_max_s)
     expected = _unit_expectations(lo, hi, taus, dt_s, t_s, smoothing_hz)
     if expected is None:
@@ -389,7 +393,7 @@ def model_set(
         return None, "no Gauss-Markov + white-noise model lies inside every band's interval"
     ext = _corner_extents(corners, idx)
     best, misfit = _best(unit, white_unit, pooled, dof, taus, ok)
-    widen = _window_half_term(limits)
+    widen = _window_half_term(limits, group)
     gm = np.sqrt(np.maximum(ext[:, :2], 0.0))
     wn = np.sqrt(np.maximum(ext[:, 2:], 0.0))
     out = ModelSet(

@@ -54,7 +54,6 @@ from scipy import stats
 from psdbound.spectra.bands import BandSpectra
 from psdbound.spectra.bound import BoundFit, ExtraRows
 from psdbound.spectra.expectation import lag_kernels
-from psdbound.spectra.lowfreq import LowFrequency
 from psdbound.spectra.ordinates import LOWEST_NW, LowestOrdinates
 from psdbound.spectra.pooled import MIN_GROUP_DOF, PooledLimits, fit_limits
 
@@ -211,7 +210,7 @@ def cover_lowest(
     lowest: LowestOrdinates,
     limits: PooledLimits,
     bands: BandSpectra,
-    low: LowFrequency,
+    floor: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
     *,
     objective: str = "variance",
     n_grid: int = 64,
@@ -228,8 +227,10 @@ def cover_lowest(
         The pooled limits (their groups, confidence level).
     bands : BandSpectra
         The statement's bands.
-    low : LowFrequency
-        The low-frequency rule's result (its envelope stays a constraint).
+    floor : (ndarray, ndarray), optional
+        Points the bound already lies above (Hz, m^2/Hz: the envelopes of
+        the low-frequency rule and of :mod:`psdbound.spectra.unresolved`),
+        kept as constraints of a refit.
     objective : {"variance", "area"}, default "variance"
         Tightness objective of a refit.
     n_grid : int, default 64
@@ -252,7 +253,7 @@ def cover_lowest(
             lowest.dt_s,
             objective=objective,
             n_grid=n_grid,
-            floor=low.floor(),
+            floor=floor,
             extra=req.rows,
         )
     return fit, LowestFrequencies(

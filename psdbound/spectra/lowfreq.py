@@ -69,6 +69,7 @@ __all__ = [
     "bound_below",
     "envelope_below",
     "low_frequency_reasons",
+    "model_envelope",
 ]
 
 #: Envelope frequencies below f_min, as fractions of it (1e-4: every admitted plateau is flat).
@@ -194,16 +195,40 @@ def envelope_below(
     tau_upper_s : float
         Largest admitted time constant (``inf`` at the search edge).
     """
-    sl, vx = ms.slices, ms.vertices
+    sl = ms.slices
     open_top = bool(ms.open_ends.get("tau_s", (False, False))[1])
     tau_upper = float("inf") if open_top or sl.size == 0 else float(sl[:, 0].max())
-    use = vx[vx[:, 0] <= tau_max_s * (1.0 + 1e-9)] if vx.size else vx
     f = f_min_hz * _FRACTIONS
+    return f, model_envelope(ms, dt_s, f, tau_max_s=tau_max_s), tau_upper
+
+
+def model_envelope(
+    ms: ModelSet, dt_s: float, f_hz: NDArray[np.float64], *, tau_max_s: float = TAU_MAX_S
+) -> NDArray[np.float64]:
+    """Return the largest PSD of the admitted models at ``f_hz``, raised by the window factor.
+
+    Parameters
+    ----------
+    ms : ModelSet
+        The model set, with its vertices.
+    dt_s : float
+        Sampling interval, seconds.
+    f_hz : ndarray
+        Frequencies, Hz.
+    tau_max_s : float, default :data:`TAU_MAX_S`
+        Only models with ``tau <= tau_max_s`` enter (``inf``: all).
+
+    Returns
+    -------
+    ndarray
+        m^2/Hz at ``f_hz``; empty when no admitted model has ``tau <= tau_max_s``.
+    """
+    vx = ms.vertices
+    use = vx[vx[:, 0] <= tau_max_s * (1.0 + 1e-9)] if vx.size else vx
     if use.size == 0:
-        return f, np.zeros(0), tau_upper
-    psd = np.stack([v * gm_psd_sampled(f, 1.0, tau, dt_s) + w * 2.0 * dt_s for tau, v, w in use])
-    env = psd.max(axis=0) * ms.window_factor
-    return f, env, tau_upper
+        return np.zeros(0)
+    psd = np.stack([v * gm_psd_sampled(f_hz, 1.0, tau, dt_s) + w * 2.0 * dt_s for tau, v, w in use])
+    return psd.max(axis=0) * ms.window_factor
 
 
 def bound_below(

@@ -28,6 +28,7 @@ from psdbound.spectra.models import GaussMarkovWhiteNoise
 from psdbound.spectra.ordinates import lowest_ordinates
 from psdbound.spectra.pooled import PooledLimits
 from psdbound.spectra.stated import fit_stated_bound, statement
+from psdbound.spectra.unresolved import UnresolvedGroups
 
 __all__ = ["SeriesBound", "bound_series", "split_stretches"]
 
@@ -80,6 +81,10 @@ class SeriesBound:
         The groups' mean spectra on cells of the estimator's resolution
         against the bound (:mod:`psdbound.spectra.cells`); None for an
         estimator other than the multitaper.
+    unresolved : UnresolvedGroups or None
+        The shape groups none of whose windows resolves ``f_min_hz``, and
+        the envelope the bound was held above between ``f_min_hz`` and
+        where they resolve (:mod:`psdbound.spectra.unresolved`).
     """
 
     bound: GaussMarkovWhiteNoise
@@ -96,6 +101,7 @@ class SeriesBound:
     low_frequency: LowFrequency | None = None
     lowest_frequencies: LowestFrequencies | None = None
     cells: CellCheck | None = None
+    unresolved: UnresolvedGroups | None = None
 
     @property
     def n_windows(self) -> int:
@@ -214,7 +220,8 @@ def _unresolved_note(resolved_hz: list[float], stated_hz: float) -> tuple[str, .
 
     ``resolved_hz``: where each window's estimate resolves from. Measured
     (``slowuneq`` of ``benchmarks/bound_coverage.py``): a slow reflector in
-    such a short window can lie above the bound there, unseen.
+    such a short window that the shape tests leave in a longer windows' group
+    can lie above the bound there, unseen.
     """
     resolved = np.asarray(resolved_hz)
     short = resolved > stated_hz * (1.0 + 1e-9)
@@ -223,9 +230,11 @@ def _unresolved_note(resolved_hz: list[float], stated_hz: float) -> tuple[str, .
     return (
         f"{int(short.sum())} of {resolved.size} windows resolve only from "
         f"{resolved.max():.4g} Hz, above the lowest stated frequency {stated_hz:.4g} Hz (set by "
-        "the longest windows): between the two the statement rests on the longer windows, "
-        "and a window of another shape that is short is not seen there; to state the bound "
-        f"only where every window resolves, give f_min_hz={resolved.max():.4g}",
+        "the longest windows): between the two the statement rests on the longer windows of "
+        "their shape group (a group of short windows alone is carried down by its admitted "
+        "models), and a short window of another shape that no test separates is not seen "
+        f"there; to state the bound only where every window resolves, give "
+        f"f_min_hz={resolved.max():.4g}",
     )
 
 
@@ -436,7 +445,7 @@ def bound_series(
         verdict=NOT_BOUNDED if reasons else BOUNDED,
         verdict_reasons=reasons,
         f_min_hz=float(fit.f_min_hz),
-        covers=statement(limits, bands, low, sb.lowest, sb.cells),
+        covers=statement(limits, bands, low, sb.lowest, sb.cells, sb.unresolved),
         fit=fit,
         psds=psds,
         bands=bands,
@@ -448,4 +457,5 @@ def bound_series(
         low_frequency=low,
         lowest_frequencies=sb.lowest,
         cells=sb.cells,
+        unresolved=sb.unresolved,
     )

@@ -9,11 +9,14 @@ One chain, used by :meth:`psdbound.spectra.BoundModel.fit`,
    models the data admit;
 3. :func:`~psdbound.spectra.lowfreq.bound_below`: the bound raised, where
    needed, above every admitted model below ``f_min``, down to 0 Hz;
-4. :func:`~psdbound.spectra.lowest.cover_lowest` (unfiltered data, when the
+4. :func:`~psdbound.spectra.unresolved.cover_unresolved`: where a shape group's
+   windows are all too short to resolve ``f_min``, the bound raised, where needed, above
+   the group's admitted models carried down to ``f_min``;
+5. :func:`~psdbound.spectra.lowest.cover_lowest` (unfiltered data, when the
    windows' lowest Fourier ordinates are given): the bound raised, where
    needed, so that its expected estimate there lies above each shape group's
    upper limit, whatever the truth's shape;
-5. :func:`~psdbound.spectra.cells.cover_cells`: the bound raised above any
+6. :func:`~psdbound.spectra.cells.cover_cells`: the bound raised above any
    cell of the estimator's resolution whose group mean refutes it (a peak
    narrower than its band).
 
@@ -39,7 +42,7 @@ from typing import Any, NamedTuple
 import numpy as np
 from numpy.typing import NDArray
 
-from psdbound.spectra.bands import BandSpectra, band_spectra
+from psdbound.spectra.bands import BandSpectra, band_spectra, resolved_from_hz
 from psdbound.spectra.bound import BoundFit
 from psdbound.spectra.cells import CellCheck, cover_cells
 from psdbound.spectra.estimators import PSDEstimate
@@ -48,6 +51,7 @@ from psdbound.spectra.lowest import LowestFrequencies, cover_lowest
 from psdbound.spectra.lowfreq import TAU_MAX_S, LowFrequency, bound_below
 from psdbound.spectra.ordinates import LowestOrdinates
 from psdbound.spectra.pooled import MIN_GROUP_DOF, PooledLimits, fit_pooled_bound, smoothing_hz
+from psdbound.spectra.unresolved import UnresolvedGroups, cover_unresolved, join_floors
 
 __all__ = ["StatedBound", "fit_stated_bound", "identification_bands", "statement"]
 
@@ -73,6 +77,8 @@ class StatedBound(NamedTuple):
         The check at the lowest Fourier frequencies (None: not made).
     cells : CellCheck or None
         The check on resolution cells (None: not a multitaper estimate).
+    unresolved : UnresolvedGroups or None
+        The groups whose windows do not resolve ``f_min``, carried down to it.
     """
 
     fit: BoundFit
@@ -83,6 +89,7 @@ class StatedBound(NamedTuple):
     low_frequency: LowFrequency
     lowest: LowestFrequencies | None = None
     cells: CellCheck | None = None
+    unresolved: UnresolvedGroups | None = None
 
 
 def fit_stated_bound(
@@ -176,10 +183,59 @@ def fit_stated_bound(
         n_grid=n_grid,
         reason=why,
     )
+    fit, unresolved, checked, cells = _data_checks(
+        fit,
+        psds,
+        bands,
+        id_bands,
+        limits,
+        low,
+        dt_s,
+        lowest=lowest,
+        power_response=power_response,
+        objective=objective,
+        n_grid=n_grid,
+    )
+    if ms is not None:  # the reported set contains the bound it accompanies
+        ms = ms.with_model("bound", fit.sigma_gm_m, fit.tau_s, fit.sigma_wn_m)
+    return StatedBound(fit, bands, limits, ms, why, low, checked, cells, unresolved)
+
+
+def _data_checks(
+    fit: BoundFit,
+    psds: Sequence[PSDEstimate],
+    bands: BandSpectra,
+    id_bands: BandSpectra,
+    limits: PooledLimits,
+    low: LowFrequency,
+    dt_s: float,
+    *,
+    lowest: LowestOrdinates | None,
+    power_response: Callable[[NDArray[np.float64]], NDArray[np.float64]] | None,
+    objective: str,
+    n_grid: int,
+) -> tuple[BoundFit, UnresolvedGroups, LowestFrequencies | None, CellCheck | None]:
+    """Run steps 4-6 of :func:`fit_stated_bound`: each raises the bound where data refute it.
+
+    Every step keeps the points of the steps before it (their floors and rows).
+    """
+    fit, unresolved = cover_unresolved(
+        fit,
+        [resolved_from_hz(p) for p in psds],
+        bands,
+        limits,
+        dt_s,
+        id_bands=id_bands,
+        smoothing_hz=smoothing_hz(psds),
+        floor=low.floor(),
+        objective=objective,
+        n_grid=n_grid,
+    )
+    floor = join_floors(low.floor(), unresolved.floor())
     checked = None
-    if lowest is not None:
+    if lowest is not None and lowest.j.size:
         fit, checked = cover_lowest(
-            fit, lowest, limits, bands, low, objective=objective, n_grid=n_grid
+            fit, lowest, limits, bands, floor, objective=objective, n_grid=n_grid
         )
     fit, cells = cover_cells(
         fit,
@@ -188,14 +244,12 @@ def fit_stated_bound(
         bands,
         dt_s,
         power_response=power_response,
-        floor=low.floor(),
+        floor=floor,
         extra=None if checked is None else checked.rows,
         objective=objective,
         n_grid=n_grid,
     )
-    if ms is not None:  # the reported set contains the bound it accompanies
-        ms = ms.with_model("bound", fit.sigma_gm_m, fit.tau_s, fit.sigma_wn_m)
-    return StatedBound(fit, bands, limits, ms, why, low, checked, cells)
+    return fit, unresolved, checked, cells
 
 
 def identification_bands(
@@ -255,6 +309,7 @@ def statement(
     low: LowFrequency | None = None,
     lowest: LowestFrequencies | None = None,
     cells: CellCheck | None = None,
+    unresolved: UnresolvedGroups | None = None,
 ) -> str:
     """Return what a bound above ``limits`` covers, in words (result.json ``bound.covers``).
 
@@ -270,6 +325,8 @@ def statement(
         The check at the lowest Fourier frequencies (its sentence is added).
     cells : CellCheck, optional
         The check on resolution cells (its sentence is added).
+    unresolved : UnresolvedGroups, optional
+        The groups carried down to ``f_min`` (its sentence is added when there are any).
 
     Returns
     -------
@@ -292,5 +349,5 @@ def statement(
             f"; group(s) {', '.join(map(str, merged))} on merged bands of at least "
             f"{MIN_GROUP_DOF:g} pooled degrees of freedom"
         )
-    parts = [text] + [p.sentence() for p in (low, lowest, cells) if p is not None]
-    return "; ".join(parts)
+    parts = [text] + [p.sentence() for p in (low, lowest, cells, unresolved) if p is not None]
+    return "; ".join(p for p in parts if p)

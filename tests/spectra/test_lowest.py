@@ -47,9 +47,12 @@ def test_narrow_estimate_has_the_exact_expectation_of_a_mean_removed_window() ->
     assert abs(gm_psd_sampled(np.array([f0]), 1.0, tau, dt)[0] / expected[0] - 1.0) > 0.2
 
 
-def test_no_ordinate_below_f_min_gives_none() -> None:
+def test_no_ordinate_below_f_min_gives_none_for_the_check_but_the_own_ones() -> None:
+    """No ``j / T`` below ``f_min``: no common ordinate; each window's own ones remain."""
     x = [np.random.default_rng(0).normal(size=300)]
-    assert lowest_ordinates(x, 1.0, 1.0 / 300.0) is None
+    lo = lowest_ordinates(x, 1.0, 1.0 / 300.0)
+    assert lo.j.size == 0 and lo.estimate_m2_hz.shape == (1, 0)
+    assert lo.own_m2_hz is not None and lo.own_m2_hz[0] > 0
 
 
 def test_extra_rows_are_constraints_of_the_linear_program() -> None:
