@@ -156,7 +156,9 @@ def _group_envelope(
         group=g,
     )
     if ms is not None and ms.vertices.size:
-        return model_envelope(ms, dt_s, f_hz, tau_max_s=float("inf")), "model set"
+        env = model_envelope(ms, dt_s, f_hz, tau_max_s=float("inf"))
+        if env.size == f_hz.size and np.all(np.isfinite(env)):
+            return env, "model set"
     return _f_minus_2(limits, bands, g, f_hz), "f^-2"
 
 
