@@ -43,7 +43,20 @@ from psdbound.spectra.names import OBJECTIVES, RULES
 #: Further linear constraints of a time constant: ``tau -> (a, b)``, ``a @ variances >= b``.
 ExtraRows = Callable[[float], tuple[NDArray[np.float64], NDArray[np.float64]]]
 
-__all__ = ["BoundFit", "ExtraRows", "fit_bound", "OBJECTIVES", "RULES"]
+__all__ = ["BoundFit", "ExtraRows", "Floor", "fit_bound", "join_floors", "OBJECTIVES", "RULES"]
+
+
+#: Points (Hz, m^2/Hz) a bound must lie above that are not data: the envelopes of
+#: the low-frequency rules and the cells a refit keeps (:func:`fit_bound`, ``floor``).
+Floor = tuple[NDArray[np.float64], NDArray[np.float64]]
+
+
+def join_floors(*floors: Floor | None) -> Floor | None:
+    """Return the points of several floors as one (None when there are none)."""
+    have = [f for f in floors if f is not None]
+    if not have:
+        return None
+    return np.concatenate([f for f, _ in have]), np.concatenate([s for _, s in have])
 
 
 class _PSDLike(Protocol):
@@ -221,7 +234,7 @@ def fit_bound(
     level: float = 0.95,
     tau_range_s: tuple[float, float] | None = None,
     n_grid: int = 64,
-    floor: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
+    floor: Floor | None = None,
     extra: ExtraRows | None = None,
 ) -> BoundFit:
     """Fit the tightest GMRP + white-noise bound over a set of PSD estimates.

@@ -61,7 +61,7 @@ from numpy.typing import NDArray
 from scipy import special, stats
 
 from psdbound.spectra.bands import BandSpectra, band_spectra
-from psdbound.spectra.bound import BoundFit, ExtraRows
+from psdbound.spectra.bound import BoundFit, ExtraRows, Floor, join_floors
 from psdbound.spectra.estimators import PSDEstimate
 from psdbound.spectra.pooled import PooledLimits, fit_limits, smoothing_hz
 
@@ -74,8 +74,6 @@ MAX_ROUNDS = 4
 #: ``x = 2 pi f tau``; a white floor only adds convex curvature. A resolved peak is
 #: far more concave (a resonance of relative half-width 0.1: about -70).
 KAPPA_MAX = 1.0
-
-Floor = tuple[NDArray[np.float64], NDArray[np.float64]]
 
 
 @dataclass(frozen=True)
@@ -315,10 +313,7 @@ def cover_cells(
         if not need.any():
             break
         held |= need
-        pts = (c.hi_hz[held], c.upper[held])
-        both = (
-            pts if floor is None else tuple(np.concatenate(z) for z in zip(floor, pts, strict=True))
-        )
+        both = join_floors(floor, (c.hi_hz[held], c.upper[held]))
         fit = fit_limits(
             limits, bands, dt_s, objective=objective, n_grid=n_grid, floor=both, extra=extra
         )

@@ -52,7 +52,7 @@ from numpy.typing import NDArray
 from scipy import stats
 
 from psdbound.spectra.bands import BandSpectra
-from psdbound.spectra.bound import BoundFit, ExtraRows
+from psdbound.spectra.bound import BoundFit, ExtraRows, Floor
 from psdbound.spectra.expectation import lag_kernels
 from psdbound.spectra.ordinates import LOWEST_NW, LowestOrdinates
 from psdbound.spectra.pooled import MIN_GROUP_DOF, PooledLimits, fit_limits
@@ -210,7 +210,7 @@ def cover_lowest(
     lowest: LowestOrdinates,
     limits: PooledLimits,
     bands: BandSpectra,
-    floor: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
+    floor: Floor | None = None,
     *,
     objective: str = "variance",
     n_grid: int = 64,

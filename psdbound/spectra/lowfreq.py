@@ -56,7 +56,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from psdbound.spectra.bands import BandSpectra
-from psdbound.spectra.bound import BoundFit
+from psdbound.spectra.bound import BoundFit, Floor
 from psdbound.spectra.intervals import ModelSet
 from psdbound.spectra.models import gm_psd_sampled
 from psdbound.spectra.names import POLICIES, TAU_MAX_S
@@ -121,7 +121,7 @@ class LowFrequency:
     reason: str = ""
     parameter_set: dict[str, list[float]] | None = None
 
-    def floor(self) -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
+    def floor(self) -> Floor | None:
         """Return the envelope as constraint points (Hz, m^2/Hz) of a refit; None without one."""
         if self.f_hz is None or self.envelope_m2_hz is None or not self.envelope_m2_hz.size:
             return None

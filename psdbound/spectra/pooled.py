@@ -54,7 +54,7 @@ from scipy import stats
 
 from psdbound.errors import InputError
 from psdbound.spectra.bands import BandSpectra, band_spectra, merge_bands
-from psdbound.spectra.bound import BoundFit, ExtraRows, fit_bound
+from psdbound.spectra.bound import BoundFit, ExtraRows, Floor, fit_bound
 from psdbound.spectra.estimators import PSDEstimate
 from psdbound.spectra.groups import log_frequency, shape_groups, tilted
 from psdbound.spectra.limits import (
@@ -826,7 +826,7 @@ def fit_limits(
     *,
     objective: str = "variance",
     n_grid: int = 64,
-    floor: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
+    floor: Floor | None = None,
     extra: ExtraRows | None = None,
 ) -> BoundFit:
     """Fit the tightest GM + white-noise bound above pooled band limits.

@@ -43,7 +43,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from psdbound.spectra.bands import BandSpectra, band_spectra, resolved_from_hz
-from psdbound.spectra.bound import BoundFit
+from psdbound.spectra.bound import BoundFit, join_floors
 from psdbound.spectra.cells import CellCheck, cover_cells
 from psdbound.spectra.estimators import PSDEstimate
 from psdbound.spectra.intervals import ModelSet, model_set
@@ -51,7 +51,7 @@ from psdbound.spectra.lowest import LowestFrequencies, cover_lowest
 from psdbound.spectra.lowfreq import TAU_MAX_S, LowFrequency, bound_below
 from psdbound.spectra.ordinates import LowestOrdinates
 from psdbound.spectra.pooled import MIN_GROUP_DOF, PooledLimits, fit_pooled_bound, smoothing_hz
-from psdbound.spectra.unresolved import UnresolvedGroups, cover_unresolved, join_floors
+from psdbound.spectra.unresolved import UnresolvedGroups, cover_unresolved
 
 __all__ = ["StatedBound", "fit_stated_bound", "identification_bands", "statement"]
 

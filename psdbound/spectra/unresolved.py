@@ -42,18 +42,16 @@ import numpy as np
 from numpy.typing import NDArray
 
 from psdbound.spectra.bands import BandSpectra
-from psdbound.spectra.bound import BoundFit
+from psdbound.spectra.bound import BoundFit, Floor, join_floors
 from psdbound.spectra.intervals import model_set
 from psdbound.spectra.lowfreq import model_envelope
 from psdbound.spectra.models import GaussMarkovWhiteNoise
 from psdbound.spectra.pooled import PooledLimits, fit_limits
 
-__all__ = ["UnresolvedGroups", "cover_unresolved", "join_floors"]
+__all__ = ["UnresolvedGroups", "cover_unresolved"]
 
 #: Points of each group's envelope between ``f_min`` and its resolved frequency.
 _N_POINTS = 25
-
-Floor = tuple[NDArray[np.float64], NDArray[np.float64]]
 
 
 @dataclass(frozen=True)
@@ -114,14 +112,6 @@ class UnresolvedGroups:
             "how": list(self.how),
             "raised": self.raised,
         }
-
-
-def join_floors(*floors: Floor | None) -> Floor | None:
-    """Return the points of several floors as one (None when there are none)."""
-    have = [f for f in floors if f is not None]
-    if not have:
-        return None
-    return np.concatenate([f for f, _ in have]), np.concatenate([s for _, s in have])
 
 
 def _f_minus_2(

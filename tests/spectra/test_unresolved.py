@@ -7,10 +7,11 @@ import pytest
 from scipy.signal import lfilter
 
 from psdbound.spectra.bands import resolved_from_hz
+from psdbound.spectra.bound import join_floors
 from psdbound.spectra.estimators import estimate_psd
 from psdbound.spectra.models import gm_psd_sampled
 from psdbound.spectra.stated import fit_stated_bound
-from psdbound.spectra.unresolved import cover_unresolved, join_floors
+from psdbound.spectra.unresolved import cover_unresolved
 
 DT = 1.0
 
