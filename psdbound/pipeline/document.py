@@ -135,6 +135,7 @@ def _bound_section(res: BoundResults) -> dict[str, Any]:
         "lowest_frequencies": (
             None if res.lowest_frequencies is None else res.lowest_frequencies.to_dict()
         ),
+        "unresolved": None if res.unresolved is None else res.unresolved.to_dict(),
         "gap_db_median": b.gap_db_median,
         "gap_db_p05": b.gap_db_p05,
         "over_data_db": res.over_data_db(),

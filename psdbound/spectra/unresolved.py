@@ -105,12 +105,18 @@ class UnresolvedGroups:
         )
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready form."""
+        """JSON-ready form (``bound.unresolved`` of result.json)."""
+        b = self.before
         return {
             "groups": list(self.groups),
             "resolved_from_hz": list(self.resolved_from_hz),
             "how": list(self.how),
+            "f_min_hz": self.f_min_hz,
             "raised": self.raised,
+            "before": None
+            if b is None
+            else {"sigma_gm_m": b.sigma_gm_m, "tau_s": b.tau_s, "sigma_wn_m": b.sigma_wn_m},
+            "statement": self.sentence(),
         }
 
 
