@@ -27,7 +27,8 @@ as data grow, and it states no confidence. The pooled rule states instead
    M``). The two error
    probabilities add up to ``1 - confidence_level`` (Bonferroni), so the
    statement holds whatever the windows' levels and however they are
-   distributed.
+   distributed. Below a short window's data its deviation is extrapolated,
+   and capped by the ``f^-2`` rule (:func:`capped_below_data`).
 4. **Bound**: the tightest GM + white-noise PSD above every limit
    (:func:`psdbound.spectra.fit_bound`). A limit holds for the band's
    *mean* PSD, but the PSD exceeds its band mean near the lower edge when
@@ -72,6 +73,7 @@ from psdbound.spectra.ordinates import LowestOrdinates
 __all__ = [
     "MIN_GROUP_DOF",
     "PooledLimits",
+    "capped_below_data",
     "excess_statistic",
     "fit_limits",
     "fit_pooled_bound",
@@ -345,6 +347,60 @@ def _at(
     return d, se
 
 
+def capped_below_data(
+    own: NDArray[np.float64], gb: BandSpectra, mean_up: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """Cap each window's upper deviation in the bands below its data by the ``f^-2`` rule.
+
+    A window shorter than the group's longest has no value in the group's lowest bands;
+    its deviation there is its level (and tilt) model extrapolated, whose standard error
+    grows with the distance (a steep short window's tilt put a limit 26 dB above every
+    window of its group). For any sum of Gauss-Markov and white terms ``f^2 S(f)`` rises
+    with ``f``, so below the window's lowest band ``j`` (lower edge ``l_j``, edge ratio
+    ``r_j``) its PSD is at most ``r_j`` times its band mean there times ``(l_j / f)^2``
+    (``S(l_j) <= r_j`` times the band mean, for the same reason). With its band mean at
+    most ``U_j exp(u_j)`` (its upper deviation ``u_j`` over the group's level limit
+    ``U_j``) and the bound held ``sqrt(r_b)`` above ``U_b exp(t_b)`` at band ``b``'s lower
+    edge, the deviation ``u_b`` needed there is at most
+    ``u_j + ln(U_j / U_b) + ln r_j + 2 ln(l_j / l_b) - ln(r_b) / 2``; each window takes
+    the smaller of that and its extrapolated deviation.
+
+    Parameters
+    ----------
+    own : ndarray, shape (M, B)
+        Each window's upper deviation (log) at the group's bands.
+    gb : BandSpectra
+        The group's bands (which windows have a value in which band).
+    mean_up : ndarray, shape (B,)
+        The group's level limits, m^2/Hz.
+
+    Returns
+    -------
+    ndarray, shape (M, B)
+    """
+    have = np.isfinite(gb.psd_m2_hz) & (gb.dof > 0)
+    lo = gb.edges_hz[:-1]
+    r = gb.edges_hz[1:] / lo
+    out = own.copy()
+    for i in range(own.shape[0]):
+        first = np.flatnonzero(have[i])
+        j = int(first[0]) if first.size else 0
+        if j == 0 or not np.isfinite(mean_up[j]) or mean_up[j] <= 0:
+            continue
+        b = np.arange(j)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            cap = (
+                own[i, j]
+                + np.log(mean_up[j] / mean_up[b])
+                + np.log(r[j])
+                + 2.0 * np.log(lo[j] / lo[b])
+                - 0.5 * np.log(r[b])
+            )
+        usable = np.isfinite(cap)
+        out[i, b] = np.where(usable, np.minimum(own[i, b], cap), own[i, b])
+    return out
+
+
 def _window_term(own: NDArray[np.float64], allowed: int) -> NDArray[np.float64]:
     """Return the largest own upper deviation of the windows kept (all but ``allowed``)."""
     m = own.shape[0]
@@ -406,7 +462,7 @@ def _group_limits(
     d_c, se_c = _at(dev, tilt, use, log_frequency(gb.centres_hz, ref))
     cl = clusters[rows] if clusters is not None else None
     mean_up, eff = _level_limits(gb, d_c, a_mean, cl, rho)
-    term = _window_term(d_c + k * se_c, allowed)
+    term = _window_term(capped_below_data(d_c + k * se_c, gb, mean_up), allowed)
     level, level_se = dev.coef[:, 0], np.sqrt(dev.cov[:, 0, 0])
     tau2 = np.where(
         np.isfinite(mean_up), max(0.0, float(np.var(level)) - float(np.mean(level_se**2))), np.nan
