@@ -27,9 +27,10 @@ steep one, it rises towards ``f_min``.
 **Without a model set** (too few bands, or no GM + white model fits the
 group): every Gauss-Markov and white-noise term has ``f^2 S(f)`` increasing
 in ``f``, so for any sum of them ``S(f) <= S(f_g) (f_g / f)^2`` below
-``f_g``; the group's limit at its lowest band (held at its lower edge, as
-the statement's bands are) is carried down along ``f^-2``. It holds for any
-such truth and may be loose where the truth is flat.
+``f_g``; the group's limit at its lowest band, times the band's edge ratio
+``r`` (at its lower edge such a sum is at most ``r`` times its band mean, for
+the same reason), is carried down along ``f^-2``. It holds for any such truth
+and may be loose where the truth is flat.
 """
 
 from __future__ import annotations
@@ -123,14 +124,19 @@ class UnresolvedGroups:
 def _f_minus_2(
     limits: PooledLimits, bands: BandSpectra, g: int, f_hz: NDArray[np.float64]
 ) -> NDArray[np.float64]:
-    """Return the group's lowest limit (at its band's lower edge) carried down along ``f^-2``."""
+    """Return the group's lowest limit carried down along ``f^-2`` from its band's lower edge.
+
+    At the lower edge ``l`` of a band of edge ratio ``r`` a sum of Gauss-Markov and white
+    terms is at most ``r`` times its band mean (``f^2 S`` rises), and below it at most that
+    times ``(l / f)^2``.
+    """
     row = limits.upper_m2_hz[g]
     k = int(np.flatnonzero(np.isfinite(row))[0])
     if limits.band_span_hz is None:
         lo, hi = bands.edges_hz[k], bands.edges_hz[k + 1]
     else:
         lo, hi = limits.band_span_hz[g, k]
-    return row[k] * np.sqrt(hi / lo) * (lo / f_hz) ** 2
+    return row[k] * (hi / lo) * (lo / f_hz) ** 2
 
 
 def _group_envelope(

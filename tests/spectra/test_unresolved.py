@@ -122,7 +122,7 @@ def test_without_a_model_set_the_limit_is_carried_down_along_f_minus_2() -> None
     else:
         lo, hi = sb.limits.band_span_hz[g, k]
     first = u.f_hz[: u.f_hz.size // len(u.groups)]
-    expected = row[k] * np.sqrt(hi / lo) * (lo / first) ** 2
+    expected = row[k] * (hi / lo) * (lo / first) ** 2
     np.testing.assert_allclose(u.envelope_m2_hz[: first.size], expected, rtol=1e-12)
     assert np.all(fit.psd(u.f_hz) >= u.envelope_m2_hz * (1 - 1e-6))
 
