@@ -71,6 +71,7 @@ __all__ = [
     "gm_psd_sampled",
     "white_psd",
     "gm_acf",
+    "below_band_ceiling",
 ]
 
 #: How the white noise of one sample is read at another interval (module docstring).
@@ -135,6 +136,32 @@ def white_psd(f_hz: ArrayLike, sigma_wn_m: float, dt_s: float) -> NDArray[np.flo
     """One-sided PSD of sampled white noise with per-sample std ``sigma_wn_m``, m^2/Hz."""
     f = np.asarray(f_hz, dtype=float)
     return np.full(f.shape, 2.0 * sigma_wn_m**2 * dt_s)
+
+
+def below_band_ceiling(
+    band_mean_m2_hz: float, lo_hz: float, hi_hz: float, f_hz: ArrayLike
+) -> NDArray[np.float64]:
+    """Largest PSD below a band that a sum of Gauss-Markov and white terms allows, m^2/Hz.
+
+    Each term has ``f^2 S(f)`` rising with ``f`` (sampled ones too), so at the band's
+    lower edge ``l`` such a sum is at most ``r = h / l`` times its band mean over
+    ``[l, h]``, and below it at most that times ``(l / f)^2``.
+
+    Parameters
+    ----------
+    band_mean_m2_hz : float
+        The PSD's mean over the band (or an upper limit of it), m^2/Hz.
+    lo_hz, hi_hz : float
+        The band's edges, Hz.
+    f_hz : array_like
+        Frequencies at or below ``lo_hz``, Hz.
+
+    Returns
+    -------
+    ndarray
+        ``band_mean r (l / f)^2``.
+    """
+    return band_mean_m2_hz * (hi_hz / lo_hz) * (lo_hz / np.asarray(f_hz, dtype=float)) ** 2
 
 
 def gm_acf(lag_s: ArrayLike, sigma_m: float, tau_s: float) -> NDArray[np.float64]:

@@ -172,17 +172,18 @@ def lowest_ordinates(
     n = np.array([x.size for x in xs], dtype=np.int64)
     n_j = max(0, min(MAX_ORDINATES, int(np.ceil(f_min_hz * float(n.min()) * dt_s)) - 1))
     est = np.zeros((n.size, len(OWN_J)))
-    cut: list[tuple[NDArray[np.int64], NDArray[np.float64]]] = [
-        (np.zeros(0, np.int64), np.zeros(0))
-    ] * n.size
+    cut: dict[int, tuple[NDArray[np.int64], NDArray[np.float64]]] = {}
     for k in np.unique(n).tolist():
         own, longer, peers = _by_length(xs, n, int(k), dt_s)
-        rows = np.flatnonzero(n == k)
-        est[rows] = own
-        for i in rows.tolist():
-            cut[i] = (longer, peers)
+        est[n == k] = own
+        cut[k] = (longer, peers)
     return LowestOrdinates(
-        n, np.arange(1, n_j + 1), est[:, :n_j], float(dt_s), est.mean(axis=1), tuple(cut)
+        n,
+        np.arange(1, n_j + 1),
+        est[:, :n_j],
+        float(dt_s),
+        est.mean(axis=1),
+        tuple(cut[k] for k in n.tolist()),
     )
 
 
@@ -227,12 +228,13 @@ def ordinate_dof(n: int, js: tuple[int, ...]) -> float:
 
 
 def _peers(
-    lowest: LowestOrdinates, members: NDArray[np.int64], i: int
+    lowest: LowestOrdinates, members: NDArray[np.int64], where: dict[int, int], i: int
 ) -> tuple[NDArray[np.int64], NDArray[np.float64], NDArray[np.float64]]:
     """Member ``i``'s peers: positions in ``members``, their mean estimates and dof.
 
     The other members of about its length (within :data:`LENGTH_MATCH`, their own
-    estimates) and the longer members cut to its length (:attr:`LowestOrdinates.cut_peers`).
+    estimates) and the longer members cut to its length (:attr:`LowestOrdinates.cut_peers`);
+    ``where`` maps a row of ``lowest`` to its position in ``members``.
     """
     assert lowest.own_m2_hz is not None
     n = lowest.n[members].astype(float)
@@ -242,7 +244,6 @@ def _peers(
     nu = [np.array([ordinate_dof(int(k), OWN_J) for k in lowest.n[members[same]]])]
     if lowest.cut_peers:
         rows, values = lowest.cut_peers[int(members[i])]
-        where = {int(r): k for k, r in enumerate(members.tolist())}
         keep = [(where[int(r)], v) for r, v in zip(rows, values, strict=True) if int(r) in where]
         if keep:
             pos.append(np.array([k for k, _ in keep]))
@@ -294,8 +295,9 @@ def low_excess_p(
     mean = lowest.own_m2_hz[members]
     nu = np.array([ordinate_dof(int(k), OWN_J) for k in lowest.n[members]])
     out = np.ones(members.size)
+    where = {int(r): k for k, r in enumerate(members.tolist())}
     for i in range(members.size):
-        pos, est, nu_o = _peers(lowest, members, i)
+        pos, est, nu_o = _peers(lowest, members, where, i)
         if not pos.size or mean[i] <= 0.0:
             continue
         median_log = np.log(stats.chi2.median(nu_o) / nu_o)

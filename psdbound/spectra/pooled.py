@@ -68,6 +68,7 @@ from psdbound.spectra.limits import (
     tolerance_factor,
     window_deviations,
 )
+from psdbound.spectra.models import below_band_ceiling
 from psdbound.spectra.ordinates import LowestOrdinates
 
 __all__ = [
@@ -380,7 +381,7 @@ def capped_below_data(
     """
     have = np.isfinite(gb.psd_m2_hz) & (gb.dof > 0)
     lo = gb.edges_hz[:-1]
-    r = gb.edges_hz[1:] / lo
+    half_r = 0.5 * np.log(gb.edges_hz[1:] / lo)  # the bound is held sqrt(r_b) above at l_b
     out = own.copy()
     for i in range(own.shape[0]):
         first = np.flatnonzero(have[i])
@@ -389,13 +390,8 @@ def capped_below_data(
             continue
         b = np.arange(j)
         with np.errstate(invalid="ignore", divide="ignore"):
-            cap = (
-                own[i, j]
-                + np.log(mean_up[j] / mean_up[b])
-                + np.log(r[j])
-                + 2.0 * np.log(lo[j] / lo[b])
-                - 0.5 * np.log(r[b])
-            )
+            ceiling = below_band_ceiling(mean_up[j], lo[j], gb.edges_hz[j + 1], lo[b])
+            cap = own[i, j] + np.log(ceiling / mean_up[b]) - half_r[b]
         usable = np.isfinite(cap)
         out[i, b] = np.where(usable, np.minimum(own[i, b], cap), own[i, b])
     return out

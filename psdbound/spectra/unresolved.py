@@ -46,7 +46,7 @@ from psdbound.spectra.bands import BandSpectra
 from psdbound.spectra.bound import BoundFit, Floor, join_floors
 from psdbound.spectra.intervals import model_set
 from psdbound.spectra.lowfreq import model_envelope
-from psdbound.spectra.models import GaussMarkovWhiteNoise
+from psdbound.spectra.models import GaussMarkovWhiteNoise, below_band_ceiling
 from psdbound.spectra.pooled import PooledLimits, fit_limits
 
 __all__ = ["UnresolvedGroups", "cover_unresolved"]
@@ -124,19 +124,14 @@ class UnresolvedGroups:
 def _f_minus_2(
     limits: PooledLimits, bands: BandSpectra, g: int, f_hz: NDArray[np.float64]
 ) -> NDArray[np.float64]:
-    """Return the group's lowest limit carried down along ``f^-2`` from its band's lower edge.
-
-    At the lower edge ``l`` of a band of edge ratio ``r`` a sum of Gauss-Markov and white
-    terms is at most ``r`` times its band mean (``f^2 S`` rises), and below it at most that
-    times ``(l / f)^2``.
-    """
+    """Return the group's lowest limit carried down along ``f^-2`` from its band's lower edge."""
     row = limits.upper_m2_hz[g]
     k = int(np.flatnonzero(np.isfinite(row))[0])
     if limits.band_span_hz is None:
         lo, hi = bands.edges_hz[k], bands.edges_hz[k + 1]
     else:
         lo, hi = limits.band_span_hz[g, k]
-    return row[k] * (hi / lo) * (lo / f_hz) ** 2
+    return below_band_ceiling(row[k], lo, hi, f_hz)
 
 
 def _group_envelope(
