@@ -26,6 +26,7 @@ import numpy as np
 from psdbound.errors import InputError, NoDataError
 from psdbound.io._header_records import (
     SYSTEM_LETTERS,
+    TIME_SYSTEMS,
     HeaderRecords,
     TypeLists,
     parse_float,
@@ -110,8 +111,6 @@ SYSTEM_NAMES = {
     "S": "SBAS",
     "I": "NavIC",
 }
-#: Time systems an observation file may use.
-TIME_SYSTEMS = ("GPS", "GLO", "GAL", "BDT", "QZS", "IRN", "UTC")
 #: The RINEX observation versions read, for messages.
 SUPPORTED_VERSIONS = "2.1x, 3.0x and 4.00-4.02"
 #: The newest RINEX version whose layout the reader knows.

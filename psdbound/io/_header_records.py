@@ -22,10 +22,12 @@ from psdbound.errors import InputError
 __all__ = [
     "KNOWN_LABELS",
     "SYSTEM_LETTERS",
+    "TIME_SYSTEMS",
     "HeaderRecords",
     "TypeLists",
     "parse_float",
     "parse_int",
+    "three_numbers",
     "time_record",
 ]
 
@@ -35,6 +37,9 @@ _V3_CODE = re.compile(r"[CLDSX][1-9][A-Z]")
 _V3_IONO = re.compile(r"I[1-9][A-Z ]")  # RINEX 3.01 ionosphere phase delay
 _V2_CODE = re.compile(r"[A-Z][0-9A-Z]")
 _V3_PER_LINE, _V2_PER_LINE = 13, 9
+_GLONASS_PAIR = re.compile(r"(R\d\d) *([+-]?\d{1,2})(?!\d)")
+#: Time systems an observation file may use.
+TIME_SYSTEMS = ("GPS", "GLO", "GAL", "BDT", "QZS", "IRN", "UTC")
 
 
 def parse_float(text: str, what: str) -> float:
@@ -56,12 +61,65 @@ def parse_int(text: str, what: str) -> int:
         raise ValueError(f"{what} {text.strip()!r} is not an integer") from None
 
 
-def time_record(body: str) -> tuple[tuple, str]:
-    """(year, month, day, hour, minute, second) and the time system of a TIME OF ... record."""
+def time_record(body: str) -> tuple[tuple, str, bool]:
+    """Date, time system and shift of a TIME OF ... record.
+
+    The fields are read in their columns (``5I6, F13.7, 5X, A3``). A record whose
+    fields are shifted from them (some writers use other widths) is read as the
+    numbers and the system separated by blanks when that gives a whole record.
+
+    Returns
+    -------
+    tuple
+        (year, month, day, hour, minute, second), the time system (``""`` if
+        blank) and whether the record was read from blank-separated fields.
+    """
+    try:
+        date, system = _fixed_time_record(body)
+    except ValueError:
+        shifted = _blank_separated_time(body)
+        if shifted is None:
+            raise
+        return *shifted, True
+    if system and system not in TIME_SYSTEMS:
+        shifted = _blank_separated_time(body)
+        if shifted is not None:
+            return *shifted, True
+    return date, system, False
+
+
+def _fixed_time_record(body: str) -> tuple[tuple, str]:
     date = tuple(parse_int(body[k : k + 6], "date field") for k in (0, 6, 12, 18, 24)) + (
         parse_float(body[30:43], "seconds"),
     )
     return date, body[48:51].strip()
+
+
+def _blank_separated_time(body: str) -> tuple[tuple, str] | None:
+    """Five integers, the seconds and an optional known time system, or None."""
+    tokens = body.split()
+    if len(tokens) not in (6, 7) or (len(tokens) == 7 and tokens[6] not in TIME_SYSTEMS):
+        return None
+    try:
+        date = tuple(int(t) for t in tokens[:5]) + (parse_float(tokens[5], "seconds"),)
+    except ValueError:
+        return None
+    return date, tokens[6] if len(tokens) == 7 else ""
+
+
+def three_numbers(body: str, what: str) -> tuple[np.ndarray, bool]:
+    """Three ``F14.4`` fields of a header record, and whether they were shifted.
+
+    Read in their columns; when that fails, as three blank-separated numbers
+    (some writers use 15-wide fields), and the second value says so.
+    """
+    try:
+        return np.array([parse_float(body[k : k + 14], what) for k in (0, 14, 28)]), False
+    except ValueError:
+        tokens = body.split()
+        if len(tokens) != 3:
+            raise
+        return np.array([parse_float(t, what) for t in tokens]), True
 
 
 class TypeLists:
@@ -292,7 +350,8 @@ class HeaderRecords:
         self.antenna = body[20:40].strip()
 
     def _approx(self, body: str, i: int, label: str) -> None:
-        xyz = np.array([parse_float(body[k : k + 14], "coordinate") for k in (0, 14, 28)])
+        xyz, shifted = three_numbers(body, "coordinate")
+        self._note_shifted(shifted, i, label)
         r = float(np.linalg.norm(xyz))
         self.approx = None if not np.any(xyz) else xyz
         if self.approx is not None and not 6.2e6 <= r <= 6.5e6:
@@ -303,7 +362,8 @@ class HeaderRecords:
             self.approx = None
 
     def _delta(self, body: str, i: int, label: str) -> None:
-        delta = np.array([parse_float(body[k : k + 14], "eccentricity") for k in (0, 14, 28)])
+        delta, shifted = three_numbers(body, "eccentricity")
+        self._note_shifted(shifted, i, label)
         if np.any(np.abs(delta) > 1000.0):
             raise ValueError(
                 f"antenna eccentricities {delta.tolist()} m are not plausible (at most 1000 m)"
@@ -320,10 +380,20 @@ class HeaderRecords:
             self.notes.append(f"line {i}: {exc}; the interval is taken from the epochs")
 
     def _first(self, body: str, i: int, label: str) -> None:
-        self.first_obs, self.time_system = time_record(body)
+        self.first_obs, self.time_system, shifted = time_record(body)
+        self._note_shifted(shifted, i, label)
 
     def _last(self, body: str, i: int, label: str) -> None:
-        self.last_obs, _ = time_record(body)
+        self.last_obs, _, shifted = time_record(body)
+        self._note_shifted(shifted, i, label)
+
+    def _note_shifted(self, shifted: bool, i: int, label: str) -> None:
+        """Say that a record was read from blank-separated fields, not its columns."""
+        if shifted:
+            self.notes.append(
+                f"line {i}: {label} is not in the columns RINEX gives it; its fields were "
+                "read as separated by blanks"
+            )
 
     def _leap(self, body: str, i: int, label: str) -> None:
         self.leap = parse_int(body[:6], "leap seconds")
@@ -334,12 +404,13 @@ class HeaderRecords:
         self.type_lists.add(body, i)
 
     def _glonass(self, body: str, i: int, label: str) -> None:
-        parts = body[4:].split()
-        if len(parts) % 2:
-            raise ValueError("expected pairs of slot and channel")
-        for k in range(0, len(parts), 2):
-            slot, ch = parts[k], parse_int(parts[k + 1], "channel")
-            if not re.fullmatch(r"R\d\d", slot) or not -7 <= ch <= 6:
+        rest = body[4:].strip()
+        pairs = _GLONASS_PAIR.findall(rest)
+        if _GLONASS_PAIR.sub("", rest).strip():  # some writers leave out the blank after I2
+            raise ValueError("expected pairs of slot and channel, such as 'R01  1 R02 -4'")
+        for slot, text in pairs:
+            ch = parse_int(text, "channel")
+            if not -7 <= ch <= 6:
                 raise ValueError(
                     f"{slot} {ch}: expected a slot such as R01 and a channel from -7 to 6"
                 )

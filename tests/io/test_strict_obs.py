@@ -367,3 +367,84 @@ def test_rinex2_file_ending_inside_the_last_records_blank_continuation(tmp_path)
     short = "\n".join(out[:-3]) + "\n"  # the last satellite's record is gone
     with pytest.raises(InputError, match="truncated epoch"):
         read_obs(_write(tmp_path, short, "short.10o"))
+
+
+# ------------------------------------------------------------- records shifted from their columns
+
+
+def _shifted(text: str, label: str, body: str) -> tuple[str, int]:
+    k = _line_of(text, re.escape(label))
+    return _replace_line(text, k, f"{body:<60}{label:<20}"), k
+
+
+def _read_noting(p: Path, k: int, label: str):
+    match = rf"line {k}: {re.escape(label)} is not in the columns"
+    with pytest.warns(PsdboundWarning, match=match):
+        return read_obs(p)
+
+
+def test_position_in_15_wide_fields_reads_with_a_note(tmp_path):
+    """Some writers use F15.4: the fixed columns split a number, blanks do not."""
+    ref = read_obs(_write(tmp_path, _text(), "ref.rnx"))
+    label = "APPROX POSITION XYZ"
+    body = "".join(f"{x:15.4f}" for x in ref.header.approx_position_m)
+    text, k = _shifted(_text(), label, body)
+    obs = _read_noting(_write(tmp_path, text), k, label)
+    np.testing.assert_allclose(
+        obs.header.approx_position_m, ref.header.approx_position_m, atol=1e-4
+    )
+
+
+def test_time_of_first_obs_shifted_by_one_column_reads_with_a_note(tmp_path):
+    ref = read_obs(_write(tmp_path, _text(), "ref.rnx"))
+    label = "TIME OF FIRST OBS"
+    text, k = _shifted(_text(), label, "  2020     6    25     0     0     0.0000000     GPS")
+    obs = _read_noting(_write(tmp_path, text), k, label)
+    assert obs.header.first_obs == ref.header.first_obs
+    assert obs.header.time_system == "GPS"
+    np.testing.assert_array_equal(obs.t_gps_s, ref.t_gps_s)
+
+
+@pytest.mark.parametrize(
+    "body",
+    [
+        "  2020     6    25     0     0    0 .0000000     GPS",  # a blank inside the seconds
+        "  2020     6    25     0     0     0.0000000     XYZ",  # no known time system
+        "  2020     6    25     0     0",  # seconds missing
+    ],
+)
+def test_time_records_that_blanks_cannot_explain_are_still_refused(tmp_path, body):
+    text, k = _shifted(_text(), "TIME OF FIRST OBS", body)
+    with pytest.raises(InputError, match=rf"f\.rnx, line {k}: "):
+        read_obs(_write(tmp_path, text))
+
+
+def test_position_that_blanks_cannot_explain_is_still_refused(tmp_path):
+    body = "  3582105.2910   532589.77 13  5232754.8054"  # four tokens
+    text, k = _shifted(_text(), "APPROX POSITION XYZ", body)
+    with pytest.raises(InputError, match=rf"line {k}: .*'APPROX POSITION XYZ'"):
+        read_obs(_write(tmp_path, text))
+
+
+@pytest.mark.parametrize(
+    ("body", "expected"),
+    [
+        ("  3 R11 -5 R19  3 R23 -6", {"R11": -5, "R19": 3, "R23": -6}),
+        ("  3 R11 -5R19 +3R23 -6", {"R11": -5, "R19": 3, "R23": -6}),  # no blank after I2
+    ],
+)
+def test_glonass_channels_with_and_without_the_blank_after_each(body, expected):
+    from psdbound.io._header_records import HeaderRecords
+
+    rec = HeaderRecords(3.04, Path("f.rnx"))
+    rec.read(f"{body:<60}GLONASS SLOT / FRQ #", 12)
+    assert rec.glo == expected
+
+
+@pytest.mark.parametrize("body", ["  2 R11 -5 R19", "  1 R11 12", "  1 R11 -5 junk"])
+def test_glonass_channels_that_are_not_pairs_are_refused(body):
+    from psdbound.io._header_records import HeaderRecords
+
+    rec = HeaderRecords(3.04, Path("f.rnx"))
+    with pytest.raises(InputError, match=r"line 12: cannot parse header record 'GLONASS SLOT"):
+        rec.read(f"{body:<60}GLONASS SLOT / FRQ #", 12)
