@@ -7,9 +7,12 @@ healthy records (4 h for GPS, Galileo, BeiDou and QZSS, 30 min for
 GLONASS: the ages the fit uses); for SP3, the union of ``epoch +- half the
 epoch interval``. An observation day (the span of its files) is served by the
 one file that covers at least :data:`MIN_COVERED` of that span for the
-system fitted (:func:`match_nav`); none or several such files are an
+system fitted (:func:`match_nav`); no such file is an
 :class:`~psdbound.errors.InputError` naming the observation files and every
-candidate with the share of the span it covers.
+candidate with the share of the span it covers. When several cover it (each
+station's own broadcast file of a day, say), the station's own file is used,
+else the one covering the largest share, else the first given, and a warning
+names the choice and the others.
 
 A navigation file named for another day, a nearby station's file or the
 project's own ``simulate`` output (``<name>_MN.rnx.gz``) are all matched
@@ -29,7 +32,7 @@ from numpy.typing import NDArray
 
 from psdbound.errors import InputError
 
-__all__ = ["MIN_COVERED", "OrbitSpan", "covered_fraction", "match_nav", "orbit_span"]
+__all__ = ["MIN_COVERED", "OrbitSpan", "covered_fraction", "match_nav", "nav_choice", "orbit_span"]
 
 #: Share of an observation day's span a navigation file must cover to serve it.
 MIN_COVERED = 0.9
@@ -155,9 +158,14 @@ def _describe(span: OrbitSpan, system: str, fraction: float) -> str:
 
 
 def match_nav(
-    obs: Sequence[str], span_s: tuple[float, float], system: str, candidates: Sequence[OrbitSpan]
+    obs: Sequence[str],
+    span_s: tuple[float, float],
+    system: str,
+    candidates: Sequence[OrbitSpan],
+    *,
+    station: str | None = None,
 ) -> str:
-    """Return the one orbit file that covers an observation day.
+    """Return the orbit file that serves an observation day.
 
     Parameters
     ----------
@@ -168,32 +176,93 @@ def match_nav(
     system : str
         System letter fitted.
     candidates : sequence of OrbitSpan
-        Every orbit file given.
+        Every orbit file given, in the order given.
+    station : str, optional
+        The station's four-character identifier: among several files that
+        cover the span, one whose name starts with it is preferred.
 
     Returns
     -------
     str
-        Path of the file covering at least :data:`MIN_COVERED` of the span.
+        Path of a file covering at least :data:`MIN_COVERED` of the span.
+        When several do: the station's own file, else the one covering the
+        largest share, else the first given; a
+        :class:`~psdbound.common.notices.PsdboundWarning` names the choice
+        (:func:`nav_choice` returns its text instead).
 
     Raises
     ------
     InputError
-        No file, or more than one, covers the span; the message names the
-        observation files, their span and every candidate with its share.
+        No file covers the span; the message names the observation files,
+        their span and every candidate with its share.
+    """
+    from psdbound.common.notices import warn
+
+    path, note = nav_choice(obs, span_s, system, candidates, station=station)
+    if note:
+        warn(note, path=" + ".join(obs))
+    return path
+
+
+def nav_choice(
+    obs: Sequence[str],
+    span_s: tuple[float, float],
+    system: str,
+    candidates: Sequence[OrbitSpan],
+    *,
+    station: str | None = None,
+) -> tuple[str, str]:
+    """Return the file :func:`match_nav` uses and what it says of the choice.
+
+    Parameters are those of :func:`match_nav`.
+
+    Returns
+    -------
+    path : str
+        The file used.
+    note : str
+        When several files cover the span: which was used, why, and the
+        others; ``""`` when one does.
+
+    Raises
+    ------
+    InputError
+        No file covers the span.
     """
     shares = [covered_fraction(c, system, *span_s) for c in candidates]
-    hits = [c for c, f in zip(candidates, shares, strict=True) if f >= MIN_COVERED]
+    hits = [(c, f) for c, f in zip(candidates, shares, strict=True) if f >= MIN_COVERED]
     if len(hits) == 1:
-        return hits[0].path
+        return hits[0][0].path, ""
+    if hits:
+        return _choose(system, hits, station)
     listed = "; ".join(_describe(c, system, f) for c, f in zip(candidates, shares, strict=True))
-    what = f"{len(hits)} navigation files cover" if hits else "no navigation file covers"
-    fix = (
-        "give one navigation file per observation day"
-        if hits
-        else "give the navigation (or SP3) file of that day"
-    )
     raise InputError(
-        f"{what} {100 * MIN_COVERED:.0f} % of its span {_when(span_s[0])} to {_when(span_s[1])} "
-        f"GPS time for system {system}; candidates: {listed}; {fix}",
+        f"no navigation file covers {100 * MIN_COVERED:.0f} % of its span {_when(span_s[0])} to "
+        f"{_when(span_s[1])} GPS time for system {system}; candidates: {listed}; give the "
+        "navigation (or SP3) file of that day",
         path=" + ".join(obs),
     )
+
+
+def _choose(
+    system: str, hits: list[tuple[OrbitSpan, float]], station: str | None
+) -> tuple[str, str]:
+    """Pick the station's own file, else the largest share, else the first given; say so."""
+
+    def own(c: OrbitSpan) -> bool:
+        return bool(station) and Path(c.path).name[:4].upper() == str(station).upper()
+
+    order = sorted(range(len(hits)), key=lambda k: (not own(hits[k][0]), -hits[k][1], k))
+    best, share = hits[order[0]]
+    if own(best):
+        why = "the station's own file"
+    elif share > hits[order[1]][1]:
+        why = "the largest share of the day"
+    else:
+        why = "the first given"
+    others = "; ".join(_describe(hits[k][0], system, hits[k][1]) for k in order[1:])
+    note = (
+        f"{len(hits)} navigation files cover this day for system {system}: used "
+        f"{_describe(best, system, share)} ({why}); not used: {others}"
+    )
+    return best.path, note

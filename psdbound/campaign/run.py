@@ -37,6 +37,8 @@ class StationDay:
     day: str
     obs: tuple[str, ...]
     nav: str
+    #: When several navigation files cover the day: which was used and why (else "").
+    nav_note: str = ""
 
 
 def _day_of(t_gps_s: float) -> _dt.date:
@@ -89,10 +91,12 @@ def plan_campaign(
     Raises
     ------
     InputError
-        No file, a missing file, or a day that no navigation file (or more
-        than one) covers.
+        No file, a missing file, or a day that no navigation file covers
+        (a day that several cover uses one, with a warning: see
+        :func:`~psdbound.campaign.navmatch.match_nav`).
     """
-    from psdbound.campaign.navmatch import match_nav, orbit_span
+    from psdbound.campaign.navmatch import nav_choice, orbit_span
+    from psdbound.common.notices import warn
 
     if not obs:
         raise InputError("a campaign needs observation files")
@@ -108,7 +112,10 @@ def plan_campaign(
     for (st, d), files in sorted(_read_days(obs_paths, system).items()):
         paths = tuple(f[0] for f in files)
         span = (min(f[1] for f in files), max(f[2] for f in files))
-        plan.append(StationDay(st, d, paths, match_nav(paths, span, system, spans)))
+        nav_path, note = nav_choice(paths, span, system, spans, station=st)
+        if note:
+            warn(note, path=" + ".join(paths))
+        plan.append(StationDay(st, d, paths, nav_path, note))
     return plan
 
 
@@ -220,6 +227,8 @@ def _public(result: dict[str, Any], item: dict[str, Any], in_pool: bool) -> dict
         if not k.startswith("psd_") and k != "document"
     }
     out.update(obs=[Path(p).name for p in item["obs"]], nav=Path(item["nav"]).name, in_pool=in_pool)
+    if item.get("nav_note"):
+        out["nav_note"] = item["nav_note"]
     return out
 
 
@@ -392,6 +401,7 @@ def _item(sd: StationDay, options: dict[str, dict[str, Any]]) -> dict[str, Any]:
         "day": sd.day,
         "obs": list(sd.obs),
         "nav": sd.nav,
+        "nav_note": sd.nav_note,
         "sha256": digests,
         "options": options,
     }

@@ -14,6 +14,7 @@ from psdbound.campaign import plan_campaign, run_campaign, write_campaign
 from psdbound.campaign.pool import pool_station
 from psdbound.campaign.tasks import station_day_task
 from psdbound.cli.main import main
+from psdbound.common.notices import PsdboundWarning
 from psdbound.errors import InputError
 from psdbound.simulate import preset, simulate
 
@@ -68,20 +69,35 @@ def test_renamed_nav_matched_by_content(two_days, tmp_path):
     assert [p.nav for p in plan] == [str(wrong[0]), str(wrong[1])]
 
 
-def test_missing_and_ambiguous_nav_name_the_files(two_days, tmp_path):
+def test_missing_nav_names_the_files_and_their_shares(two_days, tmp_path):
     _, obs, nav = two_days
     with pytest.raises(InputError) as exc:
         plan_campaign(obs, nav[:1])
     msg = str(exc.value)
     assert obs[1].name in msg and "no navigation file covers" in msg
     assert f"{nav[0].name} (0 %" in msg  # the candidate and the share of the day it covers
+
+
+def test_a_day_several_files_cover_uses_the_stations_own_then_the_first_given(two_days, tmp_path):
+    """Each station's own broadcast file of a day: one is used, and a warning says which."""
+    _, obs, nav = two_days
     twin = tmp_path / "twin_MN.rnx.gz"
     shutil.copy(nav[0], twin)
-    with pytest.raises(InputError) as exc:
-        plan_campaign(obs[:1], [nav[0], twin, nav[1]])
-    msg = str(exc.value)
-    assert obs[0].name in msg and "2 navigation files cover" in msg
-    assert f"{nav[0].name} (100 %" in msg and "twin_MN.rnx.gz (100 %" in msg
+    assert nav[0].name[:4].upper() == "DEMO"  # the station's own file
+    for given in ([nav[0], twin, nav[1]], [twin, nav[0], nav[1]]):
+        with pytest.warns(PsdboundWarning) as caught:
+            plan = plan_campaign(obs[:1], given)
+        assert plan[0].nav == str(nav[0])
+        msg = " ".join(str(w.message) for w in caught)
+        assert obs[0].name in msg and "2 navigation files cover this day" in msg
+        assert f"used {nav[0].name} (100 %" in msg and "the station's own file" in msg
+        assert "not used: twin_MN.rnx.gz (100 %" in msg
+        assert plan[0].nav_note and plan[0].nav_note in msg
+    other = tmp_path / "othr_MN.rnx.gz"
+    shutil.copy(nav[0], other)
+    with pytest.warns(PsdboundWarning, match=r"used twin_MN.rnx.gz .*\(the first given\)"):
+        plan = plan_campaign(obs[:1], [twin, other, nav[1]])
+    assert plan[0].nav == str(twin)
 
 
 def test_day_verdicts_are_fits(two_days, two_day_run):
