@@ -326,15 +326,26 @@ def low_frequency_reasons(section: dict[str, Any] | None, policy: str = "prior")
         None: the envelope rule, no check.
     policy : {"prior", "refuse"}, default "prior"
         ``"refuse"``: a statement that rests on the prior ``tau <= tau_max_s``
-        is not bounded.
+        is not bounded, and neither is one the data could not check
+        (``"unchecked"``: the fitted model's extrapolation below the lowest
+        band, which the data do not bound either).
 
     Returns
     -------
     list of str
         One sentence per reason.
     """
-    if not section or section["status"] == "unchecked":
+    if not section:
         return []
+    if section["status"] == "unchecked":
+        if policy != "refuse":
+            return []
+        why = section.get("reason") or "no model set"
+        return [
+            f"low frequencies: below the lowest band the bound is the fitted model's "
+            f"extrapolation, not checked against the data ({why}), and the low-frequency "
+            f"policy is 'refuse'"
+        ]
     tau_max = section["tau_max_s"]
     if section["status"] == "prior" and section.get("envelope_at_0_m2_hz") is None:
         return [

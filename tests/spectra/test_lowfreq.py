@@ -104,7 +104,10 @@ def test_floor_points_constrain_but_do_not_count_as_data():
 
 def test_reasons_from_the_result_section():
     assert low_frequency_reasons(None) == []
-    assert low_frequency_reasons({"status": "unchecked", "tau_max_s": 900.0}) == []
+    unchecked = {"status": "unchecked", "tau_max_s": 900.0, "reason": "3 test bands"}
+    assert low_frequency_reasons(unchecked) == []
+    (why,) = low_frequency_reasons(unchecked, "refuse")  # the data do not bound tau either
+    assert "not checked" in why and "3 test bands" in why and "'refuse'" in why
     covered = {"status": "covered", "tau_max_s": 900.0, "envelope_at_0_m2_hz": 1e-3}
     assert low_frequency_reasons(covered, "refuse") == []
     prior = dict(covered, status="prior")
