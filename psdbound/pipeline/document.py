@@ -208,8 +208,8 @@ def _mapping_section(windowed: Windowed, res: BoundResults, screened: Screened) 
     if mp.covariance_bc is not None:
         out["uncertainty_note"] = (
             "the bound is fitted to data mapped with this m(el); a mapping error makes windows "
-            "at different elevations differ, which the pooled rule's between-window spread "
-            "covers (bound.pooled.between_window_log_sd)"
+            "at different elevations differ, which the pooled rule covers as windows' own "
+            "deviations from their group (bound.pooled.window_term_log)"
         )
     return out
 

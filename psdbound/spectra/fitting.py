@@ -184,11 +184,18 @@ class BoundModel:
 
     References
     ----------
-    .. [1] DerSimonian, R., & Laird, N. (1986). Meta-analysis in clinical trials.
-       *Controlled Clinical Trials*, 7(3), 177-188.
-    .. [2] Cochran, W. G. (1954). The combination of estimates from different
-       experiments. *Biometrics*, 10(1), 101-129.
-    .. [3] docs/method/bound.rst.
+    .. [1] Percival, D. B., & Walden, A. T. (1993). *Spectral Analysis for
+       Physical Applications*. Cambridge University Press (the multitaper
+       estimate and its degrees of freedom).
+    .. [2] Bartlett, M. S., & Kendall, D. G. (1946). The statistical analysis of
+       variance-heterogeneity and the logarithmic transformation. *Supplement to
+       the Journal of the Royal Statistical Society*, 8(1), 128-138 (the
+       variance of a log band value).
+    .. [3] Cochran, W. G. (1954). The combination of estimates from different
+       experiments. *Biometrics*, 10(1), 101-129 (the homogeneity p-values
+       reported in ``bound.pooled``).
+    .. [4] docs/method/bound.rst (the pooled rule, its statement and what was
+       measured).
 
     Examples
     --------
