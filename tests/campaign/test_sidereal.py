@@ -71,6 +71,39 @@ def test_independent_spans_share_about_what_chance_gives():
     )
 
 
+def test_chance_is_counted_within_the_passes_that_repeat_with_the_sidereal_day():
+    """Flags can only fall while a satellite is tracked, and the passes repeat.
+
+    Independent spans that fill much of every pass on both days (a long-lived
+    disturbance, the polar ionosphere) must not look like a repeat: against the
+    whole day their overlap looked several times above chance.
+    """
+    rng = np.random.default_rng(11)
+    shift = SIDEREAL_DAY_S - DAY
+    passes = {"G02": (3000.0, 21000.0), "G07": (30000.0, 52000.0), "G19": (60000.0, 80000.0)}
+    ratios, whole_day = [], []
+    for _ in range(100):
+        docs = []
+        for d in range(2):
+            spans, arcs = {}, []
+            for sat, (a, b) in passes.items():
+                a, b = a + d * shift, b + d * shift
+                arcs.append({"sat": sat, "t0": T0 + d * DAY + a, "t1": T0 + d * DAY + b})
+                starts = rng.uniform(a, b - 3600.0, 3)
+                spans[sat] = [(x, x + 3600.0) for x in starts]
+            doc = _doc(T0 + d * DAY, spans)
+            docs.append(doc | {"figures": {"arcs": arcs}})
+        (r,) = sidereal_repeats(_days(2), docs)
+        ratios.append(r["ratio"])
+        (no_arcs,) = sidereal_repeats(
+            _days(2), [{k: v for k, v in x.items() if k != "figures"} for x in docs]
+        )
+        whole_day.append(no_arcs["ratio"])
+    assert 0.8 < np.mean(ratios) < 1.25
+    assert np.mean(whole_day) > 2.0  # the whole-day chance: what the passes alone give
+    assert not any(r >= 3.0 for r in ratios)
+
+
 def test_only_consecutive_days_with_documents_are_paired():
     docs = [_doc(T0, {"G05": [(0.0, 600.0)]}), None, _doc(T0 + 2 * DAY, {"G05": [(0.0, 600.0)]})]
     assert sidereal_repeats(_days(3), docs) == []
