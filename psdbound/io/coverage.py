@@ -47,6 +47,15 @@ def _name(system: str) -> str:
     return f"{SYSTEM_NAMES.get(system, system)} ({system})"
 
 
+def _share(fraction: float) -> str:
+    """Format a fraction strictly between 0 and 1 as a percentage never reading 0 or 100 %."""
+    for digits in range(4):
+        text = f"{100 * fraction:.{digits}f}"
+        if 0 < float(text) < 100:
+            return f"{text} %"
+    return f"{100 * fraction:.4g} %"
+
+
 def _when(t_gps_s: float) -> str:
     """``'2020-06-25 00:00'`` (GPS time label, minutes)."""
     return str(gps_s_to_datetime64(t_gps_s).astype("datetime64[m]")).replace("T", " ")
@@ -280,7 +289,10 @@ class OrbitCoverage:
                     f"{len(sc.observed)} observed satellites ({' '.join(sc.missing)})"
                 )
             if sc.partial:
-                few = ", ".join(f"{k} {100 * v:.0f} %" for k, v in sorted(sc.partial.items()))
+                few = ", ".join(
+                    f"{k} (at {_share(v)} of its sampled epochs)"
+                    for k, v in sorted(sc.partial.items())
+                )
                 parts.append(f"positions at only part of the observation epochs of {few}")
             out.append(
                 f"the {self.kind} gives " + " and ".join(parts) + f"{_unsupported(sc)}: their "
@@ -327,7 +339,7 @@ class OrbitCoverage:
                 head += f"; none for {' '.join(sc.missing)}"
             if sc.partial:
                 head += "; part of the epochs only for " + ", ".join(
-                    f"{k} ({100 * v:.0f} %)" for k, v in sorted(sc.partial.items())
+                    f"{k} ({_share(v)})" for k, v in sorted(sc.partial.items())
                 )
             if sc.epochs_outside:
                 head += f"; {sc.epochs_outside} of {sc.epochs} epochs outside the orbit's span"

@@ -264,3 +264,14 @@ def test_empty_reason_names_the_missing_signal(which, reason):
     )
     with pytest.raises(NoDataError, match=reason):
         isolate_dual_frequency(arcs, FC)
+
+
+@pytest.mark.parametrize(
+    ("fraction", "text"),
+    [(0.996, "99.6 %"), (0.5, "50 %"), (0.0004, "0.04 %"), (0.99996, "99.996 %")],
+)
+def test_a_partial_share_never_reads_0_or_100_percent(fraction, text):
+    """A satellite with positions at most epochs is 'partial', never '100 %' (NYA1 C16)."""
+    from psdbound.io.coverage import _share
+
+    assert _share(fraction) == text
