@@ -32,6 +32,17 @@ Kalman-filter ARAIM with uncertain Gauss-Markov errors [1]_), and the result
 says so (:attr:`LowFrequency.prior_binding`). With ``policy="refuse"`` such a
 case is not bounded instead.
 
+**No model set** (fewer test bands than the three parameters need). The bound
+is still held above every GM + white model with ``tau <= tau_max_s`` whose
+mean over its group's lowest band lies within that band's limit: each term's
+``f^2 S(f)`` rises with ``f``, so such a model is at most ``r = hi / lo`` times
+the limit at the band's lower edge, and below it grows by at most the
+largest ratio ``S(f) / S(lo)`` of a Gauss-Markov term with ``tau <= tau_max_s``
+(:func:`prior_ceiling`). Fewer bands mean a wider set of models, never a
+statement left to the fitted model's extrapolation; status ``"unchecked"``
+says that the data could not narrow the set, and ``policy="refuse"`` makes
+such a case not bounded too.
+
 Why the envelope suffices for a first-order truth: if a GM + white truth lies
 under the bound at ``f_min`` and is one of the admitted models, the bound lies
 above it at every lower frequency by construction of the envelope. That the
@@ -58,7 +69,7 @@ from numpy.typing import NDArray
 from psdbound.spectra.bands import BandSpectra
 from psdbound.spectra.bound import BoundFit, Floor
 from psdbound.spectra.intervals import ModelSet
-from psdbound.spectra.models import gm_psd_sampled
+from psdbound.spectra.models import below_band_ceiling, gm_psd_sampled
 from psdbound.spectra.names import POLICIES, TAU_MAX_S
 from psdbound.spectra.pooled import PooledLimits, fit_limits
 
@@ -70,6 +81,7 @@ __all__ = [
     "envelope_below",
     "low_frequency_reasons",
     "model_envelope",
+    "prior_ceiling",
 ]
 
 #: Envelope frequencies below f_min, as fractions of it (1e-4: every admitted plateau is flat).
@@ -86,7 +98,9 @@ class LowFrequency:
         ``"covered"``: the bound lies above every model the data admit, down
         to 0 Hz, with no prior; ``"prior"``: the data do not bound ``tau``
         above and the bound covers the admitted models with
-        ``tau <= tau_max_s`` only; ``"unchecked"``: no model set (``reason``).
+        ``tau <= tau_max_s`` only; ``"unchecked"``: no model set (``reason``):
+        the bound covers every model with ``tau <= tau_max_s`` within the
+        lowest bands' limits (:func:`prior_ceiling`).
     tau_max_s : float
         Prior upper limit of the time constant, seconds.
     tau_upper_s : float
@@ -94,7 +108,8 @@ class LowFrequency:
         reaches its search edge).
     f_hz, envelope_m2_hz : ndarray
         Envelope of the admitted models below ``f_min`` (raised by the
-        window factor), Hz and m^2/Hz.
+        window factor; without a model set, :func:`prior_ceiling`), Hz and
+        m^2/Hz.
     raised : bool
         Whether the bound had to be raised above the tightest bound over the
         bands to lie above the envelope.
@@ -134,10 +149,17 @@ class LowFrequency:
 
     def sentence(self) -> str:
         """Return the low-frequency part of the statement, in words."""
-        if self.status == "unchecked":
+        if self.status == "unchecked" and self.envelope_m2_hz is None:
             return (
                 "below the lowest band the bound is the fitted model's extrapolation, "
                 f"not checked against the data ({self.reason})"
+            )
+        if self.status == "unchecked":
+            return (
+                "below the lowest band, down to 0 Hz, the bound lies above every "
+                "Gauss-Markov + white-noise model with a time constant up to the prior "
+                f"{self.tau_max_s:g} s whose mean over its group's lowest band lies within "
+                f"that band's limit: the data could not narrow these models ({self.reason})"
             )
         what = (
             "above every Gauss-Markov + white-noise model the data admit at the same "
@@ -275,8 +297,20 @@ def bound_below(
     """
     before = {"sigma_gm_m": fit.sigma_gm_m, "tau_s": fit.tau_s, "sigma_wn_m": fit.sigma_wn_m}
     if ms is None or ms.vertices.size == 0:
+        why = reason or "no model set"
+        ceiling = prior_ceiling(limits, bands, dt_s, tau_max_s=tau_max_s)
+        if ceiling is None:
+            return fit, LowFrequency("unchecked", tau_max_s, before=before, reason=why)
+        f, env = ceiling
+        fit, raised = _raised(fit, limits, bands, dt_s, f, env, objective, n_grid)
         return fit, LowFrequency(
-            "unchecked", tau_max_s, before=before, reason=reason or "no model set"
+            "unchecked",
+            tau_max_s,
+            f_hz=f,
+            envelope_m2_hz=env,
+            raised=raised,
+            before=before,
+            reason=why,
         )
     f_min = float(bands.edges_hz[0])
     f, env, tau_upper = envelope_below(ms, dt_s, f_min, tau_max_s=tau_max_s)
@@ -289,9 +323,7 @@ def bound_below(
             before=before,
             reason="no admitted model has tau <= tau_max_s",
         )
-    raised = bool(np.any(fit.psd(f) < env * (1.0 - 1e-9)))
-    if raised:
-        fit = fit_limits(limits, bands, dt_s, objective=objective, n_grid=n_grid, floor=(f, env))
+    fit, raised = _raised(fit, limits, bands, dt_s, f, env, objective, n_grid)
     return fit, LowFrequency(
         status,
         tau_max_s,
@@ -302,6 +334,79 @@ def bound_below(
         before=before,
         parameter_set=_parameter_set(ms, fit, tau_max_s),
     )
+
+
+def _raised(
+    fit: BoundFit,
+    limits: PooledLimits,
+    bands: BandSpectra,
+    dt_s: float,
+    f: NDArray[np.float64],
+    env: NDArray[np.float64],
+    objective: str,
+    n_grid: int,
+) -> tuple[BoundFit, bool]:
+    """Refit the bound above ``env`` at ``f`` when it lies below it anywhere."""
+    if not np.any(fit.psd(f) < env * (1.0 - 1e-9)):
+        return fit, False
+    return fit_limits(limits, bands, dt_s, objective=objective, n_grid=n_grid, floor=(f, env)), True
+
+
+def prior_ceiling(
+    limits: PooledLimits, bands: BandSpectra, dt_s: float, *, tau_max_s: float = TAU_MAX_S
+) -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
+    """Return the largest PSD below ``f_min`` of the models within the lowest bands' limits.
+
+    The models are every sum of Gauss-Markov terms with ``tau <= tau_max_s``
+    and white noise whose mean over a group's lowest band ``[lo, hi]`` lies
+    within the group's upper limit ``U`` there. Each term has ``f^2 S(f)``
+    rising in ``f``, so at ``lo`` such a sum is at most ``U hi / lo``
+    (:func:`~psdbound.spectra.models.below_band_ceiling`); below ``lo`` each
+    term grows by at most the largest ``S(f) / S(lo)`` of a Gauss-Markov
+    term with ``tau <= tau_max_s`` (white noise: 1), taken over a grid of
+    time constants from ``dt_s`` to ``tau_max_s``.
+
+    Parameters
+    ----------
+    limits : PooledLimits
+        The pooled limits (each group's lowest finite band is used).
+    bands : BandSpectra
+        Their bands.
+    dt_s : float
+        Sampling interval, seconds.
+    tau_max_s : float, default :data:`TAU_MAX_S`
+        Prior upper limit of the time constant, seconds.
+
+    Returns
+    -------
+    (f_hz, ceiling_m2_hz) or None
+        From ``1e-4 f_min`` to ``f_min`` (Hz) and the ceiling there (m^2/Hz),
+        the largest over the groups; None without a finite limit.
+    """
+    f_min = float(bands.edges_hz[0])
+    f = f_min * _FRACTIONS
+    taus = np.geomspace(dt_s, max(tau_max_s, dt_s), 64)
+    out = np.zeros_like(f)
+    for g in range(limits.upper_m2_hz.shape[0]):
+        row = np.asarray(limits.upper_m2_hz[g], dtype=float)
+        finite = np.flatnonzero(np.isfinite(row) & (row > 0))
+        if not finite.size:
+            continue
+        k = int(finite[0])
+        lo, hi = _span(limits, bands, g, k)
+        at_lo = float(below_band_ceiling(row[k], lo, hi, lo))
+        shapes = [gm_psd_sampled(f, 1.0, t, dt_s) / gm_psd_sampled(lo, 1.0, t, dt_s) for t in taus]
+        ratio = np.max(shapes, axis=0)
+        out = np.maximum(out, at_lo * np.maximum(ratio, 1.0))
+    return (f, out) if np.any(out > 0) else None
+
+
+def _span(limits: PooledLimits, bands: BandSpectra, g: int, k: int) -> tuple[float, float]:
+    """Edges (Hz) of group ``g``'s band ``k`` (merged bands span more than one)."""
+    if limits.band_span_hz is None:
+        return float(bands.edges_hz[k]), float(bands.edges_hz[k + 1])
+    lo, hi = limits.band_span_hz[g, k]
+    return float(lo), float(hi)
 
 
 def _parameter_set(ms: ModelSet, fit: BoundFit, tau_max_s: float) -> dict[str, list[float]]:
@@ -342,9 +447,9 @@ def low_frequency_reasons(section: dict[str, Any] | None, policy: str = "prior")
             return []
         why = section.get("reason") or "no model set"
         return [
-            f"low frequencies: below the lowest band the bound is the fitted model's "
-            f"extrapolation, not checked against the data ({why}), and the low-frequency "
-            f"policy is 'refuse'"
+            f"low frequencies: the data could not narrow the models below the lowest band "
+            f"({why}); the bound there rests on the prior tau <= {section['tau_max_s']:g} s "
+            f"or on the fitted model's extrapolation, and the low-frequency policy is 'refuse'"
         ]
     tau_max = section["tau_max_s"]
     if section["status"] == "prior" and section.get("envelope_at_0_m2_hz") is None:

@@ -107,7 +107,7 @@ def test_reasons_from_the_result_section():
     unchecked = {"status": "unchecked", "tau_max_s": 900.0, "reason": "3 test bands"}
     assert low_frequency_reasons(unchecked) == []
     (why,) = low_frequency_reasons(unchecked, "refuse")  # the data do not bound tau either
-    assert "not checked" in why and "3 test bands" in why and "'refuse'" in why
+    assert "could not narrow" in why and "3 test bands" in why and "'refuse'" in why
     covered = {"status": "covered", "tau_max_s": 900.0, "envelope_at_0_m2_hz": 1e-3}
     assert low_frequency_reasons(covered, "refuse") == []
     prior = dict(covered, status="prior")
@@ -145,3 +145,49 @@ def test_identification_bands_stop_at_f_min_after_a_filter():
     lower = identification_bands(res.psds, res.bands)
     assert lower.edges_hz[0] == pytest.approx(1.0 / (240 * DT), rel=1e-6)
     assert np.isfinite(lower.psd_m2_hz[:, 0]).all()
+
+
+def test_prior_ceiling_lies_above_every_model_within_the_lowest_limit():
+    """Closed form: GM + white models with tau <= tau_max and band mean = U stay under it."""
+    from types import SimpleNamespace
+
+    from psdbound.spectra.lowfreq import prior_ceiling
+
+    lo, hi, upper = 0.003, 0.0038, 2e-4
+    bands = SimpleNamespace(edges_hz=np.array([lo, hi, 0.005]))
+    limits = SimpleNamespace(upper_m2_hz=np.array([[upper, 1e-4]]), band_span_hz=None)
+    f, ceiling = prior_ceiling(limits, bands, DT, tau_max_s=900.0)
+    assert f[-1] == pytest.approx(lo) and f[0] == pytest.approx(1e-4 * lo)
+    band = np.linspace(lo, hi, 2001)
+    rng = np.random.default_rng(8)
+    worst = 0.0
+    for tau in np.r_[np.geomspace(DT, 900.0, 40), rng.uniform(DT, 900.0, 40)]:
+        for white_share in (0.0, 0.3, 0.9):
+            shape = (1 - white_share) * gm_psd_sampled(band, 1.0, tau, DT) + white_share * 2 * DT
+            scale = upper / np.mean(shape)  # the model's band mean is exactly the limit
+            below = scale * (
+                (1 - white_share) * gm_psd_sampled(f, 1.0, tau, DT) + white_share * 2 * DT
+            )
+            worst = max(worst, float(np.max(below / ceiling)))
+    assert worst <= 1.0 + 1e-9
+    assert worst > 0.5  # the ceiling is reached within a factor 2 (tau_max, no white noise)
+    slower = gm_psd_sampled(band, 1.0, 3000.0, DT)
+    outside = upper / np.mean(slower) * gm_psd_sampled(f, 1.0, 3000.0, DT)
+    assert outside[0] > ceiling[0]  # a slower truth is outside the prior, and says so
+
+
+def test_without_a_model_set_the_prior_still_covers_a_slow_truth():
+    """Too few bands for a model set (short windows): the bound below f_min is not left
+    to the fitted model's extrapolation, it covers every model up to the prior."""
+    rng = np.random.default_rng(21)
+    truth = (0.003, 600.0, 0.0005)
+    res = psdbound.bound_series(_windows(rng, *truth, 6, 80), DT)  # 40-min windows
+    low = res.low_frequency
+    assert low.status == "unchecked" and low.envelope_m2_hz is not None
+    assert "could not narrow" in low.sentence() and "prior 900 s" in res.covers
+    f = F_ALL[F_ALL < res.f_min_hz]
+    truth_below = gm_psd_sampled(f, truth[0], truth[1], DT) + 2 * truth[2] ** 2 * DT
+    assert np.all(res.bound.sampled_psd(f) >= truth_below)
+    before = low.before
+    extrapolated = gm_psd_sampled(f, before["sigma_gm_m"], before["tau_s"], DT)
+    assert extrapolated[0] < truth_below[0]  # the fitted model alone lay under the truth at 0 Hz
