@@ -289,11 +289,8 @@ class OrbitCoverage:
                     f"{len(sc.observed)} observed satellites ({' '.join(sc.missing)})"
                 )
             if sc.partial:
-                few = ", ".join(
-                    f"{k} (at {_share(v)} of its sampled epochs)"
-                    for k, v in sorted(sc.partial.items())
-                )
-                parts.append(f"positions at only part of the observation epochs of {few}")
+                few = ", ".join(f"{k} {_share(v)}" for k, v in sorted(sc.partial.items()))
+                parts.append(f"positions at only part of their sampled observation epochs ({few})")
             out.append(
                 f"the {self.kind} gives " + " and ".join(parts) + f"{_unsupported(sc)}: their "
                 "epochs without a position get no elevation and are left out of the arcs"
