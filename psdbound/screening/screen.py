@@ -455,8 +455,9 @@ def _notes(
         ()
         if m_per_tecu is not None
         else (
-            "no ionosphere test: dual-antenna differences cancel the ionosphere of a short "
-            "baseline",
+            "no ionosphere test: dual-antenna differences cancel the ionosphere common to "
+            "both antennas (all of it on a short baseline; over kilometres a differential "
+            "part remains, which the bound covers as multipath)",
         )
     )
     if null is not None and not null.trusted:
