@@ -71,7 +71,7 @@ from psdbound.spectra.bound import BoundFit, Floor
 from psdbound.spectra.intervals import ModelSet
 from psdbound.spectra.models import below_band_ceiling, gm_psd_sampled
 from psdbound.spectra.names import POLICIES, TAU_MAX_S
-from psdbound.spectra.pooled import PooledLimits, fit_limits
+from psdbound.spectra.pooled import PooledLimits, fit_limits, lowest_limit
 
 __all__ = [
     "LowFrequency",
@@ -388,25 +388,15 @@ def prior_ceiling(
     taus = np.geomspace(dt_s, max(tau_max_s, dt_s), 64)
     out = np.zeros_like(f)
     for g in range(limits.upper_m2_hz.shape[0]):
-        row = np.asarray(limits.upper_m2_hz[g], dtype=float)
-        finite = np.flatnonzero(np.isfinite(row) & (row > 0))
-        if not finite.size:
+        lowest = lowest_limit(limits, bands, g)
+        if lowest is None:
             continue
-        k = int(finite[0])
-        lo, hi = _span(limits, bands, g, k)
-        at_lo = float(below_band_ceiling(row[k], lo, hi, lo))
+        upper, lo, hi = lowest
+        at_lo = float(below_band_ceiling(upper, lo, hi, lo))
         shapes = [gm_psd_sampled(f, 1.0, t, dt_s) / gm_psd_sampled(lo, 1.0, t, dt_s) for t in taus]
         ratio = np.max(shapes, axis=0)
         out = np.maximum(out, at_lo * np.maximum(ratio, 1.0))
     return (f, out) if np.any(out > 0) else None
-
-
-def _span(limits: PooledLimits, bands: BandSpectra, g: int, k: int) -> tuple[float, float]:
-    """Edges (Hz) of group ``g``'s band ``k`` (merged bands span more than one)."""
-    if limits.band_span_hz is None:
-        return float(bands.edges_hz[k]), float(bands.edges_hz[k + 1])
-    lo, hi = limits.band_span_hz[g, k]
-    return float(lo), float(hi)
 
 
 def _parameter_set(ms: ModelSet, fit: BoundFit, tau_max_s: float) -> dict[str, list[float]]:

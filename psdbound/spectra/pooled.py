@@ -74,11 +74,13 @@ from psdbound.spectra.ordinates import LowestOrdinates
 __all__ = [
     "MIN_GROUP_DOF",
     "PooledLimits",
+    "band_spans",
     "capped_below_data",
     "excess_statistic",
     "fit_limits",
     "fit_pooled_bound",
     "group_bands",
+    "lowest_limit",
     "pool_bands",
     "random_effects_mean",
 ]
@@ -862,13 +864,56 @@ def fit_pooled_bound(
     return fit, bands, limits
 
 
-def _spans(
+def band_spans(
     limits: PooledLimits, bands: BandSpectra, g: int
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Lower and upper edges of the band each of group ``g``'s limits holds for, Hz."""
+    """Return the lower and upper edges (Hz) of the band each of group ``g``'s limits holds for.
+
+    Parameters
+    ----------
+    limits : PooledLimits
+        The pooled limits.
+    bands : BandSpectra
+        Their common bands.
+    g : int
+        Group index.
+
+    Returns
+    -------
+    lo_hz, hi_hz : ndarray, shape (B,)
+        The common band, or for a small group the merged band it lies in.
+    """
     if limits.band_span_hz is None:
         return bands.edges_hz[:-1].copy(), bands.edges_hz[1:].copy()
     return limits.band_span_hz[g, :, 0], limits.band_span_hz[g, :, 1]
+
+
+def lowest_limit(
+    limits: PooledLimits, bands: BandSpectra, g: int
+) -> tuple[float, float, float] | None:
+    """Return group ``g``'s lowest finite, positive upper limit and the band it holds for.
+
+    Parameters
+    ----------
+    limits : PooledLimits
+        The pooled limits.
+    bands : BandSpectra
+        Their common bands.
+    g : int
+        Group index.
+
+    Returns
+    -------
+    (limit_m2_hz, lo_hz, hi_hz) or None
+        None when the group has no such limit.
+    """
+    row = np.asarray(limits.upper_m2_hz[g], dtype=float)
+    have = np.flatnonzero(np.isfinite(row) & (row > 0))
+    if not have.size:
+        return None
+    k = int(have[0])
+    lo, hi = band_spans(limits, bands, g)
+    return float(row[k]), float(lo[k]), float(hi[k])
 
 
 def fit_limits(
@@ -915,7 +960,7 @@ def fit_limits(
     """
     target = []
     for g, row in enumerate(limits.upper_m2_hz):
-        lo, hi = _spans(limits, bands, g)
+        lo, hi = band_spans(limits, bands, g)
         hi = np.minimum(hi, 0.5 / dt_s)
         have = np.isfinite(row) & np.isfinite(lo)
         lo, hi, row = lo[have], hi[have], row[have]

@@ -47,7 +47,7 @@ from psdbound.spectra.bound import BoundFit, Floor, join_floors
 from psdbound.spectra.intervals import model_set
 from psdbound.spectra.lowfreq import model_envelope
 from psdbound.spectra.models import GaussMarkovWhiteNoise, below_band_ceiling
-from psdbound.spectra.pooled import PooledLimits, fit_limits
+from psdbound.spectra.pooled import PooledLimits, fit_limits, lowest_limit
 
 __all__ = ["UnresolvedGroups", "cover_unresolved"]
 
@@ -125,13 +125,10 @@ def _f_minus_2(
     limits: PooledLimits, bands: BandSpectra, g: int, f_hz: NDArray[np.float64]
 ) -> NDArray[np.float64]:
     """Return the group's lowest limit carried down along ``f^-2`` from its band's lower edge."""
-    row = limits.upper_m2_hz[g]
-    k = int(np.flatnonzero(np.isfinite(row))[0])
-    if limits.band_span_hz is None:
-        lo, hi = bands.edges_hz[k], bands.edges_hz[k + 1]
-    else:
-        lo, hi = limits.band_span_hz[g, k]
-    return below_band_ceiling(row[k], lo, hi, f_hz)
+    lowest = lowest_limit(limits, bands, g)
+    if lowest is None:  # a group without a limit carries nothing down
+        return np.zeros_like(np.asarray(f_hz, dtype=float))
+    return below_band_ceiling(*lowest, f_hz)
 
 
 def _group_envelope(
