@@ -216,6 +216,8 @@ def run(args: argparse.Namespace) -> int:
     given = read_options(args, OPTIONS, SCHEMA.spec)
     opts = SCHEMA.build("campaign", given.get("campaign", {}))
     check_writable_folder(opts.out, option="--out")
+    if opts.cache_dir is not None:
+        check_writable_folder(opts.cache_dir, option="--cache-dir")
     options = day_options(args)
 
     res = run_campaign(

@@ -368,6 +368,7 @@ def run(args: argparse.Namespace) -> int:
     from psdbound.ionosphere import run_cutoff
 
     opts, settings = _options(args)
+    _check_folders(opts)
     execution = {
         "workers": opts.workers,
         "scheduler": opts.scheduler,
@@ -409,6 +410,15 @@ def run(args: argparse.Namespace) -> int:
     )
     _print_station(outcome)
     return 0
+
+
+def _check_folders(opts: CutoffOptions) -> None:
+    """Refuse an output or cache folder that cannot be written, before any computation."""
+    from psdbound.common.outputs import check_writable_folder
+
+    check_writable_folder(opts.out, option="--out")
+    if opts.cache_dir is not None and opts.use_cache:
+        check_writable_folder(opts.cache_dir, option="--cache-dir")
 
 
 def _grid_step(text: str | None) -> tuple[float, float] | None:

@@ -83,6 +83,11 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     for name in (command,) if command in _COMMANDS else _COMMANDS:
         importlib.import_module(f"psdbound.cli.{name}").add_parser(sub)
     parser.commands = dict(sub.choices)
+    for p in parser.commands.values():
+        if "--verbose" not in p._option_string_actions:  # every command can show a traceback
+            p.add_argument(
+                "--verbose", action="store_true", help="print the traceback of an internal error"
+            )
     return parser
 
 

@@ -35,7 +35,9 @@ def run(args: argparse.Namespace) -> int:
 
     The output folder is checked before the result is read and the figures
     drawn: an existing file, or a folder that is not a psdbound output
-    (without ``--overwrite``), is refused.
+    (without ``--overwrite``), is refused. Re-rendered in the result file's
+    own folder, the run's other files stay: its ``series.csv.gz``, and its
+    ``report.pdf`` with ``--no-pdf``.
     """
     import psdbound
     from psdbound.common.outputs import check_output_folder
@@ -45,8 +47,15 @@ def run(args: argparse.Namespace) -> int:
     result = psdbound.load(args.result)
     option = "--out" if args.out else "the result file's folder (the default --out)"
     check_output_folder(out, overwrite=args.overwrite, option=option)
+    own = out.resolve() == Path(args.result).resolve().parent
+    keep = ("series.csv.gz",) + (("report.pdf",) if args.no_pdf else ()) if own else ()
     paths = write_report_folder(
-        result.document, out, pdf=not args.no_pdf, overwrite=args.overwrite, option=option
+        result.document,
+        out,
+        pdf=not args.no_pdf,
+        overwrite=args.overwrite,
+        option=option,
+        keep=keep,
     )
     if not args.quiet:
         for p in paths.values():

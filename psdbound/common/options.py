@@ -315,6 +315,14 @@ class Text(Spec):
         return value
 
 
+def _number_text(text: Any) -> Any:
+    """Return the number a piece of split text spells (``" 15"`` -> 15.0), else the text."""
+    try:
+        return float(str(text).strip())
+    except ValueError:
+        return text
+
+
 @dataclass(frozen=True)
 class Tuple(Spec):
     """A sequence of items, each checked by ``item``; stored as a tuple.
@@ -356,6 +364,8 @@ class Tuple(Spec):
         if isinstance(value, str | os.PathLike):
             text = os.fspath(value)
             value = text.split(self.split) if self.split and isinstance(text, str) else [text]
+            if isinstance(self.item, Number):  # "5,15,30": numbers written as text
+                value = [_number_text(v) for v in value]
         if isinstance(value, Mapping) or not isinstance(value, list | tuple):
             raise ValueError("")
         n = len(value)

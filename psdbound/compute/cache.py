@@ -32,6 +32,7 @@ from typing import Any, Protocol
 import numpy as np
 
 from psdbound.common import atomic_write_bytes, atomic_write_text
+from psdbound.common.notices import warn
 
 __all__ = [
     "CACHE_ENV",
@@ -155,18 +156,31 @@ class ResultStore:
         result : mapping
             The result; top-level ndarray values go to the NPZ file, the rest
             must be JSON-able (NumPy scalars and nested arrays are converted).
+
+        Warns
+        -----
+        PsdboundWarning
+            The entry could not be written (the folder is not writable, the
+            disk is full): the run goes on without it.
         """
         pj, pn = self.paths(key)
         arrays = {k: v for k, v in result.items() if isinstance(v, np.ndarray)}
-        if arrays:
-            buf = io.BytesIO()
-            np.savez_compressed(buf, **arrays)
-            atomic_write_bytes(pn, buf.getvalue())
         body = {
             "result": {k: v for k, v in result.items() if k not in arrays},
             "arrays": sorted(arrays),
         }
-        atomic_write_text(pj, json.dumps(body, default=_json_default))
+        try:
+            if arrays:
+                buf = io.BytesIO()
+                np.savez_compressed(buf, **arrays)
+                atomic_write_bytes(pn, buf.getvalue())
+            atomic_write_text(pj, json.dumps(body, default=_json_default))
+        except OSError as exc:  # a cache saves time only: the result stands without it
+            warn(
+                f"cache not written ({exc.strerror or exc}): the result is computed again "
+                f"next time; give a writable cache folder (--cache-dir or ${CACHE_ENV})",
+                path=self.directory,
+            )
 
 
 class TaskCache(Protocol):

@@ -14,7 +14,13 @@ from psdbound.kalman.error_model import Component, error_model_section
 from psdbound.pipeline.config import FitConfig
 from psdbound.pipeline.products import CodeOverbound
 from psdbound.pipeline.stages import InputData, Isolated, Screened, Validated, Windowed
-from psdbound.pipeline.verdict import VerdictCheck, verdict_checks, verdict_facts, verdict_of
+from psdbound.pipeline.verdict import (
+    VerdictCheck,
+    lowest_elevation,
+    verdict_checks,
+    verdict_facts,
+    verdict_of,
+)
 from psdbound.reports import figure_data
 from psdbound.results import SCHEMA_VERSION, to_jsonable
 from psdbound.results.headline import headline
@@ -193,6 +199,9 @@ def _mapping_section(windowed: Windowed, res: BoundResults, screened: Screened) 
             }
         )
     out = mp.to_dict()
+    lowest = lowest_elevation(windowed, screened)
+    if lowest is not None:
+        out["lowest_elevation_deg"], out["factor_at_lowest"] = lowest
     ok = np.isfinite(el)
     rms_factor = float(np.sqrt(np.mean(mp.factor(el[ok]) ** 2))) if ok.any() else 1.0
     out["rms_factor_over_data"] = rms_factor

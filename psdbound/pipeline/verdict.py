@@ -48,8 +48,11 @@ data used
     rule). Dual-frequency series only (the dual-antenna chain does not
     count its input yet).
 physical limit
-    The bound's standard deviation at zenith, ``sqrt(sigma_GM^2 +
-    sigma_WN^2)``, exceeds the largest value carrier multipath can take in
+    The bound's standard deviation at the lowest elevation of the data,
+    ``m(el_low) sqrt(sigma_GM^2 + sigma_WN^2)`` (the bound is a zenith-scale
+    model that the mapping ``m(el)`` scales up at low elevations; the zenith
+    value where the data have no elevations), exceeds the largest value
+    carrier multipath can take in
     the isolated series (``screening.multipath_limit_m``: the scaled sum of
     the quarter wavelengths of its phase terms, 7.70 cm for GPS L1/L2 DF).
     A variable bounded by ``L`` has a standard deviation of at most ``L``:
@@ -214,6 +217,10 @@ class VerdictFacts:
         Data the file offered above the elevation mask, s.
     multipath_limit_m : float or None
         The largest standard deviation carrier multipath can reach, m.
+    lowest_elevation_deg, mapping_factor_lowest : float or None
+        The lowest elevation of the mapped data, deg, and the mapping factor
+        ``m(el)`` there: the bound's standard deviation at that elevation is
+        this factor times its zenith value (None: the zenith value is checked).
     """
 
     sigma_gm_m: float
@@ -230,6 +237,8 @@ class VerdictFacts:
     excluded_fraction: float | None = None
     offered_s: float | None = None
     multipath_limit_m: float | None = None
+    lowest_elevation_deg: float | None = None
+    mapping_factor_lowest: float | None = None
 
     @classmethod
     def from_document(cls, d: dict[str, Any]) -> VerdictFacts:
@@ -253,6 +262,8 @@ class VerdictFacts:
             excluded_fraction=scr.get("excluded_fraction"),
             offered_s=(iso.get("offered") or {}).get("offered_s"),
             multipath_limit_m=scr.get("multipath_limit_m"),
+            lowest_elevation_deg=(d.get("mapping") or {}).get("lowest_elevation_deg"),
+            mapping_factor_lowest=(d.get("mapping") or {}).get("factor_at_lowest"),
         )
 
 
@@ -286,6 +297,7 @@ def verdict_facts(
     details = isolated.details or {}
     low = bounded.low_frequency
     spans = [(x.arc_id, x.t_start_gps_s, x.t_stop_gps_s) for x in w.windows]
+    lowest = lowest_elevation(windowed, screened)
     return VerdictFacts(
         sigma_gm_m=b.sigma_gm_m,
         tau_s=b.tau_s,
@@ -301,7 +313,38 @@ def verdict_facts(
         excluded_fraction=sc.excluded_fraction,
         offered_s=(details.get("offered") or {}).get("offered_s"),
         multipath_limit_m=sc.limit_m,
+        lowest_elevation_deg=None if lowest is None else lowest[0],
+        mapping_factor_lowest=None if lowest is None else lowest[1],
     )
+
+
+def lowest_elevation(windowed: Windowed, screened: Screened) -> tuple[float, float] | None:
+    """Return the lowest elevation of the mapped data and the mapping factor there.
+
+    The bound is a zenith-scale model: at elevation ``el`` it states a
+    standard deviation ``m(el)`` times its own, largest at the lowest
+    elevation of the data it was fitted to.
+
+    Parameters
+    ----------
+    windowed, screened : stage products
+        Of :mod:`psdbound.pipeline.stages`.
+
+    Returns
+    -------
+    (float, float) or None
+        Elevation, deg, and ``m(el)`` there (dimensionless); None without
+        elevations.
+    """
+    import numpy as np
+
+    el = np.asarray(screened.series.elevation_deg, dtype=float)
+    x = np.asarray(windowed.windows.mapped_m, dtype=float)
+    ok = np.isfinite(el) & np.isfinite(x) if x.shape == el.shape else np.isfinite(el)
+    if not ok.any():
+        return None
+    low = float(np.min(el[ok]))
+    return low, float(windowed.mapping.factor(low))
 
 
 @dataclass(frozen=True)
@@ -491,16 +534,22 @@ def _physical(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
     if not lim:
         return []
     sigma = math.hypot(f.sigma_gm_m, f.sigma_wn_m)
+    measured = f"sigma {100 * sigma:.2f} cm at zenith"
+    where = "at zenith"
+    if f.mapping_factor_lowest is not None and f.lowest_elevation_deg is not None:
+        sigma *= max(f.mapping_factor_lowest, 1.0)
+        where = f"at {f.lowest_elevation_deg:.1f} deg, the data's lowest elevation"
+        measured += f", {100 * sigma:.2f} cm {where}"
     return [
         _check(
             "physical limit",
             sigma <= lim,
-            f"sigma {100 * sigma:.2f} cm at zenith",
+            measured,
             f"<= {100 * lim:.2f} cm carrier-multipath limit",
-            f"physical limit: the bound's standard deviation {100 * sigma:.2f} cm exceeds "
-            f"the {100 * lim:.2f} cm that carrier multipath of this series can reach at "
-            "all (a quarter wavelength per carrier): what it bounds is not multipath "
-            "(residual ionosphere, cycle slips, a wrong baseline)",
+            f"physical limit: the bound's standard deviation {where} ({100 * sigma:.2f} cm, "
+            f"mapped) exceeds the {100 * lim:.2f} cm that carrier multipath of this series "
+            "can reach at all (a quarter wavelength per carrier): what it bounds is not "
+            "multipath (residual ionosphere, cycle slips, a wrong baseline)",
         )
     ]
 

@@ -7,6 +7,8 @@ Drawing is imported only when reports are written (matplotlib takes about
 from __future__ import annotations
 
 import os
+import shutil
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -25,6 +27,7 @@ def write_report_folder(
     overwrite: bool = False,
     option: str = "output folder",
     extra: dict[str, bytes] | None = None,
+    keep: Sequence[str] = (),
 ) -> dict[str, Path]:
     """Write ``result.json``, ``report.html`` and ``report.pdf`` safely and atomically.
 
@@ -55,6 +58,11 @@ def write_report_folder(
         written into the same folder in the same atomic step.
     option : str, default "output folder"
         How to name the destination in messages (the CLI passes ``"--out"``).
+    keep : sequence of str, optional
+        Files of the existing ``out_dir`` to keep as they are (copied into the
+        new folder before it is installed): ``psdbound report`` re-rendering
+        a result in its own folder keeps the run's ``series.csv.gz``, and its
+        ``report.pdf`` when no PDF is drawn. A name that is absent is skipped.
 
     Returns
     -------
@@ -73,6 +81,9 @@ def write_report_folder(
             _write_reports(document, tmp, pdf=pdf)
         for name, data in (extra or {}).items():
             (tmp / name).write_bytes(data)
+        for name in keep:
+            if (out / name).is_file() and not (tmp / name).exists():
+                shutil.copy2(out / name, tmp / name)
     paths = {"result": out / "result.json"}
     if report:
         paths["html"] = out / "report.html"

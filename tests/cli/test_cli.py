@@ -112,3 +112,34 @@ def test_inspect_real_with_elevations(capsys):
 def test_gras_has_no_arc_long_enough(capsys):
     assert main(["inspect", str(shared_file(GRAS_OBS))]) == 0
     assert "G L1C-L2W: 0 arcs >= 30 min" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    "command", [["cutoff", "--lat", "56", "--lon", "9.8", "--days", "2020-06-25"], ["campaign"]]
+)
+@pytest.mark.parametrize("flag", ["--out", "--cache-dir"])
+def test_unwritable_folders_are_refused_before_any_work(tmp_path, capsys, command, flag):
+    """A file given as the output or cache folder: exit 2 at once, nothing computed or written."""
+    afile = tmp_path / "afile"
+    afile.write_text("x")
+    args = list(command)
+    if command == ["campaign"]:
+        obs, nav = write_small(tmp_path / "a.rnx", n_epoch=200), tmp_path / "n.rnx"
+        nav.write_text(NAV3_TEXT)
+        args += [str(obs), "--nav", str(nav)]
+    out = tmp_path / "out"
+    args += ["--workers", "0", "--out", str(afile if flag == "--out" else out)]
+    if flag == "--cache-dir":
+        args += ["--cache-dir", str(afile)]
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and f"{flag} is an existing file" in err[0], err
+    assert afile.read_text() == "x" and not out.exists()
+
+
+def test_every_command_takes_the_verbose_flag_its_internal_error_line_names():
+    """An internal error says 'run with --verbose for the traceback': every command has it."""
+    from psdbound.cli.main import build_parser
+
+    for name, p in build_parser().commands.items():
+        assert any("--verbose" in a.option_strings for a in p._actions), name

@@ -194,3 +194,26 @@ def test_simulate_options(files, capsys):
     code, err = _run(capsys, "simulate", "--preset", "short", "--out", "afile")
     assert code == 2 and "is an existing file, not a folder" in err
     assert (files / "afile").read_text() == "mine\n"
+
+
+def test_a_list_of_numbers_is_read_from_comma_separated_text():
+    """'--code-edges-deg 5,15,30,90' (and the same text in TOML) is four numbers."""
+    from psdbound.common.options import Number, Tuple
+
+    spec = Tuple(Number(lo=0.0, hi=90.0, unit="deg"), min_len=2, split=",")
+    assert spec.check("5, 15,30,90") == (5.0, 15.0, 30.0, 90.0)
+    assert spec.check([5, 15]) == (5.0, 15.0)
+    with pytest.raises(ValueError):
+        spec.check("5,x,30")
+    with pytest.raises(ValueError):
+        spec.check("5,95")
+
+
+def test_code_edges_are_given_on_the_command_line():
+    from psdbound.cli.fit import build_config
+    from psdbound.cli.main import build_parser
+
+    args = build_parser("fit").parse_args(
+        ["fit", "--code-multipath", "C1C", "--code-edges-deg", "5,15,30,90"]
+    )
+    assert build_config(args).code_multipath.edges_deg == (5.0, 15.0, 30.0, 90.0)

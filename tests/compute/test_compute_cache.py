@@ -164,3 +164,14 @@ def test_passes_share_one_lazy_client(tmp_path, monkeypatch):
         with cluster_mod.lazy_client(workers=2) as client:
             again = run_tasks(square, [{"x": 3.0}], cache=cache, client=client)
         assert again.from_cache == [True] and len(opened) == 1
+
+
+def test_a_cache_that_cannot_be_written_warns_and_the_run_goes_on(tmp_path):
+    from psdbound.common.notices import PsdboundWarning
+
+    afile = tmp_path / "afile"
+    afile.write_text("x")  # the cache folder is a file: nothing can be written below it
+    store = ResultStore(afile)
+    with pytest.warns(PsdboundWarning, match="cache not written"):
+        store.write("k", {"a": 1, "b": np.arange(3)})
+    assert store.read("k") is None and afile.read_text() == "x"

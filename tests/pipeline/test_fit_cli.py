@@ -133,12 +133,26 @@ def test_report_out_never_loses_a_user_file(demo_run, tmp_path, capsys):
     assert main(["report", str(src), "--out", str(user), "--no-pdf", "--overwrite"]) == 0
     assert sorted(p.name for p in user.iterdir()) == ["notes.txt", "report.html", "result.json"]
     assert (user / "notes.txt").read_text() == "my notes\n"
-    # a previous output (the demo's) is replaced as a whole, nothing hidden is left behind
+    # re-rendered in its own folder, the run's other files stay as they were (the series,
+    # and the PDF when none is drawn); nothing hidden is left behind
     prev = tmp_path / "prev"
     shutil.copytree(work / "reports" / "demo", prev)
+    (prev / "series.csv.gz").write_bytes(b"series of the run")
+    pdf = (prev / "report.pdf").read_bytes()
     assert main(["report", str(prev / "result.json"), "--no-pdf", "--quiet"]) == 0
-    assert sorted(p.name for p in prev.iterdir()) == ["report.html", "result.json"]
+    assert sorted(p.name for p in prev.iterdir()) == [
+        "report.html",
+        "report.pdf",
+        "result.json",
+        "series.csv.gz",
+    ]
+    assert (prev / "series.csv.gz").read_bytes() == b"series of the run"
+    assert (prev / "report.pdf").read_bytes() == pdf
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]
+    # rendered into another folder, nothing of the source folder is copied
+    other = tmp_path / "other"
+    assert main(["report", str(prev / "result.json"), "--out", str(other), "--no-pdf"]) == 0
+    assert sorted(p.name for p in other.iterdir()) == ["report.html", "result.json"]
     afile = tmp_path / "afile"
     afile.write_text("x")
     assert main(["report", str(src), "--out", str(afile)]) == 2

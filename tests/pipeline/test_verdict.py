@@ -337,3 +337,19 @@ def test_facts_from_products_are_the_document_s():
     loaded = VerdictFacts.from_document(r.document)
     assert typed == loaded
     assert [c.to_dict() for c in verdict_checks(typed)] == r.document["verdict_checks"]
+
+
+def test_physical_limit_is_checked_where_the_mapped_bound_is_largest():
+    """The bound is a zenith-scale model: at the data's lowest elevation its standard
+    deviation is m(el) times larger, and that is what must stay under the limit."""
+    zenith_ok = _with("bound.sigma_gm_m", 0.02)  # 2 cm at zenith: under 7.70 cm
+    assert judge(zenith_ok) == ("bounded", [])
+    low = _with("bound.sigma_gm_m", 0.02)
+    low["mapping"] = {"lowest_elevation_deg": 10.0, "factor_at_lowest": 4.5}  # 9 cm at 10 deg
+    verdict, reasons = judge(low)
+    assert verdict == "not-bounded" and len(reasons) == 1
+    assert "physical limit" in reasons[0] and "10.0 deg" in reasons[0] and "9.0" in reasons[0]
+    check = [c for c in verdict_checks(low) if c.rule == "physical limit"][0]
+    assert "2.00 cm at zenith" in check.measured and "9.00 cm at 10.0 deg" in check.measured
+    low["mapping"]["factor_at_lowest"] = 3.5  # 7 cm at 10 deg: under the limit
+    assert judge(low) == ("bounded", [])
