@@ -494,15 +494,15 @@ def _grid(
     x: NDArray[np.float64], elevation_deg: ArrayLike | None, edges_deg: Sequence[float]
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Elevations and edges (one open bin without elevations), checked."""
+    edges = np.asarray(edges_deg, dtype=float)
+    if edges.size < 2 or not (np.diff(edges) > 0).all():
+        raise InputError(f"edges_deg must increase, at least 2 values: {list(edges_deg)}")
     if elevation_deg is None:
         return np.full(x.size, 0.0), np.array([-math.inf, math.inf])
     el = np.asarray(elevation_deg, dtype=float).reshape(-1)
-    edges = np.asarray(edges_deg, dtype=float)
     if el.size != x.size:
         raise InputError(f"{x.size} samples but {el.size} elevations")
     _check_elevations(el)
-    if edges.size < 2 or not (np.diff(edges) > 0).all():
-        raise InputError(f"edges_deg must increase, at least 2 values: {list(edges_deg)}")
     return el, edges
 
 

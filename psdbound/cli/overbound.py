@@ -1,7 +1,7 @@
 """``psdbound overbound``: Gaussian overbounds of an error distribution per elevation bin.
 
 Registered by :mod:`psdbound.cli.main` through :func:`add_parser`. Reads the
-samples with :func:`psdbound.aviation.read_samples` -- or, with ``--code``,
+samples with :func:`psdbound.aviation.files.read_sample_file` -- or, with ``--code``,
 computes them from a RINEX observation file: code multipath by carrier
 levelling (:func:`psdbound.isolation.isolate_code_multipath`, elevations
 from ``--nav``) -- runs
@@ -13,6 +13,13 @@ overbound at ``--confidence`` (``*_upper``). With ``--code`` a sparse bin is a p
 the station's sky (few satellites above 60 deg at high latitude): it is left
 out and named (``note:`` and ``bins_left_out``); exit 2 only when no bin
 holds ``--min-samples``.
+
+psdbound's own series files (``fit --series``: ``series.csv.gz``;
+``export``: ``.csv``, ``.csv.gz``, ``.nc``) are read as written: the rows the
+fit screened out are left out with a warning that counts them by reason
+(``--include-screened`` uses them), and the effective sample size never
+correlates across satellites, gaps or rows left out. ``--edges`` must
+increase; given for a file without elevations it is bad input (exit 2).
 """
 
 from __future__ import annotations
@@ -26,7 +33,7 @@ from psdbound.aviation.options import DEFAULT_EDGES_DEG, METHODS
 from psdbound.cli.actions import Once
 from psdbound.cli.config_file import add_config_option
 from psdbound.cli.schema import CliOption, Schema, SchemaHelpFormatter, add_options, read_options
-from psdbound.common.options import Choice, Number, Tuple, check_fields, option
+from psdbound.common.options import Boolean, Choice, Number, Tuple, check_fields, option
 from psdbound.errors import InputError
 
 __all__ = ["OPTIONS", "SCHEMA", "OverboundOptions", "add_parser", "run"]
@@ -43,6 +50,7 @@ class OverboundOptions:
     """
 
     samples: str | None = None
+    include_screened: bool = option(False, Boolean())
     code: str | None = None
     nav: str | None = None
     system: str = "G"
@@ -73,9 +81,20 @@ OPTIONS: tuple[CliOption, ...] = (
         _C,
         "samples",
         ("samples",),
-        "CSV/text with 'error' [and 'elevation'] columns, or .npy; with --code a RINEX "
-        "observation file (required)",
+        "CSV/text (plain or .gz) with 'error' [and 'elevation'] columns, .npy, or netCDF; "
+        "psdbound's series files (fit --series, export: .csv.gz, .nc) as written; with "
+        "--code a RINEX observation file (required)",
         None,
+    ),
+    _O(
+        _C,
+        "include_screened",
+        ("--include-screened",),
+        "also overbound the rows of a series file that the fit screened out (its "
+        "'screened' column: ionosphere, implausible, short remainder); by default they "
+        "are left out with a warning counting them",
+        None,
+        {"action": "store_true"},
     ),
     _O(
         _C,
@@ -189,15 +208,21 @@ def run(args: argparse.Namespace) -> int:
     Raises
     ------
     InputError
-        Unreadable samples, NaN, a bin with too few samples, bad options.
+        Unreadable samples (a binary file of no supported format, a truncated
+        series file), NaN, every row screened out, a bin with too few samples,
+        bad options (``--edges`` not increasing, or given for a file without
+        elevations).
     """
     from psdbound.aviation import write_overbound
     from psdbound.common.outputs import check_writable_folder
 
-    opts = _options(args)
+    opts, edges_given = _options(args)
     if opts.out:
         check_writable_folder(opts.out, option="--out")
-    res, extra = _code_overbound(opts) if opts.code else (_samples_overbound(opts), {})
+    if opts.code:
+        res, extra = _code_overbound(opts)
+    else:
+        res, extra = _samples_overbound(opts, edges_given), {}
     print(res.summary())
     if opts.out:
         for f in write_overbound(res, opts.out, extra=extra):
@@ -205,9 +230,10 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _options(args: argparse.Namespace) -> OverboundOptions:
-    """Return the checked options; refuse inconsistent ones; fill ``--min-abs-z``'s default."""
-    opts = SCHEMA.build("command", read_options(args, OPTIONS, SCHEMA.spec).get(_C, {}))
+def _options(args: argparse.Namespace) -> tuple[OverboundOptions, bool]:
+    """Return the checked options and whether ``--edges`` was given; refuse inconsistent ones."""
+    given = read_options(args, OPTIONS, SCHEMA.spec).get(_C, {})
+    opts = SCHEMA.build("command", given)
     if opts.method == "paired" and opts.min_abs_z is not None:
         raise InputError(
             "--min-abs-z applies to --method two_step / cdf: the paired overbound exempts no core"
@@ -216,18 +242,36 @@ def _options(args: argparse.Namespace) -> OverboundOptions:
         opts = dataclasses.replace(opts, min_abs_z=0.25)
     if not opts.code and opts.nav:
         raise InputError("--nav is only used with --code (SAMPLES is a samples file)")
-    return opts
+    if opts.code and opts.include_screened:
+        raise InputError(
+            "--include-screened applies to a series file (SAMPLES); --code computes the samples"
+        )
+    edges = opts.edges_deg
+    if len(edges) < 2 or any(b <= a for a, b in zip(edges, edges[1:], strict=False)):
+        raise InputError(
+            f"--edges {' '.join(f'{e:g}' for e in edges)}: elevation bin edges must be at "
+            "least 2 values in increasing order, deg (e.g. --edges 5 30 90)"
+        )
+    return opts, "edges_deg" in given
 
 
-def _samples_overbound(opts: OverboundOptions) -> Any:
-    """Overbound the errors of a samples file (``SAMPLES``)."""
-    from psdbound.aviation import overbound_by_elevation, read_samples
+def _samples_overbound(opts: OverboundOptions, edges_given: bool) -> Any:
+    """Overbound the errors of a samples file (``SAMPLES``); refuse bins it cannot form."""
+    from psdbound.aviation import overbound_by_elevation
+    from psdbound.aviation.files import read_sample_file
 
-    errors, elevation = read_samples(opts.samples)
+    samples = read_sample_file(opts.samples, include_screened=opts.include_screened)
+    if edges_given and samples.elevation_deg is None:
+        raise InputError(
+            f"--edges {' '.join(f'{e:g}' for e in opts.edges_deg)} asks for elevation bins, but "
+            "the file has no elevations (a column elevation, elevation_deg or el, or a second "
+            ".npy column): add them, or leave out --edges to overbound all samples in one bin",
+            path=opts.samples,
+        )
     try:
-        return overbound_by_elevation(
-            errors,
-            elevation,
+        res = overbound_by_elevation(
+            samples.errors,
+            samples.elevation_deg,
             edges_deg=opts.edges_deg,
             method=opts.method,
             bias=opts.bias,
@@ -235,9 +279,13 @@ def _samples_overbound(opts: OverboundOptions) -> Any:
             min_samples=opts.min_samples,
             unit=opts.unit,
             confidence=opts.confidence,
+            segment_id=samples.segment_id,
         )
     except InputError as exc:
         raise InputError(exc.reason, path=opts.samples) from None
+    for note in samples.notes:
+        print(f"note: {note}")
+    return res
 
 
 def _code_overbound(opts: OverboundOptions) -> tuple[Any, dict[str, Any]]:
