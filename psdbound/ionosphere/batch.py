@@ -290,9 +290,28 @@ def station_cutoffs(
         progress=progress,
     )
     if not res.rows:
-        reasons = sorted({s["reason"] for s in res.skipped}) or ["no series"]
+        reasons = _grouped_by_day([s["reason"] for s in res.skipped]) or ["no series"]
         raise NoDataError(f"no satellite series to analyse at {station.name}: {'; '.join(reasons)}")
     return res
+
+
+def _grouped_by_day(reasons: Sequence[str]) -> list[str]:
+    """Say each reason once, with the days it holds for (the same sentence per day, once)."""
+    import re
+
+    days: dict[str, list[str]] = {}
+    for text in dict.fromkeys(reasons):
+        found = re.findall(r"\d{4}-\d{2}-\d{2}", text)
+        key = re.sub(r"\d{4}-\d{2}-\d{2}", "{day}", text) if len(found) == 1 else text
+        days.setdefault(key, []).extend(found[:1] if len(found) == 1 else [])
+    out = []
+    for key, when in days.items():
+        if not when:
+            out.append(key)
+            continue
+        shown = ", ".join(when[:3]) + (f" and {len(when) - 3} more days" if len(when) > 3 else "")
+        out.append(key.replace("{day}", shown))
+    return out
 
 
 def map_cutoffs(

@@ -44,6 +44,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
+from psdbound.constants import F_L1_HZ, F_L2_HZ
 from psdbound.errors import InputError
 from psdbound.ionosphere.names import (
     DEFAULT_MARGIN_DB,
@@ -61,6 +62,7 @@ __all__ = [
     "choose_cutoff",
     "cutoff_computed",
     "cutoff_from_map",
+    "iono_coefficient_ratio",
 ]
 
 #: The thesis's recommended cutoff for Chicago 2020 (maximum over the year), Hz.
@@ -270,8 +272,10 @@ def cutoff_computed(
     mp_sigma_m: float = DEFAULT_MP_SIGMA_M,
     margin_db: float = DEFAULT_MARGIN_DB,
     workers: int = 2,
+    carriers_hz: tuple[float, float] | None = None,
+    system: str = "G",
 ) -> tuple[float, dict[str, Any]]:
-    """Compute the cutoff at a position (PyIRI, nominal GPS, first Monday of each month).
+    """Compute the cutoff at a position (PyIRI, nominal constellation, first Monday of a month).
 
     Parameters
     ----------
@@ -286,13 +290,21 @@ def cutoff_computed(
         Residual criterion (see :class:`CutoffOptions`).
     workers : int, default 2
         Local Dask workers.
+    carriers_hz : (float, float), optional
+        The data's two carrier frequencies, Hz (default GPS L1/L2): the
+        residual ionosphere of the isolated series scales with their
+        ionosphere coefficient.
+    system : str, default "G"
+        The data's system: its nominal constellation (``"G"`` or ``"E"``;
+        another system is simulated with GPS's, and ``info`` says so).
 
     Returns
     -------
     f_c_hz : float
         Recommended (maximum over the series) cutoff, Hz.
     info : dict
-        ``{"computed": summary, "f107_sfu": ..., "f107_source": ...}``.
+        ``{"computed": summary, "f107_sfu": ..., "f107_source": ...,
+        "carriers_hz": ..., "constellation": ...}``.
     """
     from psdbound.ionosphere.batch import select_days, station_cutoffs
     from psdbound.ionosphere.settings import CutoffSettings
@@ -301,8 +313,16 @@ def cutoff_computed(
     f107, label = f107_of(_as_date(date), year)
     if f107 is None:
         f107, label = float(annual_f107(2024) or 185.0), f"no F10.7 for {year}: solar maximum"
+    fa, fb = carriers_hz or (F_L1_HZ, F_L2_HZ)
+    constellation = system if system in ("G", "E") else "G"
     settings = dataclasses.replace(
-        CutoffSettings(), f107_sfu=float(f107), mp_sigma_m=mp_sigma_m, margin_db=margin_db
+        CutoffSettings(),
+        f107_sfu=float(f107),
+        mp_sigma_m=mp_sigma_m,
+        margin_db=margin_db,
+        frequency_hz=float(fa),
+        second_frequency_hz=float(fb),
+        systems=constellation,
     )
     res = station_cutoffs(
         lat_deg,
@@ -318,7 +338,46 @@ def cutoff_computed(
         "computed": summ,
         "f107_sfu": float(f107),
         "f107_source": label,
+        "carriers_hz": [float(fa), float(fb)],
+        "constellation": f"nominal {constellation}"
+        + ("" if constellation == system else f" (no nominal constellation of {system})"),
     }
+
+
+def iono_coefficient_ratio(carriers_hz: tuple[float, float]) -> float:
+    """Return how much more ionosphere a carrier pair's isolated series holds than GPS L1/L2's.
+
+    The dual-frequency series ``(L_a - L_b) / sqrt(2)`` (phases in metres)
+    holds the ionosphere times ``|1/f_b^2 - 1/f_a^2|``; the ratio of that
+    coefficient to L1/L2's (1 for GPS L1/L2, 1.23 for E1/E5a or L1/L5).
+
+    Parameters
+    ----------
+    carriers_hz : (float, float)
+        The two carrier frequencies, Hz.
+
+    Returns
+    -------
+    float
+        Dimensionless.
+    """
+    fa, fb = carriers_hz
+    return abs(1 / fb**2 - 1 / fa**2) / abs(1 / F_L2_HZ**2 - 1 / F_L1_HZ**2)
+
+
+def _carrier_warning(carriers_hz: tuple[float, float] | None, source: str) -> list[str]:
+    """Say when the cutoff map (GPS L1/L2) is applied to another carrier pair."""
+    if carriers_hz is None:
+        return []
+    k = iono_coefficient_ratio(carriers_hz)
+    if abs(k - 1.0) < 1e-3:
+        return []
+    return [
+        f"the cutoff {source} was computed for GPS L1/L2; the data's carriers "
+        f"({carriers_hz[0] / 1e6:.2f}/{carriers_hz[1] / 1e6:.2f} MHz) put {k:.2f} times as much "
+        "ionosphere into the isolated series, so its residual-ionosphere criterion was not "
+        "checked for them: --cutoff-source computed computes the cutoff for these carriers"
+    ]
 
 
 def _band_warning(f_c_hz: float, interval_s: float | None) -> list[str]:
@@ -342,6 +401,8 @@ def choose_cutoff(
     year: int,
     date: _dt.date | str | None = None,
     interval_s: float | None = None,
+    carriers_hz: tuple[float, float] | None = None,
+    system: str = "G",
 ) -> CutoffChoice:
     """Choose the cutoff for a receiver position and date.
 
@@ -359,6 +420,11 @@ def choose_cutoff(
     interval_s : float, optional
         Sampling interval of the data, s: a cutoff leaving less than a
         factor :data:`MIN_BAND_RATIO` below Nyquist is warned about.
+    carriers_hz : (float, float), optional
+        The data's carrier frequencies, Hz (None: GPS L1/L2). ``"computed"``
+        uses them; the map (GPS L1/L2) says when they differ.
+    system : str, default "G"
+        The data's satellite system (``"computed"``: its nominal constellation).
 
     Returns
     -------
@@ -407,7 +473,7 @@ def choose_cutoff(
             mp_sigma_m=options.mp_sigma_m,
             margin_db=options.margin_db,
         )
-        warnings += info.pop("warnings")
+        warnings += info.pop("warnings") + _carrier_warning(carriers_hz, "map")
         c = info["cell"]
         source = (
             f"map (cell {c['lat_deg'][0]:g}..{c['lat_deg'][1]:g} N, "
@@ -423,10 +489,14 @@ def choose_cutoff(
             date=date,
             mp_sigma_m=options.mp_sigma_m,
             margin_db=options.margin_db,
+            carriers_hz=carriers_hz,
+            system=system,
         )
+        fa, fb = info["carriers_hz"]
         choice = CutoffChoice(
             f_c,
-            f"computed (PyIRI, residual criterion, {year}, F10.7 {info['f107_sfu']:.0f} sfu)",
+            f"computed (PyIRI, residual criterion, {year}, F10.7 {info['f107_sfu']:.0f} sfu, "
+            f"{fa / 1e6:.2f}/{fb / 1e6:.2f} MHz, {info['constellation']})",
             info,
         )
     warnings += _band_warning(choice.f_c_hz, interval_s)

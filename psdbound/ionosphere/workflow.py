@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from psdbound.common.notices import warn
 from psdbound.errors import InputError
 from psdbound.io.timescales import calendar_to_gps_s
 from psdbound.ionosphere.almanac import read_yuma
@@ -91,6 +92,37 @@ def load_orbit(
         near = float(calendar_to_gps_s(day.year, day.month, day.day, 0, 0, 0))
         return read_yuma(almanac, near_gps_s=near)
     return None
+
+
+def _system_satellites(
+    orbit: Any, systems: str, path: str | os.PathLike[str] | None
+) -> list[str] | None:
+    """Return the orbit file's satellites of the requested systems (None: no file).
+
+    Raises
+    ------
+    InputError
+        The file holds none of them.
+    """
+    if orbit is None:
+        return None
+    held = sorted(orbit.satellites)
+    sats = [s for s in held if s[0] in systems]
+    if not sats:
+        have = "".join(sorted({s[0] for s in held})) or "no satellite"
+        raise InputError(
+            f"the orbit file holds {have} only, not the systems asked for ({systems}); give "
+            f"--systems {have[:1] or 'G'} or an orbit file with {systems}",
+            path=path,
+        )
+    others = sorted({s[0] for s in held} - set(systems))
+    if others:
+        warn(
+            f"the orbit file also holds {''.join(others)} satellites, not analysed (--systems "
+            f"{systems})",
+            path=path,
+        )
+    return sats
 
 
 def run_cutoff(
@@ -173,6 +205,9 @@ def run_cutoff(
         "use_cache": use_cache,
         "progress": progress,
     }
+    sats = _system_satellites(common["orbit"], settings.systems, nav or sp3 or almanac)
+    if sats is not None:
+        common["satellites"] = sats
     if station_map:
         result: StationCutoffs | CutoffMap = map_cutoffs(day_list, **common)
     else:

@@ -17,6 +17,7 @@ from psdbound.pipeline.stages import InputData, Isolated, Screened, Validated, W
 from psdbound.pipeline.verdict import (
     VerdictCheck,
     lowest_elevation,
+    physical_note,
     verdict_checks,
     verdict_facts,
     verdict_of,
@@ -305,10 +306,11 @@ def _windows_section(windowed: Windowed, res: BoundResults, screened: Screened) 
         "count": len(w),
         "total_duration_s": w.total_duration_s,
         "data_s": data_s,
-        "covered_s": max(data_s - w.uncovered_s, 0.0),
-        "covered_fraction": max(1.0 - w.uncovered_s / data_s, 0.0) if data_s > 0 else 0.0,
+        "covered_s": w.covered_s,
+        "covered_fraction": min(w.covered_s / data_s, 1.0) if data_s > 0 else 0.0,
         "coverage_note": "data after screening that lie in a stationary window the bound is "
-        "fitted to; the rest never tested stationary (never_stationary)",
+        "fitted to (each sample once); the rest never tested stationary (never_stationary), "
+        "lay in arcs too short to test (too_short_s) or was trimmed from a window's ends",
         "never_stationary_s": w.uncovered_s,
         "rejected_s": w.rejected_s,
         "too_short_s": w.short_s,
@@ -538,4 +540,19 @@ def build_document(
         cutoff=cutoff,
         interval_s=interval_s,
     )
+    note = physical_note(facts)
+    if note:  # a stage warning of the bound, told where every warning is
+        _bound_group(doc["warnings_by_stage"])["warnings"].append(note)
+        doc["warnings"] = [w for g in doc["warnings_by_stage"] for w in g["warnings"]]
     return _verdict_first(doc, verdict_checks(facts, config.verdict))
+
+
+def _bound_group(groups: list[dict[str, Any]]) -> dict[str, Any]:
+    """Return the ``bound`` group of the warnings by stage (added in pipeline order)."""
+    order = ["reading", "cutoff", "isolation", "screening", "windows", "bound"]
+    for g in groups:
+        if g["stage"] == "bound":
+            return g
+    at = sum(1 for g in groups if g["stage"] in order)
+    groups.insert(at, {"stage": "bound", "warnings": []})
+    return groups[at]

@@ -280,12 +280,13 @@ class FitResults:
         b, c, s, w = d["bound"], d["cutoff"], d["sampling"], d["windows"]
         fc = "n/a" if c["f_c_hz"] is None else f"{c['f_c_hz']:.4g} Hz ({c['source']})"
         lines = list(d.get("headline") or headline(d))
+        hours = w.get("covered_s", w["total_duration_s"]) / 3600
         lines += [
             f"psdbound fit ({d['method']}): sigma_GM = {100 * b['sigma_gm_m']:.3f} cm, "
             f"tau = {b['tau_s']:.1f} s, sigma_WN = {100 * b['sigma_wn_m']:.3f} cm "
             f"(per sample at {s['interval_s']:g} s); rule {b.get('rule', 'envelope')}",
             f"  cutoff {fc}; Nyquist {s['nyquist_hz']:.4g} Hz; {w['count']} stationary windows "
-            f"({w['total_duration_s'] / 3600:.2f} h); thesis cutoff criterion (reported, not a "
+            f"({hours:.2f} h); thesis cutoff criterion (reported, not a "
             f"verdict rule): {d['validation'].get('verdict', 'n/a')}",
         ]
         cm = d.get("code_multipath")

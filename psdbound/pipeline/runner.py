@@ -82,7 +82,11 @@ def _code(run: StageProducts, say: Progress) -> StageProducts:
 
 
 def _cutoff(run: StageProducts, say: Progress) -> StageProducts:
-    return replace(run, cutoff=stages.choose_cutoff(run.inputs, run.config.cutoff))
+    inp = run.config.inputs
+    choice = stages.choose_cutoff(
+        run.inputs, run.config.cutoff, system=inp.system, signals=tuple(inp.signals)
+    )
+    return replace(run, cutoff=choice)
 
 
 def _isolated(run: StageProducts, say: Progress) -> StageProducts:

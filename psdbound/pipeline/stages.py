@@ -35,7 +35,7 @@ from psdbound.arcs import DEFAULT_SIGNALS, ArcSet, add_third_carrier, default_pa
 from psdbound.arcs.options import ArcOptions
 from psdbound.errors import InputError, NoDataError
 from psdbound.io import Observations
-from psdbound.io.signals import wavelength_m
+from psdbound.io.signals import carrier_frequency_hz, wavelength_m
 from psdbound.ionosphere.policy import CutoffChoice, CutoffOptions
 from psdbound.ionosphere.policy import choose_cutoff as _choose_cutoff
 from psdbound.isolation import (
@@ -74,7 +74,13 @@ __all__ = [
 ]
 
 
-def choose_cutoff(inputs: InputData, options: CutoffOptions) -> CutoffChoice | None:
+def choose_cutoff(
+    inputs: InputData,
+    options: CutoffOptions,
+    *,
+    system: str = "G",
+    signals: Sequence[str] = (),
+) -> CutoffChoice | None:
     """Choose the high-pass cutoff (dual-frequency only; None for dual-antenna).
 
     Parameters
@@ -83,6 +89,11 @@ def choose_cutoff(inputs: InputData, options: CutoffOptions) -> CutoffChoice | N
         Receiver position and year.
     options : CutoffOptions
         Given cutoff and source.
+    system : str, default "G"
+        The satellite system analysed.
+    signals : sequence of str, optional
+        The phase pair given (default: the pair the isolation will use):
+        its carriers set the ionosphere a computed cutoff is for.
 
     Returns
     -------
@@ -98,7 +109,23 @@ def choose_cutoff(inputs: InputData, options: CutoffOptions) -> CutoffChoice | N
         year=inputs.year,
         date=date,
         interval_s=inputs.interval_s,
+        carriers_hz=_carriers_hz(inputs, system, signals),
+        system=system,
     )
+
+
+def _carriers_hz(
+    inputs: InputData, system: str, signals: Sequence[str]
+) -> tuple[float, float] | None:
+    """Return the carrier frequencies of the pair the isolation uses, Hz (GLONASS: channel 0)."""
+    try:
+        pair = tuple(signals[:2]) if signals else default_pair(inputs.observations[0], system)
+        sat = f"{system}01"
+        channels = {sat: 0} if system == "R" else None
+        fa, fb = (carrier_frequency_hz(sat, code, channels) for code in pair)
+    except (InputError, KeyError, ValueError):  # the isolation says what is wrong
+        return None
+    return float(fa), float(fb)
 
 
 def _xyz(rx: tuple[float, float, float] | None) -> np.ndarray | None:
@@ -423,7 +450,8 @@ def window(
     if windows.rejected_s > 0:
         warnings += (
             f"{windows.rejected_s / 60:.1f} min of data failed every stationarity test and are "
-            "not covered by the bound (windows.never_stationary)",
+            "not covered by the bound (windows.rejected_s; windows.never_stationary lists "
+            "these stretches together with any arcs too short to test)",
         )
     if windows.short_s > 0:
         warnings += (
@@ -596,11 +624,20 @@ def _site(
     )
 
 
-def _removed_rms(report: Any, lams: Sequence[float], alpha: float) -> list[dict]:
-    """Per geometry: fraction of its power below f_c and the RMS the filter removes, m."""
+def _removed_rms(
+    report: Any, lams: Sequence[float], alpha: float, slow: Sequence[dict[str, Any]] = ()
+) -> list[dict]:
+    """Per geometry: fraction of its power below f_c and the RMS the filter removes, m.
+
+    The RMS is the slow component's (the removed series along the data's arcs,
+    exact phase error: :mod:`psdbound.validation.removed`) where it was
+    computed, so that every output quotes one number; else the fraction times
+    the small-alpha variance of the reflection.
+    """
     # small-alpha phase error alpha sin(psi): variance alpha^2/2 rad^2 per carrier;
     # the DF series (e_a - e_b)/sqrt(2) has the mean of the two carriers' variances
     var_m2 = float(np.mean([(lam / (2 * np.pi)) ** 2 * alpha**2 / 2 for lam in lams]))
+    along = {row["geometry"]: row["removed_rms_m"] for row in slow}
     rows = []
     for geom in dict.fromkeys(c.geometry.label for c in report.expansion):
         direct = [
@@ -620,7 +657,10 @@ def _removed_rms(report: Any, lams: Sequence[float], alpha: float) -> list[dict]
                 "fraction_below_fc": frac,
                 "fraction_source": "passes of the data" if direct else "orbit-rate expansion",
                 "n_passes": len(direct),
-                "removed_rms_m": float(np.sqrt(frac * var_m2)),
+                "removed_rms_m": float(along.get(geom, np.sqrt(frac * var_m2))),
+                "rms_source": "the removed series along the data's arcs (validation.slow)"
+                if geom in along
+                else "fraction below f_c times the reflection's small-alpha variance",
             }
         )
     return rows
@@ -695,8 +735,8 @@ def validate(
         system=sats[0][0] if sats else "G",
         elevation_mask_deg=arcs.elevation_mask_deg,
     )
-    removed = _removed_rms(report, lams, site.alpha)
     slow = _slow_component(series, geoms, site, lams, highpass or HighPass(), cutoff.f_c_hz)
+    removed = _removed_rms(report, lams, site.alpha, slow)
     summary = report.to_dict()
     summary.update(
         {

@@ -48,13 +48,14 @@ data used
     rule). Dual-frequency series only (the dual-antenna chain does not
     count its input yet).
 physical limit
-    The bound's standard deviation at the lowest elevation of the data,
-    ``m(el_low) sqrt(sigma_GM^2 + sigma_WN^2)`` (the bound is a zenith-scale
-    model that the mapping ``m(el)`` scales up at low elevations; the zenith
-    value where the data have no elevations), exceeds the largest value
-    carrier multipath can take in
+    The bound's standard deviation at zenith, ``sqrt(sigma_GM^2 +
+    sigma_WN^2)``, exceeds the largest value carrier multipath can take in
     the isolated series (``screening.multipath_limit_m``: the scaled sum of
     the quarter wavelengths of its phase terms, 7.70 cm for GPS L1/L2 DF).
+    (Mapped to the data's lowest elevation the bound may exceed it while the
+    data do not: the samples were screened against the limit one by one;
+    that is a conservative, loose error model there, which a warning states:
+    :func:`physical_note`.)
     A variable bounded by ``L`` has a standard deviation of at most ``L``:
     a larger bound describes something that is not multipath (residual
     ionosphere, slips, a wrong baseline), and a protection level built on
@@ -98,13 +99,14 @@ low frequencies
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from psdbound.common.options import Choice, Number, check_fields, option
 from psdbound.results.headline import check_line
 from psdbound.spectra.names import POLICIES
+from psdbound.stationarity.coverage import covered_time_s
 
 if TYPE_CHECKING:  # the products, for type checkers: this module stays light to import
     from psdbound.ionosphere.policy import CutoffChoice
@@ -169,22 +171,6 @@ class VerdictOptions:
         check_fields(self)
 
 
-def _covered_s(spans: Sequence[tuple[Any, float, float]], interval_s: float) -> float:
-    """Time covered by the union of the windows' (arc, start, stop) spans, s."""
-    total, cur = 0.0, None
-    for arc, t0, t1 in sorted(spans):
-        t1 = t1 + interval_s
-        if cur is None or arc != cur[0] or t0 > cur[2]:
-            if cur is not None:
-                total += cur[2] - cur[1]
-            cur = [arc, t0, t1]
-        else:
-            cur[2] = max(cur[2], t1)
-    if cur is not None:
-        total += cur[2] - cur[1]
-    return total
-
-
 @dataclass(frozen=True)
 class VerdictFacts:
     """What the verdict rules measure, taken from the typed stage products.
@@ -220,7 +206,7 @@ class VerdictFacts:
     lowest_elevation_deg, mapping_factor_lowest : float or None
         The lowest elevation of the mapped data, deg, and the mapping factor
         ``m(el)`` there: the bound's standard deviation at that elevation is
-        this factor times its zenith value (None: the zenith value is checked).
+        this factor times its zenith value (None: no elevations).
     """
 
     sigma_gm_m: float
@@ -252,7 +238,9 @@ class VerdictFacts:
             tau_s=b["tau_s"],
             sigma_wn_m=b["sigma_wn_m"],
             tau_grid_s=tuple(b.get("tau_grid_s") or ()),
-            covered_s=float(covered) if covered is not None else _covered_s(spans, s["interval_s"]),
+            covered_s=float(covered)
+            if covered is not None
+            else covered_time_s(spans, s["interval_s"]),
             low_frequency=b.get("low_frequency"),
             filter_loss=(iso.get("safety") or {}).get("removed_above_fc_median"),
             f_c_hz=d["cutoff"].get("f_c_hz"),
@@ -296,14 +284,13 @@ def verdict_facts(
     b, w, sc = bounded.bound, windowed.windows, screened.screening
     details = isolated.details or {}
     low = bounded.low_frequency
-    spans = [(x.arc_id, x.t_start_gps_s, x.t_stop_gps_s) for x in w.windows]
     lowest = lowest_elevation(windowed, screened)
     return VerdictFacts(
         sigma_gm_m=b.sigma_gm_m,
         tau_s=b.tau_s,
         sigma_wn_m=b.sigma_wn_m,
         tau_grid_s=tuple(float(t) for t in b.tau_grid_s),
-        covered_s=_covered_s(spans, interval_s),
+        covered_s=w.covered_s,
         low_frequency=None if low is None else to_jsonable(low.to_dict()),
         filter_loss=(details.get("safety") or {}).get("removed_above_fc_median"),
         f_c_hz=None if cutoff is None else cutoff.f_c_hz,
@@ -535,23 +522,69 @@ def _physical(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
         return []
     sigma = math.hypot(f.sigma_gm_m, f.sigma_wn_m)
     measured = f"sigma {100 * sigma:.2f} cm at zenith"
-    where = "at zenith"
-    if f.mapping_factor_lowest is not None and f.lowest_elevation_deg is not None:
-        sigma *= max(f.mapping_factor_lowest, 1.0)
-        where = f"at {f.lowest_elevation_deg:.1f} deg, the data's lowest elevation"
-        measured += f", {100 * sigma:.2f} cm {where}"
+    low = mapped_at_lowest(f)
+    if low is not None:
+        measured += f" ({100 * low[1]:.2f} cm mapped to {low[0]:.1f} deg)"
     return [
         _check(
             "physical limit",
             sigma <= lim,
             measured,
             f"<= {100 * lim:.2f} cm carrier-multipath limit",
-            f"physical limit: the bound's standard deviation {where} ({100 * sigma:.2f} cm, "
-            f"mapped) exceeds the {100 * lim:.2f} cm that carrier multipath of this series "
-            "can reach at all (a quarter wavelength per carrier): what it bounds is not "
-            "multipath (residual ionosphere, cycle slips, a wrong baseline)",
+            f"physical limit: the bound's standard deviation {100 * sigma:.2f} cm exceeds "
+            f"the {100 * lim:.2f} cm that carrier multipath of this series can reach at "
+            "all (a quarter wavelength per carrier): what it bounds is not multipath "
+            "(residual ionosphere, cycle slips, a wrong baseline)",
         )
     ]
+
+
+def mapped_at_lowest(f: VerdictFacts) -> tuple[float, float] | None:
+    """Return the data's lowest elevation, deg, and the bound's sigma mapped there, m.
+
+    Parameters
+    ----------
+    f : VerdictFacts
+
+    Returns
+    -------
+    (float, float) or None
+        None without elevations.
+    """
+    if f.mapping_factor_lowest is None or f.lowest_elevation_deg is None:
+        return None
+    sigma = math.hypot(f.sigma_gm_m, f.sigma_wn_m) * max(f.mapping_factor_lowest, 1.0)
+    return f.lowest_elevation_deg, sigma
+
+
+def physical_note(f: VerdictFacts) -> str | None:
+    """Say when the bound, mapped to the data's lowest elevation, exceeds the physical limit.
+
+    The rule is on the zenith value: the data were screened sample by sample
+    against the limit, and a bound above it at zenith bounds something that is
+    not multipath. Mapped to low elevations, a bound within the limit at zenith
+    can still state more than carrier multipath can reach there: conservative
+    (the truth lies below both), but a looser error model than physics needs.
+
+    Parameters
+    ----------
+    f : VerdictFacts
+
+    Returns
+    -------
+    str or None
+    """
+    low = mapped_at_lowest(f)
+    lim = f.multipath_limit_m
+    if low is None or not lim or low[1] <= lim:
+        return None
+    return (
+        f"mapped to the data's lowest elevation ({low[0]:.1f} deg, m(el) "
+        f"{f.mapping_factor_lowest:.2f}) the bound's standard deviation is "
+        f"{100 * low[1]:.2f} cm, above the {100 * lim:.2f} cm carrier multipath can reach: "
+        "conservative there (the truth lies below the limit), a looser error model than "
+        "physics needs at low elevations"
+    )
 
 
 #: The rules in the order every output lists them.

@@ -315,8 +315,8 @@ def _summary_rows(r: dict[str, Any]) -> list[tuple[str, str]]:
         ("sampling / Nyquist", f"{s['interval_s']:g} s / {s['nyquist_hz']:.4g} Hz"),
         (
             "windows",
-            f"{w['count']} ({w['total_duration_s'] / 3600:.2f} h), never stationary "
-            f"{w['never_stationary_s'] / 60:.1f} min",
+            f"{w['count']} ({w.get('covered_s', w['total_duration_s']) / 3600:.2f} h), "
+            f"never stationary {w['never_stationary_s'] / 60:.1f} min",
         ),
         (
             "mapping",

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 from psdbound.common.lazy import lazy_exports
 
 if TYPE_CHECKING:  # the names below, for type checkers; imported on first use
+    from psdbound.stationarity.coverage import covered_time_s
     from psdbound.stationarity.mapping import THESIS_MAPPING, ElevationMapping, fit_mapping
     from psdbound.stationarity.options import (
         MAPPING_KINDS,
@@ -34,6 +35,7 @@ __all__ = [
     "MappingOptions",
     "StationarityOptions",
     "choose_mapping",
+    "covered_time_s",
     "ElevationMapping",
     "SpectralHomogeneityTest",
     "StationarityTest",
@@ -48,6 +50,7 @@ __all__ = [
 
 #: Where each public name lives (imported on first use: importing the package stays cheap).
 _EXPORTS = {
+    "covered_time_s": ("psdbound.stationarity.coverage", "covered_time_s"),
     "THESIS_MAPPING": ("psdbound.stationarity.mapping", "THESIS_MAPPING"),
     "ElevationMapping": ("psdbound.stationarity.mapping", "ElevationMapping"),
     "fit_mapping": ("psdbound.stationarity.mapping", "fit_mapping"),

@@ -32,12 +32,19 @@ from numpy.typing import NDArray
 
 from psdbound.errors import InputError, NoDataError
 from psdbound.isolation.series import MultipathSeries
+from psdbound.stationarity.coverage import covered_time_s
 from psdbound.stationarity.mapping import THESIS_MAPPING, ElevationMapping
 from psdbound.stationarity.options import STATIONARITY_TESTS
 from psdbound.stationarity.spectral import min_samples, test_spectral_homogeneity
 from psdbound.stationarity.thesis_test import StationarityTest, test_stationarity
 
-__all__ = ["STATIONARITY_TESTS", "Window", "WindowSet", "window_arc", "find_stationary_windows"]
+__all__ = [
+    "STATIONARITY_TESTS",
+    "Window",
+    "WindowSet",
+    "find_stationary_windows",
+    "window_arc",
+]
 
 #: Stationarity tests :func:`window_arc` can use.
 
@@ -124,6 +131,12 @@ class WindowSet:
     uncovered: tuple[tuple[int, str, float, float], ...] = ()
     uncovered_s: float = 0.0
     short_s: float = 0.0
+
+    @property
+    def covered_s(self) -> float:
+        """Time in the windows, every sample once (:func:`covered_time_s`), seconds."""
+        spans = ((w.arc_id, w.t_start_gps_s, w.t_stop_gps_s) for w in self.windows)
+        return covered_time_s(spans, self.interval_s)
 
     @property
     def rejected_s(self) -> float:
@@ -455,6 +468,6 @@ def _no_long_arc_error(series: MultipathSeries, L: int, min_length_s: float) -> 
     longest = max((hi - lo for lo, hi in series.arc_bounds()), default=0)
     return NoDataError(
         f"no arc is as long as the minimum window length {(L - 1) * series.interval_s:g} s"
-        f"{why}; longest arc after filtering {max(longest - 1, 0) * series.interval_s / 60:.1f}"
-        f" min of {series.n_arcs}"
+        f"{why}; the longest of the {series.n_arcs} arcs after filtering is "
+        f"{max(longest - 1, 0) * series.interval_s / 60:.1f} min"
     )

@@ -172,3 +172,61 @@ def test_computed_source_simulates_the_date_flux(monkeypatch):
     assert c.f_c_hz == 1.23e-3 and c.source.startswith("computed (PyIRI, residual criterion, 2020")
     assert seen["n_days"] == 12 and seen["settings"].f107_sfu == pytest.approx(69.7)
     assert seen["settings"].margin_db == 30.0 and c.info["computed"]["n_series"] == 7
+
+
+def test_the_cutoff_is_for_the_data_s_carriers():
+    """The map is GPS L1/L2: applied to another pair it says so; 'computed' uses the pair."""
+    from psdbound.constants import F_L1_HZ, F_L2_HZ, F_L5_HZ
+    from psdbound.ionosphere import policy
+
+    assert policy.iono_coefficient_ratio((F_L1_HZ, F_L2_HZ)) == pytest.approx(1.0)
+    assert policy.iono_coefficient_ratio((F_L1_HZ, F_L5_HZ)) == pytest.approx(1.226, abs=1e-3)
+    kw = dict(lat_deg=ESBC[0], lon_deg=ESBC[1], year=2020, date="2020-06-25")
+    gps = choose_cutoff(CutoffOptions(), carriers_hz=(F_L1_HZ, F_L2_HZ), **kw)
+    gal = choose_cutoff(CutoffOptions(), carriers_hz=(F_L1_HZ, F_L5_HZ), system="E", **kw)
+    assert gal.f_c_hz == gps.f_c_hz and not gps.warnings
+    assert any("computed for GPS L1/L2" in w and "1.23 times" in w for w in gal.warnings)
+
+
+def test_a_computed_cutoff_simulates_the_data_s_carriers_and_constellation(monkeypatch):
+    from psdbound.constants import F_L1_HZ, F_L5_HZ
+    from psdbound.ionosphere import batch
+
+    seen = {}
+
+    class _Res:
+        def summary(self):
+            return {"recommended_f_c_hz": 2e-3}
+
+    def fake(*args, settings, **kwargs):
+        seen["settings"] = settings
+        return _Res()
+
+    monkeypatch.setattr(batch, "station_cutoffs", fake)
+    got = choose_cutoff(
+        CutoffOptions(source="computed"),
+        lat_deg=ESBC[0],
+        lon_deg=ESBC[1],
+        year=2020,
+        carriers_hz=(F_L1_HZ, F_L5_HZ),
+        system="E",
+    )
+    s = seen["settings"]
+    assert (s.frequency_hz, s.second_frequency_hz, s.systems) == (F_L1_HZ, F_L5_HZ, "E")
+    assert "1575.42/1176.45 MHz, nominal E" in got.source and got.f_c_hz == 2e-3
+
+
+def test_an_orbit_file_is_restricted_to_the_systems_asked_for():
+    """cutoff --systems G with a Galileo-only navigation file: bad input, not Galileo silently."""
+    from types import SimpleNamespace
+
+    from psdbound.common.notices import PsdboundWarning
+    from psdbound.ionosphere.workflow import _system_satellites
+
+    gal = SimpleNamespace(satellites=["E01", "E02"])
+    with pytest.raises(InputError, match="holds E only, not the systems asked for"):
+        _system_satellites(gal, "G", "nav.rnx")
+    mixed = SimpleNamespace(satellites=["E01", "G05", "G07"])
+    with pytest.warns(PsdboundWarning, match="also holds E satellites, not analysed"):
+        assert _system_satellites(mixed, "G", "nav.rnx") == ["G05", "G07"]
+    assert _system_satellites(None, "G", None) is None

@@ -284,3 +284,22 @@ def test_demo_bound_is_within_twice_the_truth_variance():
     import psdbound
 
     assert psdbound.fit().document["demo"]["variance_ratio"] <= 2.0
+
+
+def test_time_in_windows_is_one_number_in_every_output(demo_run):
+    """'data covered by the bound', the verdict's 'data for tau' and the windows' hours
+    are one measure: the union of the windows' epochs, each sample once."""
+    from psdbound.stationarity import covered_time_s
+
+    assert covered_time_s([(1, 0.0, 100.0), (1, 50.0, 200.0), (2, 0.0, 10.0)], 1.0) == 212.0
+    work, r = demo_run
+    d = psdbound.load(work / "reports" / "demo" / "result.json").document
+    w = d["windows"]
+    spans = [(x["arc"], x["t_start_gps_s"], x["t_stop_gps_s"]) for x in w["per_window"]]
+    assert w["covered_s"] == pytest.approx(covered_time_s(spans, d["sampling"]["interval_s"]))
+    assert w["covered_s"] <= w["data_s"] and w["covered_fraction"] <= 1.0
+    hours = f"{w['covered_s'] / 3600:.2f} h"
+    tau_check = [c for c in d["verdict_checks"] if c["rule"] == "data for tau"][0]
+    assert tau_check["measured"].startswith(hours), (tau_check, hours)
+    assert f"data covered by the bound: {hours}" in r.stdout
+    assert f"stationary windows ({hours})" in r.stdout
