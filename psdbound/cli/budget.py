@@ -408,9 +408,15 @@ def _nav_orbit(path: str, systems: str, start: str | None) -> tuple[Any, tuple[f
         missing = [c for c in systems if orbit.reference_times_gps_s(c).size == 0]
     if missing:
         names = ", ".join(_SYSTEM_NAMES[c] for c in missing)
+        usable = "".join(c for c in "GE" if c in orbit.systems)
+        hint = (
+            f"give --systems {usable}"
+            if usable
+            else "the budget models GPS and Galileo only: give a navigation file with them"
+        )
         raise InputError(
             f"no {names} orbits for --systems {systems}; the file has "
-            f"{', '.join(orbit.systems) or 'none'} (use --systems)",
+            f"{', '.join(orbit.systems) or 'none'} ({hint})",
             path=path,
         )
     if isinstance(orbit, PreciseOrbit):

@@ -74,9 +74,20 @@ def _value(action: argparse.Action, key: str, value: Any, path: str) -> Any:
     return [_one(action, key, v, path) for v in items]
 
 
-def _table(data: dict[str, Any], command: str) -> dict[str, Any]:
-    """Return the command's options of a TOML file: its ``[command]`` table, or the top level."""
+def _table(data: dict[str, Any], command: str, path: str | None = None) -> dict[str, Any]:
+    """Return the command's options of a TOML file: its ``[command]`` table, or the top level.
+
+    Keys both at the top level and in a ``[command]`` table: the file is
+    ambiguous (the top-level ones used to be dropped without a word).
+    """
     if command in data and isinstance(data[command], dict):
+        loose = sorted(k for k in data if k != command and not isinstance(data[k], dict))
+        if loose:
+            raise InputError(
+                f"options both at the top level ({', '.join(loose)}) and in a [{command}] "
+                f"table; put them all in [{command}] (or all at the top level)",
+                path=path,
+            )
         return data[command]
     return data
 
@@ -104,7 +115,7 @@ def apply_config(args: argparse.Namespace, argv: Sequence[str]) -> None:
         return
     from psdbound.common.tomlfile import read_toml
 
-    data = _table(read_toml(path, what="configuration file"), args.command)
+    data = _table(read_toml(path, what="configuration file"), args.command, path)
     actions = {
         flag.lstrip("-").replace("-", "_"): a
         for a in parser.options()

@@ -77,10 +77,16 @@ def _options(args: argparse.Namespace) -> tuple[list[str] | None, float, float]:
 def run(args: argparse.Namespace) -> int:
     """Print file summaries and arcs; return the exit code."""
     from psdbound.arcs import find_arcs
+    from psdbound.common.notices import warn
     from psdbound.io import orbit_coverage, read_obs, read_orbit
 
     signals, min_length_s, mask_deg = _options(args)
     orbit = read_orbit(args.nav) if args.nav else None
+    if orbit is None and mask_deg > 0:
+        warn(
+            f"--elevation-mask-deg {mask_deg:g} is not applied: without --nav there are no "
+            "elevations (give a navigation or SP3 file)"
+        )
     for path in args.obs:
         obs = read_obs(path)
         print(obs.summary())

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import sys
 import warnings
@@ -83,8 +84,8 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     for name in (command,) if command in _COMMANDS else _COMMANDS:
         importlib.import_module(f"psdbound.cli.{name}").add_parser(sub)
     parser.commands = dict(sub.choices)
-    for p in parser.commands.values():
-        if "--verbose" not in p._option_string_actions:  # every command can show a traceback
+    for p in parser.commands.values():  # every command can show an internal error's traceback
+        with contextlib.suppress(argparse.ArgumentError):  # the command has its own --verbose
             p.add_argument(
                 "--verbose", action="store_true", help="print the traceback of an internal error"
             )

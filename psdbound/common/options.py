@@ -357,15 +357,19 @@ class Tuple(Spec):
         """Describe what is allowed (see :meth:`Spec.describe`)."""
         return self.what
 
+    def _items_of_text(self, text: str | bytes) -> list[Any]:
+        """Split a text value into items (numbers written as text, ``"5,15,30"``, read)."""
+        items = text.split(self.split) if self.split and isinstance(text, str) else [text]
+        if isinstance(self.item, Number):
+            items = [_number_text(v) for v in items]
+        return items
+
     def check(self, value: Any) -> Any:
         """Check and normalise ``value`` (see :meth:`Spec.check`)."""
         if value is None and self.optional:
             return None
         if isinstance(value, str | os.PathLike):
-            text = os.fspath(value)
-            value = text.split(self.split) if self.split and isinstance(text, str) else [text]
-            if isinstance(self.item, Number):  # "5,15,30": numbers written as text
-                value = [_number_text(v) for v in value]
+            value = self._items_of_text(os.fspath(value))
         if isinstance(value, Mapping) or not isinstance(value, list | tuple):
             raise ValueError("")
         n = len(value)

@@ -32,6 +32,8 @@ def read_toml(path: str | os.PathLike[str], *, what: str) -> dict[str, Any]:
         Missing or unreadable file, or invalid TOML (naming the file).
     """
     p = Path(path)
+    if p.is_dir():
+        raise InputError(f"is a folder; give the {what} (a .toml file) in it", path=p)
     if not p.is_file():
         raise InputError(f"{what} not found", path=p)
     try:

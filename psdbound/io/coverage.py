@@ -196,10 +196,14 @@ class OrbitCoverage:
             hint = ""
             if system == "R" and self.kind == "navigation file":
                 hint = " (a mixed 'MN' file or a RINEX 2 GLONASS '.g' file)"
+            seen = (
+                f"observed systems: {observed}: "
+                if self.obs_systems != (system,)
+                else ""  # read for this system only: 'psdbound inspect' lists the file's systems
+            )
             return (
-                f"the {self.kind} has no {name} {things} (it has {has}); observed systems: "
-                f"{observed}: give {self._a_kind()} with {name} {things}{hint} or choose another "
-                "system"
+                f"the {self.kind} has no {name} {things} (it has {has}); {seen}give "
+                f"{self._a_kind()} with {name} {things}{hint} or choose another system"
             )
         o0, o1 = self.obs_span_gps_s
         end = _when(o1)

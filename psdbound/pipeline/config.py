@@ -629,7 +629,7 @@ def _rule_spectra(cfg: FitConfig, label: Label) -> None:
         )
     pooled_only = [
         k
-        for k in ("confidence_level", "coverage", "shape_alpha", "bands_per_decade")
+        for k in ("confidence_level", "coverage", "shape_alpha", "bands_per_decade", "tau_max_s")
         if k in _changed(b)
     ]
     if b.rule == "envelope" and pooled_only:
@@ -646,6 +646,18 @@ def _rule_spectra(cfg: FitConfig, label: Label) -> None:
         )
 
 
+def _rule_windows(cfg: FitConfig, label: Label) -> None:
+    """Refuse the slide rule's coefficients for disjoint windows (they are not used)."""
+    st = cfg.stationarity
+    slide_only = [k for k in ("p_slide", "p_trim") if k in _changed(st)]
+    if st.windows == "disjoint" and slide_only:
+        raise InputError(
+            f"{_show(label('stationarity', slide_only[0]), getattr(st, slide_only[0]))} is only "
+            f"used with {_show(label('stationarity', 'windows'), 'slide')} (the thesis's "
+            "overlapping windows); disjoint windows start where the last one ended"
+        )
+
+
 _RULES = (
     _rule_inputs,
     _rule_method_options,
@@ -653,4 +665,5 @@ _RULES = (
     _rule_filter,
     _rule_mapping,
     _rule_spectra,
+    _rule_windows,
 )

@@ -84,6 +84,33 @@ def number_problems(document: dict[str, Any]) -> list[str]:
     return out
 
 
+#: Fields whose values the schema limits beyond their type: (test, what is allowed).
+_LIMITED: dict[str, tuple[Any, str]] = {
+    "verdict": (lambda v: v in ("bounded", "not-bounded"), "'bounded' or 'not-bounded'"),
+    "bound.sigma_gm_m": (lambda v: v >= 0, "a number >= 0"),
+    "bound.sigma_wn_m": (lambda v: v >= 0, "a number >= 0"),
+    "bound.tau_s": (lambda v: v > 0, "a number > 0"),
+}
+
+
+def value_problems(document: dict[str, Any]) -> list[str]:
+    """Return the limited fields whose values the schema does not allow (a verdict, a sigma < 0).
+
+    Fields absent or not numbers are left to :func:`missing_field` and
+    :func:`number_problems`.
+    """
+    out = []
+    for f, (ok, allowed) in _LIMITED.items():
+        try:
+            v = get_field(document, f)
+            good = bool(ok(v))
+        except (KeyError, TypeError):
+            continue
+        if not good:
+            out.append(f"'{f}' must be {allowed}, got {json.dumps(to_jsonable(v))}")
+    return out
+
+
 def get_field(document: dict[str, Any], dotted: str) -> Any:
     """Return ``document[a][b]...`` for ``dotted = "a.b..."``; KeyError if absent."""
     cur: Any = document
@@ -212,4 +239,7 @@ def read_document(
     bad = number_problems(data)
     if bad:
         raise InputError(f"no number where the schema documents one: {bad[0]}", path=p)
+    bad = value_problems(data)
+    if bad:
+        raise InputError(f"a value the schema does not allow: {bad[0]} (edited?)", path=p)
     return data

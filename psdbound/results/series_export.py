@@ -108,13 +108,21 @@ def format_of(path: str | os.PathLike[str], fmt: str | None = None) -> str:
     Raises
     ------
     InputError
-        An unknown format, or no format and a suffix that names none.
+        An unknown format, no format and a suffix that names none, or a
+        format that the suffix contradicts.
     """
+    suffix = Path(path).suffix.lower()
     if fmt is not None:
         if fmt not in FORMATS:
             raise InputError(f"unknown series format {fmt!r}; choose csv or netcdf")
+        named = _SUFFIXES.get(suffix)
+        if named is not None and named != fmt:
+            raise InputError(
+                f"the file name {Path(path).name!r} says {named} but the format asked for is "
+                f"{fmt}; name the file {'.nc' if fmt == 'netcdf' else '.csv or .csv.gz'} (or "
+                "leave out the format)"
+            )
         return fmt
-    suffix = Path(path).suffix.lower()
     if suffix not in _SUFFIXES:
         raise InputError(
             f"cannot tell the series format from the file name {Path(path).name!r}"

@@ -30,6 +30,7 @@ grids.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -368,6 +369,25 @@ def _orbit_span(orbit: object) -> tuple[float, float]:
     raise InputError("cannot tell the time span of the orbit; give span_gps_s")
 
 
+def _check_satellites(
+    names: Sequence[str], held: Sequence[str], asked: Sequence[str] | None, system: str
+) -> None:
+    """Refuse satellites the orbit does not hold, naming them (not 'no pass')."""
+    have = "".join(sorted({s[0] for s in held})) or "no satellite"
+    if asked is not None:
+        unknown = [s for s in asked if s not in held]
+        if unknown:
+            raise InputError(
+                f"satellite(s) {', '.join(unknown)} not in the orbit file (it holds {have}: "
+                f"{', '.join(held[:4])}{', ...' if len(held) > 4 else ''})"
+            )
+    elif not names:
+        raise InputError(
+            f"the orbit file has no satellite of system {system} (it holds {have}); choose "
+            "that system or give an orbit file with it"
+        )
+
+
 def satellite_passes(
     orbit: object,
     receiver_xyz_m: ArrayLike,
@@ -417,7 +437,9 @@ def satellite_passes(
         raise InputError(f"receiver position must be 3 finite ECEF metres near the Earth, got {rx}")
     t0, t1 = _orbit_span(orbit) if span_gps_s is None else span_gps_s
     t = np.arange(t0, t1 + step_s / 2, step_s)
-    names = sats if sats is not None else [s for s in orbit.satellites if s.startswith(system)]  # type: ignore[attr-defined]
+    held = list(orbit.satellites)  # type: ignore[attr-defined]
+    names = list(sats) if sats is not None else [s for s in held if s.startswith(system)]
+    _check_satellites(names, held, sats, system)
     mask = math.radians(elevation_mask_deg)
     out: list[SatellitePass] = []
     for sat in names:

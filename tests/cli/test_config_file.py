@@ -79,6 +79,8 @@ def test_command_line_wins_and_top_level_keys_work(tmp_path):
         ("method = 'median'", "method must be one of"),
         ("min_samples = 'many'", "min_samples"),
         ("min_samples = [1, 2]", "min_samples must be a single value"),
+        # keys at the top level beside an [overbound] table were dropped without a word
+        ("min_samples = 50\n[overbound]\nmethod = 'cdf'", "both at the top level"),
     ],
 )
 def test_bad_keys_and_values_name_the_file_and_key(tmp_path, text, message):

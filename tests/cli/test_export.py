@@ -124,3 +124,16 @@ def test_export_help_names_the_formats_and_exit_codes(capsys):
     text = " ".join(capsys.readouterr().out.split())
     assert "--format {csv,netcdf}" in text and "3 written" in text and "--pair" in text
     assert "--code-multipath" not in text
+
+
+def test_a_format_the_file_name_contradicts_is_refused():
+    """-o x.csv --format netcdf wrote netCDF named .csv; now bad input."""
+    from psdbound.errors import InputError
+    from psdbound.results.series_export import format_of
+
+    assert format_of("x.nc") == "netcdf" and format_of("x.csv.gz") == "csv"
+    assert format_of("x.dat", "netcdf") == "netcdf"  # a name that says nothing
+    with pytest.raises(InputError, match="says csv but the format asked for is netcdf"):
+        format_of("x.csv", "netcdf")
+    with pytest.raises(InputError, match="says netcdf but the format asked for is csv"):
+        format_of("x.nc", "csv")

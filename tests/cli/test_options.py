@@ -70,6 +70,13 @@ def _run(capsys, *args):
         (["--name", "../x"], "--name must be a run name"),
         (["--p-trim", "1.2"], "--p-trim must be a number > 0 and < 1, got 1.2"),
         (["--validation-threshold", "0"], "--validation-threshold must be a number > 0 and < 1"),
+        # options that had no effect and said nothing
+        (["--p-slide", "2"], "--p-slide 2 is only used with --windows slide"),
+        (["--p-trim", "0.5"], "--p-trim 0.5 is only used with --windows slide"),
+        (
+            ["--rule", "envelope", "--windows", "slide", "--tau-max-s", "100"],
+            "--tau-max-s 100 is only used with --rule pooled",
+        ),
     ],
 )
 def test_bad_fit_options_exit_2_before_reading(files, capsys, args, message):

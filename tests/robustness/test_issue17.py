@@ -182,3 +182,37 @@ def test_documented_numbers_are_never_null(tmp_path):
         "null",
     ):
         read_document(bad)
+
+
+@pytest.mark.parametrize(
+    ("field", "value", "words"),
+    [
+        ("bound.sigma_gm_m", -0.01, "'bound.sigma_gm_m' must be a number >= 0, got -0.01"),
+        ("bound.tau_s", 0.0, "'bound.tau_s' must be a number > 0, got 0.0"),
+        ("verdict", "weird", "'verdict' must be 'bounded' or 'not-bounded', got \"weird\""),
+    ],
+)
+def test_an_edited_result_with_impossible_values_is_refused(tmp_path, field, value, words):
+    """report rendered 'sigma -100 cm' and 'Verdict: weird' from an edited result.json."""
+    from psdbound.results.schema import value_problems
+
+    full: dict = {}
+    leaves = [f for f in REQUIRED_FIELDS if not any(g.startswith(f + ".") for g in REQUIRED_FIELDS)]
+    for f in leaves:
+        *parents, leaf = f.split(".")
+        node = full
+        for k in parents:
+            node = node.setdefault(k, {})
+        node.setdefault(leaf, 1.0)
+    full.update(schema_version="1", method="DF", verdict="bounded")
+    assert value_problems(full) == []
+    *parents, leaf = field.split(".")
+    node = full
+    for k in parents:
+        node = node[k]
+    node[leaf] = value
+    bad = tmp_path / "edited.json"
+    bad.write_text(json.dumps(full))
+    with pytest.raises(InputError, match="a value the schema does not allow") as exc:
+        read_document(bad)
+    assert words in str(exc.value)

@@ -564,3 +564,18 @@ def test_pass_track_samples_a_fast_turn_finely_enough():
     psi = g.phase_rad(track, wavelength_m=GPS_L1_WAVELENGTH_M, convention="physical")
     assert np.max(np.abs(np.diff(psi))) <= np.pi / 4
     assert 0.0 <= direct_check(g, track, dt, cutoff_hz=1e-3).fraction_below_cutoff <= 1.0
+
+
+def test_passes_name_a_missing_system_or_satellite_not_no_pass():
+    """'no satellite pass of 60 min' was said for an orbit without the system, or a typo."""
+    from types import SimpleNamespace
+
+    from psdbound.errors import InputError
+    from psdbound.validation.direct import satellite_passes
+
+    rx = np.array([4.0e6, 6.0e5, 4.9e6])
+    gal = SimpleNamespace(satellites=["E01", "E02"])
+    with pytest.raises(InputError, match="no satellite of system G .it holds E"):
+        satellite_passes(gal, rx, system="G", span_gps_s=(0.0, 60.0))
+    with pytest.raises(InputError, match="satellite.s. G99 not in the orbit file"):
+        satellite_passes(gal, rx, sats=["G99"], span_gps_s=(0.0, 60.0))
