@@ -264,7 +264,7 @@ def simulate(case: Case, seed: int, folder: Path, spans: list[tuple[str, float]]
         When the simulator fails.
     """
     folder.mkdir(parents=True, exist_ok=True)
-    toml = folder / "scenario.toml"
+    toml = folder.with_name(folder.name + ".scenario.toml")  # beside: simulate owns --out
     toml.write_text(scenario_toml(case, spans))
     proc = run_cli(
         [

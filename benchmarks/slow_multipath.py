@@ -268,11 +268,11 @@ def simulate_case(case: Case, seed: int, folder: Path) -> Path:
     else:
         for refl, out in ((True, folder), (False, folder.with_name(folder.name + "-noref"))):
             out.mkdir(parents=True, exist_ok=True)
-            toml = out / "scenario.toml"
+            toml = out.with_name(out.name + ".scenario.toml")  # beside: simulate owns --out
             toml.write_text(_scenario_toml(case, refl))
             runs.append(([*common, "--scenario", str(toml)], out))
     for args, out in runs:
-        proc = run_cli(["simulate", *args, "--out", str(out)], out.parent)
+        proc = run_cli(["simulate", *args, "--out", str(out), "--overwrite"], out.parent)
         if proc.returncode != 0:
             raise RuntimeError(f"simulate exit {proc.returncode}: {tail(proc)}")
     return simulated_truth(folder)

@@ -40,6 +40,7 @@ class SimulateOptions:
     out: str | None = None
     scenario: str | None = None
     multipath: str | None = None
+    overwrite: bool = False
 
 
 #: The schema of ``simulate``'s options: its own, and the scenario's fields.
@@ -56,7 +57,23 @@ _PRESETS = "(default: the preset's)"
 #: Every ``simulate`` option: its schema field, flag and help (all in ``options``).
 OPTIONS: tuple[CliOption, ...] = (
     _O(_C, "preset", ("--preset",), "named scenario: demo, short (default demo)", None),
-    _O(_C, "out", ("--out",), "output folder (default: the demo cache for the demo preset)", None),
+    _O(
+        _C,
+        "out",
+        ("--out",),
+        "output folder: new, empty, or an earlier simulation's, replaced as a whole (default: "
+        "the demo cache for the demo preset, else simulated/<scenario name>)",
+        None,
+    ),
+    _O(
+        _C,
+        "overwrite",
+        ("--overwrite",),
+        "write into an --out folder that holds other files: the files of earlier simulations "
+        "in it are removed, nothing else is touched",
+        None,
+        {"action": "store_true"},
+    ),
     _O(_S, "seed", ("--seed",), f"random seed, count {_PRESETS}", None),
     _O(
         _S,
@@ -170,25 +187,43 @@ def _scenario(opts: SimulateOptions, changes: dict[str, Any]) -> Any:
         raise exc.relabel(flag_of(OPTIONS, _S, exc.name) or exc.label) from None
 
 
+def _is_demo(opts: SimulateOptions, changes: dict[str, Any]) -> bool:
+    """Tell whether the run regenerates the demo data set in its cache (no option changes it)."""
+    plain = not changes and not opts.scenario and opts.multipath is None
+    return opts.preset == "demo" and plain and not opts.out
+
+
 def run(args: argparse.Namespace) -> int:
-    """Simulate and print the written files; return the exit code."""
-    from psdbound.common.outputs import check_writable_folder
+    """Simulate and print the written files; return the exit code.
+
+    Every input (options, scenario file, navigation file, the ``--out``
+    folder) is checked before anything is written; the files are built in a
+    hidden folder and installed when all are complete
+    (``psdbound.simulate.folder.simulate_folder``).
+    """
     from psdbound.simulate import demo_data, simulate
+    from psdbound.simulate.folder import check_simulate_folder, simulate_folder
 
     given = read_options(args, OPTIONS, SCHEMA.spec)
     opts = SCHEMA.build(_C, given.get(_C, {}))
     changes = dict(given.get(_S, {}))
     if opts.out:
-        check_writable_folder(opts.out, option="--out")
-    if opts.preset == "demo" and not changes and not opts.scenario and opts.multipath is None:
-        data = demo_data(regenerate=True, folder=opts.out)
+        check_simulate_folder(opts.out, overwrite=opts.overwrite, option="--out")
+    if _is_demo(opts, changes):
+        if opts.overwrite:
+            from psdbound.common.notices import warn
+
+            warn("--overwrite is not used: without --out the demo is written to its cache")
+        data = demo_data(regenerate=True)
         files = [*data.obs_paths, data.nav_path, data.truth_path, data.truth_json_path]
     else:
         sc = _scenario(opts, changes)
         _warn_beyond_limit(sc, opts)
         out = Path(opts.out) if opts.out else Path("simulated") / sc.name
-        res = simulate(sc, out)
-        files = [*res.obs_paths, res.nav_path, res.truth_path, res.truth_json_path]
+        with simulate_folder(out, overwrite=opts.overwrite, option="--out") as tmp:
+            res = simulate(sc, tmp)
+        files = [out / p.name for p in (*res.obs_paths, res.nav_path, res.truth_path)]
+        files.append(out / res.truth_json_path.name)
     for f in files:
         print(f)
     return 0

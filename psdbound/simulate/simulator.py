@@ -39,22 +39,25 @@ import gzip
 import json
 import math
 import os
-from dataclasses import dataclass, field
+import shutil
+import tempfile
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
 from scipy.signal import lfilter
 
+from psdbound.common.atomic import atomic_write_bytes
 from psdbound.constants import SPEED_OF_LIGHT_M_S
-from psdbound.errors import InputError
+from psdbound.errors import InputError, NoDataError
 from psdbound.io.geometry import azimuth_elevation, enu_rotation, geodetic_to_ecef, signal_path
 from psdbound.io.nav import Navigation, read_nav
-from psdbound.io.nominal import nominal_navigation
 from psdbound.io.obs import SYSTEM_NAMES, Observations, ObsHeader, SystemBlock
 from psdbound.io.signals import carrier_frequency_hz, wavelength_m
 from psdbound.io.write import format_nav_v3, write_obs_v3
 from psdbound.screening.plausibility import multipath_limit_m
+from psdbound.simulate.navigation import scenario_navigation
 from psdbound.simulate.scenario import MultipathModel, Scenario
 from psdbound.version import __version__
 
@@ -250,6 +253,11 @@ def multipath_limit_problem(sc: Scenario, label: str = "multipath") -> str:
 def simulate(scenario: Scenario, out_dir: str | os.PathLike[str]) -> SimulationResult:
     """Simulate a data set and write it as real files.
 
+    Every input is checked before anything is written (the navigation file
+    against the simulated systems and span);
+    the files are built in a hidden folder inside ``out_dir`` and moved in
+    when all are complete, so a failure leaves ``out_dir`` as it was.
+
     Parameters
     ----------
     scenario : Scenario
@@ -257,12 +265,22 @@ def simulate(scenario: Scenario, out_dir: str | os.PathLike[str]) -> SimulationR
     out_dir : str or path-like
         Destination folder (created). Files: ``<name>-A_MO.rnx.gz``
         (``-B`` for the second antenna), ``<name>_MN.rnx.gz``,
-        ``<name>_truth.csv.gz`` and ``<name>_truth.json``.
+        ``<name>_truth.csv.gz`` and ``<name>_truth.json``; files of those
+        names already there are replaced (and an earlier ``<name>-B`` file
+        removed when only antenna A is simulated), nothing else is touched.
 
     Returns
     -------
     SimulationResult
         Paths and the truth arrays.
+
+    Raises
+    ------
+    InputError
+        A start epoch that cannot be read, a duration shorter than the
+        sampling interval, a navigation file without usable records of a
+        simulated system during the simulation, or no satellite of a
+        simulated system tracked at any epoch (nothing is written).
 
     See Also
     --------
@@ -283,16 +301,51 @@ def simulate(scenario: Scenario, out_dir: str | os.PathLike[str]) -> SimulationR
     ['tiny-A_MO.rnx.gz']
     """
     sc = scenario
+    t = _epochs(sc)
+    nav_src = scenario_navigation(sc, t)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    rng = np.random.default_rng(sc.seed)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{sc.name}-simulate-", dir=out))
+    try:
+        res = _simulate_into(sc, nav_src, t, tmp)
+        for name in sorted(os.listdir(tmp)):
+            os.replace(tmp / name, out / name)
+        if not sc.dual_antenna:  # an earlier dual-antenna run's B is not of this simulation
+            (out / f"{sc.name}-B_MO.rnx.gz").unlink(missing_ok=True)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    return replace(
+        res,
+        obs_paths=tuple(out / p.name for p in res.obs_paths),
+        nav_path=out / res.nav_path.name,
+        truth_path=out / res.truth_path.name,
+        truth_json_path=out / res.truth_json_path.name,
+    )
+
+
+def _epochs(sc: Scenario) -> NDArray[np.float64]:
+    """Return the simulated epochs (receiver-clock labels), GPS seconds."""
     t0 = _start_gps_s(sc.start_gps)
     n = int(round(sc.duration_s / sc.interval_s))
-    t = t0 + sc.interval_s * np.arange(n)
-    nav_path, nav = _write_navigation(sc, out, t0, t[-1])
-    sim = _Simulation.start(sc, nav, t, t0, rng)
+    if n < 1:
+        raise InputError(
+            f"the duration ({sc.duration_s:g} s) is shorter than the sampling interval "
+            f"({sc.interval_s:g} s): no epoch to simulate; lengthen --duration-h or shorten "
+            "--interval-s"
+        )
+    return t0 + sc.interval_s * np.arange(n)
+
+
+def _simulate_into(
+    sc: Scenario, nav_src: Navigation, t: NDArray[np.float64], out: Path
+) -> SimulationResult:
+    """Simulate from the checked records ``nav_src`` at epochs ``t``; write the files in ``out``."""
+    rng = np.random.default_rng(sc.seed)
+    nav_path, nav = _write_navigation(sc, out, nav_src)
+    sim = _Simulation.start(sc, nav, t, float(t[0]), rng)
     sim.geometry(nav)
     sim.add_gaps(rng)
+    sim.check_tracked()
     sim.add_truth_error(rng)
     sim.add_atmosphere(rng)
     slips = sim.add_ambiguities(rng)
@@ -342,13 +395,9 @@ def simulate(scenario: Scenario, out_dir: str | os.PathLike[str]) -> SimulationR
     )
 
 
-def _write_navigation(sc: Scenario, out: Path, t0: float, t_end: float) -> tuple[Path, Navigation]:
+def _write_navigation(sc: Scenario, out: Path, nav_src: Navigation) -> tuple[Path, Navigation]:
     """Write the navigation file and read it back: the simulation uses what readers see."""
     nav_path = out / f"{sc.name}_MN.rnx.gz"
-    if sc.nav_path is None:
-        nav_src: Navigation = nominal_navigation(t0, t_end, systems=sc.systems, clock_seed=sc.seed)
-    else:
-        nav_src = read_nav(sc.nav_path)
     text = format_nav_v3(nav_src, program=f"psdbound {__version__}")
     _write_gz(nav_path, text)
     return nav_path, read_nav(nav_path)
@@ -435,6 +484,30 @@ class _Simulation:
                 i0 = rng.integers(0, n)
                 length = max(1, int(rng.uniform(sc.interval_s, sc.gap_max_s) / sc.interval_s))
                 self.tracked[i0 : i0 + length, j] = False
+
+    def check_tracked(self) -> None:
+        """Refuse a simulation in which a simulated system is tracked at no epoch.
+
+        Raises
+        ------
+        NoDataError
+            No satellite of a simulated system above the elevation mask
+            (outside the tracking gaps) at any epoch: its observation file
+            would hold nothing.
+        """
+        sc = self.sc
+        for system in sc.systems:
+            cols = [j for j, s in enumerate(self.sats) if s[0] == system]
+            if cols and self.tracked[:, cols].any():
+                continue
+            source = f"of {sc.nav_path} " if sc.nav_path else ""
+            raise NoDataError(
+                f"no {SYSTEM_NAMES[system]} satellite {source}is above the elevation mask "
+                f"({sc.elevation_mask_deg:g} deg) of the antennas at {sc.lat_deg:g}, "
+                f"{sc.lon_deg:g} deg at any epoch from {sc.start_gps} for {sc.duration_s:g} s; "
+                "lengthen --duration-h, change --start or lower elevation_mask_deg (nothing "
+                "was written)"
+            )
 
     def add_truth_error(self, rng: np.random.Generator) -> None:
         """Truth error per antenna, epoch, satellite and signal, metres."""
@@ -593,7 +666,9 @@ def _system_block(
     li[~keep] = -1
     ssi = np.where(np.isfinite(v), np.clip(v // 6, 1, 9), -1).astype(np.int8)
     ssi[:, :, [2, 5]] = -1
-    ssi[:, :, [0, 1, 3, 4]] = np.clip(snr // 6, 1, 9).astype(np.int8)[..., None]
+    # from the direct SNR; none where it is undefined (no orbit: never tracked, blank in the file)
+    direct = np.where(np.isfinite(snr), np.clip(snr // 6, 1, 9), -1).astype(np.int8)
+    ssi[:, :, [0, 1, 3, 4]] = direct[..., None]
     ssi[~keep] = -1
     return SystemBlock(system, sats, codes, v, li, ssi)
 
@@ -602,9 +677,7 @@ def _write_gz(p: Path, text: str, *, compress: bool = True) -> None:
     data = text.encode("ascii")
     if compress:
         data = gzip.compress(data, mtime=0)
-    tmp = p.with_name(p.name + ".part")
-    tmp.write_bytes(data)
-    os.replace(tmp, p)
+    atomic_write_bytes(p, data)
 
 
 def _write_truth_csv(p, t, sats, truth, el) -> None:

@@ -193,7 +193,7 @@ def test_nav_without_the_requested_system_exits_2(capsys):
     nav = shared_file(NYA1_NAV)  # GPS only
     assert main(["budget", *KMDE, "--nav", str(nav), "--position", "78.93,11.87,80"]) == 2
     err = _err_line(capsys)
-    assert "no Galileo (E) orbits for --systems GE; the file has G (use --systems)" in err
+    assert "no Galileo (E) orbits for --systems GE; the file has G (give --systems G)" in err
     assert (
         main(
             [
