@@ -159,7 +159,8 @@ class CutoffSettings:
     ``oversample``, ``nyquist_fraction``, ``drop_db``, ``reference``,
     ``variance_m2``, ``degree``, ``quantile``, ``envelope_method``,
     ``bins_per_decade`` (see :func:`~psdbound.ionosphere.cutoff.series_cutoff`).
-    ``systems`` picks the nominal constellation when no orbit file is given;
+    ``systems`` picks the nominal constellation when no orbit file is given
+    (``"E"`` alone also makes E1/E5a the default carriers);
     ``min_arc_s`` drops shorter arcs from each one-day series and
     ``min_samples`` is the shortest one-day series analysed (shorter ones are
     listed as skipped); see :func:`~psdbound.ionosphere.cutoff.one_day_series`.
@@ -261,6 +262,10 @@ class CutoffSettings:
             given["frequency_hz"], given["second_frequency_hz"] = parse_carriers(str(carrier))
         if "systems" in given:
             given["systems"] = str(given["systems"]).upper()
+        if given.get("systems") == "E" and carrier is None and "frequency_hz" not in given:
+            # Galileo alone: its own default pair, E1/E5a (not GPS L2, which it has not)
+            given["frequency_hz"] = FREQUENCIES_HZ["E1"]
+            given["second_frequency_hz"] = FREQUENCIES_HZ["E5a"]
         if "alt_range_km" in given:
             lo, hi = given["alt_range_km"]
             given["alt_range_km"] = (float(lo), float(hi))

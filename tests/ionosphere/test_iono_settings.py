@@ -80,3 +80,18 @@ def test_defaults_and_the_legacy_settings():
         CutoffSettings.from_mapping({"criterion": "median"})
     with pytest.raises(InputError, match="mp_sigma_m"):
         CutoffSettings.from_mapping({"mp_sigma_m": 0.0})
+
+
+def test_galileo_alone_defaults_to_its_own_carriers():
+    """--systems E analysed Galileo at GPS L1/L2 (Galileo has no L2)."""
+    from psdbound.ionosphere.names import FREQUENCIES_HZ
+
+    gal = CutoffSettings.from_mapping({"systems": "e"})
+    assert (gal.frequency_hz, gal.second_frequency_hz) == (
+        FREQUENCIES_HZ["E1"],
+        FREQUENCIES_HZ["E5a"],
+    )
+    both = CutoffSettings.from_mapping({"systems": "GE"})
+    assert both.second_frequency_hz == FREQUENCIES_HZ["L2"]  # mixed: GPS's pair, as given
+    given = CutoffSettings.from_mapping({"systems": "E", "carrier": "L1-E5b"})
+    assert given.second_frequency_hz == FREQUENCIES_HZ["E5b"]
