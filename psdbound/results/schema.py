@@ -87,9 +87,9 @@ def number_problems(document: dict[str, Any]) -> list[str]:
 #: Fields whose values the schema limits beyond their type: (test, what is allowed).
 _LIMITED: dict[str, tuple[Any, str]] = {
     "verdict": (lambda v: v in ("bounded", "not-bounded"), "'bounded' or 'not-bounded'"),
-    "bound.sigma_gm_m": (lambda v: v >= 0, "a number >= 0"),
-    "bound.sigma_wn_m": (lambda v: v >= 0, "a number >= 0"),
-    "bound.tau_s": (lambda v: v > 0, "a number > 0"),
+    "bound.sigma_gm_m": (lambda v: v >= 0, ">= 0"),
+    "bound.sigma_wn_m": (lambda v: v >= 0, ">= 0"),
+    "bound.tau_s": (lambda v: v > 0, "> 0"),
 }
 
 

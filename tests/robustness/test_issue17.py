@@ -187,8 +187,8 @@ def test_documented_numbers_are_never_null(tmp_path):
 @pytest.mark.parametrize(
     ("field", "value", "words"),
     [
-        ("bound.sigma_gm_m", -0.01, "'bound.sigma_gm_m' must be a number >= 0, got -0.01"),
-        ("bound.tau_s", 0.0, "'bound.tau_s' must be a number > 0, got 0.0"),
+        ("bound.sigma_gm_m", -0.01, "'bound.sigma_gm_m' must be >= 0, got -0.01"),
+        ("bound.tau_s", 0.0, "'bound.tau_s' must be > 0, got 0.0"),
         ("verdict", "weird", "'verdict' must be 'bounded' or 'not-bounded', got \"weird\""),
     ],
 )
