@@ -35,6 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from psdbound.errors import InputError
 from psdbound.kalman.bound import GaussMarkovBound
+from psdbound.kalman.process import check_covariance
 
 __all__ = ["AugmentedModel", "augment_gm_states", "broadcast_bounds"]
 
@@ -138,6 +139,7 @@ class AugmentedModel:
         """
         n = self.n_base
         p0 = _matrix("p0_base", p0_base, (n, n))
+        check_covariance(p0, "p0_base")
         out = np.zeros((n + self.p0_gm_m2.size,) * 2)
         out[:n, :n] = p0
         out[self.gm_slice, self.gm_slice] = np.diag(self.p0_gm_m2)
@@ -199,6 +201,8 @@ def augment_gm_states(
     Fm = _matrix("F", F, (n, n))
     Qm = _matrix("Q", Q, (n, n))
     Rm = np.zeros((m, m)) if R is None else _matrix("R", R, (m, m))
+    check_covariance(Qm, "Q")
+    check_covariance(Rm, "R")
     bl = broadcast_bounds(bounds, m)
     if elevation_deg is None:
         scale = np.ones(m)

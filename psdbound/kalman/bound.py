@@ -66,6 +66,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.signal import lfilter
 
+from psdbound.common.options import Number
 from psdbound.errors import InputError
 from psdbound.results import read_document
 from psdbound.spectra.bound import BoundFit
@@ -227,22 +228,49 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
 
     @classmethod
     def from_fit(
-        cls, fit: BoundFit, *, mapping: ElevationMapping | None = None
+        cls,
+        fit: BoundFit | Any,
+        *,
+        mapping: ElevationMapping | None = None,
+        allow_not_bounded: bool = False,
     ) -> GaussMarkovBound:
-        """Build a bound from a :class:`psdbound.spectra.BoundFit`.
+        """Build a bound from a :class:`psdbound.spectra.BoundFit` or a ``bound_series`` result.
 
         Parameters
         ----------
-        fit : BoundFit
-            Result of :func:`psdbound.spectra.fit_bound`.
+        fit : BoundFit or SeriesBound
+            Result of :func:`psdbound.spectra.fit_bound`, or of
+            :func:`psdbound.bound_series` (its ``fit``; a result whose verdict
+            is not ``"bounded"`` is refused, with its reasons, unless
+            ``allow_not_bounded``).
         mapping : ElevationMapping, optional
             Elevation mapping the fitted PSDs were normalised with.
+        allow_not_bounded : bool, default False
+            Accept a not-bounded ``bound_series`` result.
 
         Returns
         -------
         GaussMarkovBound
+
+        Raises
+        ------
+        InputError
+            Neither a fit nor a ``bound_series`` result, or a not-bounded one.
         """
-        m = fit.model
+        verdict = getattr(fit, "verdict", None)
+        if verdict is not None and verdict != "bounded" and not allow_not_bounded:
+            why = "; ".join(getattr(fit, "verdict_reasons", ())) or "no reason given"
+            raise InputError(
+                f"the verdict is {verdict!r} ({why}): this bound is not for a filter; pass "
+                "allow_not_bounded=True to use it anyway"
+            )
+        fit = getattr(fit, "fit", fit)  # a bound_series result holds its BoundFit
+        m = getattr(fit, "model", None)
+        if m is None:
+            raise InputError(
+                "from_fit takes the result of psdbound.bound_series or spectra.fit_bound, got "
+                f"{type(fit).__name__}"
+            )
         return cls(m.sigma_gm_m, m.tau_s, m.sigma_wn_m, m.dt_s, mapping=mapping, source="fit")
 
     @classmethod
@@ -372,10 +400,17 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
         Returns
         -------
         ndarray
+
+        Raises
+        ------
+        InputError
+            An elevation that is not a number in [0, 90] deg.
         """
         el = np.asarray(elevation_deg, dtype=float)
-        if not np.isfinite(el).all():
-            raise InputError("elevations must be finite numbers of degrees")
+        if not (np.isfinite(el).all() and ((el >= 0.0) & (el <= 90.0)).all()):
+            raise InputError(
+                f"elevations must be finite numbers of degrees in [0, 90], got {elevation_deg!r}"
+            )
         if self.mapping is None:
             return np.ones_like(el)
         return self.mapping.factor(el)
@@ -498,12 +533,17 @@ class GaussMarkovBound(GaussMarkovWhiteNoise):
         Returns
         -------
         ndarray
+
+        Raises
+        ------
+        InputError
+            ``n_samples`` or ``n_series`` not a whole number >= 1.
         """
-        if int(n_samples) < 1:
-            raise InputError(f"n_samples must be >= 1, got {n_samples}")
+        n = Number(lo=1, integer=True)("n_samples", n_samples)
+        k = 1 if n_series is None else Number(lo=1, integer=True)("n_series", n_series)
         gen = np.random.default_rng(rng)
         phi, qd, r = self.to_state_space(dt_s, white_noise=white_noise)
-        shape = (1 if n_series is None else int(n_series), int(n_samples))
+        shape = (k, n)
         w = gen.standard_normal(shape) * math.sqrt(qd)
         w[:, 0] = gen.standard_normal(shape[0]) * self.sigma_gm_m
         x = lfilter([1.0], [1.0, -phi], w, axis=1)

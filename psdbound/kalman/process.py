@@ -22,7 +22,7 @@ from scipy import linalg
 from psdbound.errors import InputError
 from psdbound.kalman.bound import GaussMarkovBound
 
-__all__ = ["ErrorProcess"]
+__all__ = ["ErrorProcess", "check_covariance"]
 
 
 @dataclass(frozen=True)
@@ -59,7 +59,7 @@ class ErrorProcess:
 
     def __post_init__(self) -> None:
         a, q, c = _checked_matrices(self.a, self.q_m2, self.c)
-        _check_covariance(q)
+        check_covariance(q)
         rho = float(np.abs(np.linalg.eigvals(a)).max())
         if rho >= 1.0:
             raise InputError(
@@ -362,9 +362,23 @@ def _checked_matrices(
     return a, q, c
 
 
-def _check_covariance(q: NDArray[np.float64]) -> None:
-    """Check that the process-noise covariance (m^2) is symmetric and positive semi-definite."""
+def check_covariance(q: NDArray[np.float64], name: str = "ErrorProcess: q_m2") -> None:
+    """Raise :class:`InputError` unless a covariance matrix is symmetric and positive semi-definite.
+
+    Parameters
+    ----------
+    q : ndarray, shape (n, n)
+        The matrix (finite entries), in its own unit squared.
+    name : str
+        How to name it in the message.
+
+    Raises
+    ------
+    InputError
+        Not symmetric (relative tolerance 1e-10), or an eigenvalue below
+        ``-1e-12`` times its largest entry.
+    """
     if not np.allclose(q, q.T, rtol=1e-10, atol=1e-14 * max(1.0, np.abs(q).max())):
-        raise InputError("ErrorProcess: q_m2 must be symmetric")
-    if np.linalg.eigvalsh(q).min() < -1e-12 * max(1e-300, np.abs(q).max()):
-        raise InputError("ErrorProcess: q_m2 must be positive semi-definite")
+        raise InputError(f"{name} must be symmetric")
+    if q.size and np.linalg.eigvalsh(q).min() < -1e-12 * max(1e-300, np.abs(q).max()):
+        raise InputError(f"{name} must be positive semi-definite (a covariance)")

@@ -221,9 +221,16 @@ class FitResults:
         Returns
         -------
         Path
+
+        Raises
+        ------
+        InputError
+            A format the name contradicts, or a file that cannot be written
+            there (a folder, a folder that cannot be created or written).
         """
         from psdbound.results.series_export import series_attrs, write_series
 
+        check_output_file(path, overwrite=True, option="series file")
         return write_series(
             self.series_table(), path, fmt=format, attrs=series_attrs(self.document)
         )
@@ -336,7 +343,9 @@ class FitResults:
         check_output_file(path, overwrite=True, option="result file")
         return write_document(path, self.document)
 
-    def report(self, out_dir: str | os.PathLike[str], *, pdf: bool = True) -> dict[str, Path]:
+    def report(
+        self, out_dir: str | os.PathLike[str], *, pdf: bool = True, overwrite: bool = False
+    ) -> dict[str, Path]:
         """Write ``result.json``, ``report.html`` and (optionally) ``report.pdf`` into a folder.
 
         The folder is built under a temporary name and renamed when complete.
@@ -347,15 +356,26 @@ class FitResults:
             Destination folder.
         pdf : bool, default True
             Also write the PDF report.
+        overwrite : bool, default False
+            Write into an existing folder that is not a psdbound output
+            (psdbound's files are added; nothing else in it is touched).
 
         Returns
         -------
         dict of str to Path
             ``{"result": ..., "html": ..., "pdf": ...}``.
+
+        Raises
+        ------
+        InputError
+            The folder is refused (a file, not writable, or a folder with
+            other content without ``overwrite``).
         """
         from psdbound.reports import write_report_folder
 
-        return write_report_folder(self.document, out_dir, pdf=pdf)
+        return write_report_folder(
+            self.document, out_dir, pdf=pdf, overwrite=overwrite, option="out_dir"
+        )
 
 
 def _names(
@@ -380,6 +400,11 @@ def _config_from(
     config: FitConfig | None,
     options: dict[str, Any],
 ) -> FitConfig:
+    if config is not None and not isinstance(config, FitConfig):
+        raise InputError(
+            f"config must be a psdbound.FitConfig (FitConfig.from_dict(...) builds one from a "
+            f"dict), got {type(config).__name__}; or give the options as keywords"
+        )
     cfg = config if config is not None else FitConfig()
     files = {"obs": _names(obs, "obs"), "nav": _names(nav, "nav")}
     cfg = cfg.updated("inputs", **{k: v for k, v in files.items() if v})
@@ -470,6 +495,10 @@ def fit(
     """
     cfg = _config_from(obs, nav, config, options)
     cfg.check()  # conflicting options and ignored files are errors before anything is read
+    if progress is not None and not callable(progress):
+        raise InputError(
+            f"progress must be a callable taking one message (e.g. print), got {progress!r}"
+        )
     t0 = time.perf_counter()
     run = run_stages(cfg, progress=progress)
     products = run.products()
@@ -513,4 +542,6 @@ def load(path: str | os.PathLike[str]) -> FitResults:
     >>> again.bound.tau_s == res.bound.tau_s and again.verdict == res.verdict
     True
     """
+    if not isinstance(path, str | os.PathLike):
+        raise InputError(f"give the path of a result.json, got {type(path).__name__}")
     return FitResults(read_document(path), source=str(path))

@@ -178,10 +178,12 @@ def _check_mode(white_noise: str) -> None:
 
 
 def _check_dt(dt_s: float, what: str = "filter interval dt_s") -> float:
-    dt = float(dt_s)
-    if not (math.isfinite(dt) and dt > 0):
+    number = isinstance(dt_s, int | float | np.integer | np.floating) and not isinstance(
+        dt_s, bool | np.bool_
+    )
+    if not (number and math.isfinite(float(dt_s)) and float(dt_s) > 0):
         raise InputError(f"{what} must be a finite number > 0 s, got {dt_s!r}")
-    return dt
+    return float(dt_s)
 
 
 @dataclass(frozen=True)

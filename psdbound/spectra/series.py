@@ -9,13 +9,14 @@ stated confidence, a verdict and the band it holds on out.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from psdbound.common.options import Number
 from psdbound.errors import InputError
 from psdbound.spectra.bands import BandSpectra, resolved_from_hz
 from psdbound.spectra.bound import BoundFit
@@ -156,33 +157,77 @@ class SeriesBound:
         return out
 
 
-def _positive(name: str, value: object, unit: str) -> None:
-    """Raise :class:`InputError` unless ``value`` is a positive, finite real number."""
+def _positive(name: str, value: object, unit: str) -> float:
+    """Return ``value`` as a Python float; :class:`InputError` unless positive, finite, real."""
     number = isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
         value, bool
     )
     if not (number and np.isfinite(value) and value > 0):  # type: ignore[operator, arg-type]
         raise InputError(f"{name} must be a positive, finite number of {unit}, got {value!r}")
+    return float(value)  # type: ignore[arg-type]  # a float32 1.0 is the float 1.0
+
+
+#: The numeric options of :func:`bound_series` and what each allows.
+_NUMBERS = {
+    "confidence_level": Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True),
+    "coverage": Number(lo=0.5, hi=1.0, lo_open=True),
+    "shape_alpha": Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True),
+    "bands_per_decade": Number(lo=1, hi=100, integer=True),
+    "min_samples": Number(lo=MIN_SAMPLES, integer=True),
+    "cluster_correlation": Number(lo=0.0, hi=1.0),
+}
 
 
 def _check_options(
     dt_s: object,
     tau_max_s: object,
     f_min_hz: object,
-    min_samples: int,
     low_frequency_policy: str,
-) -> None:
-    """Raise :class:`InputError` for a sampling interval or an option out of its range."""
-    _positive("sampling interval dt_s", dt_s, "seconds")
-    _positive("tau_max_s", tau_max_s, "seconds")
-    if f_min_hz is not None:
-        _positive("f_min_hz", f_min_hz, "Hz")
+    numbers: dict[str, Any],
+    estimator_options: object = None,
+) -> tuple[float, float, float | None, dict[str, Any]]:
+    """Return the sampling interval, tau_max_s, f_min_hz and numeric options, checked.
+
+    Raises
+    ------
+    InputError
+        A value of the wrong type or out of its range (naming the option).
+    """
+    dt = _positive("sampling interval dt_s", dt_s, "seconds")
+    tau_max = _positive("tau_max_s", tau_max_s, "seconds")
+    if tau_max < dt / 2:
+        raise InputError(
+            f"tau_max_s {tau_max:g} s is below the shortest time constant the bound searches, "
+            f"dt_s / 2 = {dt / 2:g} s: give at least that (a shorter one is white noise at "
+            "this sampling)"
+        )
+    f_min = None if f_min_hz is None else _positive("f_min_hz", f_min_hz, "Hz")
     if low_frequency_policy not in POLICIES:
         raise InputError(
             f"low_frequency_policy must be one of {POLICIES}, got {low_frequency_policy!r}"
         )
-    if min_samples < MIN_SAMPLES:
-        raise InputError(f"min_samples must be at least {MIN_SAMPLES}, got {min_samples}")
+    if estimator_options is not None and not isinstance(estimator_options, Mapping):
+        raise InputError(
+            f"estimator_options must be a dict of the estimator's options, got "
+            f"{estimator_options!r}"
+        )
+    checked = {k: _NUMBERS[k](k, v) for k, v in numbers.items()}
+    return dt, tau_max, f_min, checked
+
+
+def _mean_note(stretches: Sequence[NDArray[np.float64]]) -> tuple[str, ...]:
+    """Say when a stretch's removed mean is large next to its fluctuation (a bias not bounded)."""
+    ratios = [abs(float(np.mean(x))) / max(float(np.std(x)), 1e-300) for x in stretches]
+    k = int(np.argmax(ratios))
+    if ratios[k] <= 0.25:
+        return ()
+    n = sum(r > 0.25 for r in ratios)
+    return (
+        f"{n} of {len(stretches)} stretch(es) have a mean above a quarter of their standard "
+        f"deviation (stretch {k}: mean {float(np.mean(stretches[k])):.4g}, {ratios[k]:.3g} "
+        "times its standard deviation); each stretch's mean is removed before its spectrum, "
+        "so the bound covers the fluctuation about it, not that bias",
+    )
 
 
 def _cluster_labels(
@@ -239,12 +284,28 @@ def _unresolved_note(resolved_hz: list[float], stated_hz: float) -> tuple[str, .
 
 
 def _is_one_series(series: object) -> bool:
-    """Whether the input is one series (an array or a flat list of numbers)."""
+    """Whether the input is one series (an array or a flat list of numbers).
+
+    Raises
+    ------
+    InputError
+        Not an array or a sequence (None, a number, a dict), or a list that
+        mixes numbers and arrays.
+    """
     if isinstance(series, np.ndarray):
         return series.ndim == 1
-    if isinstance(series, Sequence) and len(series) > 0:
-        return bool(np.isscalar(series[0]))
-    return False
+    if isinstance(series, Mapping) or not isinstance(series, Sequence) or isinstance(series, str):
+        raise InputError(
+            "series must be a 1-D array or a list of 1-D arrays (one per stretch), got "
+            f"{type(series).__name__}"
+        )
+    scalars = [bool(np.isscalar(x)) for x in series]
+    if any(scalars) and not all(scalars):
+        raise InputError(
+            f"series mixes numbers and arrays (item {scalars.index(not scalars[0])}): give one "
+            "1-D series, or a list of 1-D arrays"
+        )
+    return bool(scalars) and scalars[0]
 
 
 def split_stretches(
@@ -271,6 +332,8 @@ def split_stretches(
     InputError
         An item that is not 1-D, or an infinite value.
     """
+    if isinstance(series, Iterator):  # a generator of stretches: read once
+        series = list(series)
     items = [series] if _is_one_series(series) else list(series)  # type: ignore[arg-type]
     out, short, short_n = [], 0, 0
     for k, item in enumerate(items):
@@ -332,7 +395,11 @@ def bound_series(
     series : array_like or sequence of array_like
         Stationary stretches of an error, metres (or any unit: the bound is
         in the same unit); NaN gaps, and masked samples of a masked array,
-        split a stretch. Each stretch is one window.
+        split a stretch. Each stretch is one window. A 2-D array is read as
+        one stretch per row. Each stretch's mean is removed before its
+        spectrum: the bound covers the fluctuation about it, not a constant
+        bias (``notes`` says when a mean exceeds a quarter of its stretch's
+        standard deviation).
     dt_s : float
         Sampling interval, seconds.
     confidence_level : float, default 0.95
@@ -408,7 +475,11 @@ def bound_series(
     >>> res.verdict
     'bounded'
     """
-    _check_options(dt_s, tau_max_s, f_min_hz, min_samples, low_frequency_policy)
+    num = {k: v for k, v in locals().items() if k in _NUMBERS}  # the parameters, by name
+    dt_s, tau_max_s, f_min_hz, num = _check_options(
+        dt_s, tau_max_s, f_min_hz, low_frequency_policy, num, estimator_options
+    )
+    min_samples = num["min_samples"]
     stretches, notes = split_stretches(series, min_samples=min_samples)
     if not stretches:
         raise InputError(
@@ -426,12 +497,12 @@ def bound_series(
         psds,
         dt_s,
         f_min_hz=f_min_hz,
-        confidence_level=confidence_level,
-        coverage=coverage,
-        shape_alpha=shape_alpha,
-        bands_per_decade=bands_per_decade,
+        confidence_level=num["confidence_level"],
+        coverage=num["coverage"],
+        shape_alpha=num["shape_alpha"],
+        bands_per_decade=num["bands_per_decade"],
         clusters=cl,
-        cluster_correlation=cluster_correlation,
+        cluster_correlation=num["cluster_correlation"],
         deviation_model=deviation_model,
         objective=objective,
         tau_max_s=tau_max_s,
@@ -451,6 +522,7 @@ def bound_series(
         bands=bands,
         limits=limits,
         notes=notes
+        + _mean_note(stretches)
         + _f_min_note(given_f_min_hz, float(fit.f_min_hz))
         + _unresolved_note(resolved_hz, float(fit.f_min_hz)),
         model_set=ms,

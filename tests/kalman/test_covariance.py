@@ -340,3 +340,14 @@ def test_result_object_properties():
     # a combination of the two states exceeds the filter variance although no diagonal does
     assert res.max_eig_ratio == pytest.approx((3 + math.sqrt(5)) / 4)
     assert res.worst_step == 1 and not res.bounded()
+
+
+def test_matrices_that_cannot_be_covariances_are_refused():
+    """A negative Q or R (or initial covariance) was accepted, or failed deep in numpy."""
+    F = np.eye(4)
+    for name, q, r in (("Q", -FILTERS["static"], R_OTHER), ("R", FILTERS["static"], -R_OTHER)):
+        with pytest.raises(InputError, match=f"{name} must be positive semi-definite"):
+            augment_gm_states(F, q, H6, r, BOUND, 1.0, elevation_deg=EL6)
+    aug = augment_gm_states(F, FILTERS["static"], H6, R_OTHER, BOUND, 1.0, elevation_deg=EL6)
+    with pytest.raises(InputError, match="p0_base must be positive semi-definite"):
+        aug.initial_covariance(-P0)

@@ -264,3 +264,24 @@ def test_filter_step_shorter_than_the_data_interval_warns():
     b = GaussMarkovBound.from_params(0.004, 60.0, 0.001, 30.0)
     with pytest.warns(UserWarning, match="shorter than the data interval"):
         b.to_state_space(1.0)
+
+
+def test_library_entries_refuse_what_they_cannot_use():
+    """from_fit takes a bound_series result; counts, intervals and elevations are checked."""
+    import psdbound
+
+    rng = np.random.default_rng(3)
+    res = psdbound.bound_series([rng.normal(0, 0.002, 512) for _ in range(8)], 1.0)
+    kb = GaussMarkovBound.from_fit(res)
+    assert (kb.sigma_gm_m, kb.tau_s) == (res.bound.sigma_gm_m, res.bound.tau_s)
+    with pytest.raises(InputError, match="from_fit takes the result of psdbound.bound_series"):
+        GaussMarkovBound.from_fit(None)
+    with pytest.raises(InputError, match="n_samples must be an integer >= 1"):
+        kb.simulate(2.7)
+    with pytest.raises(InputError, match="n_series must be an integer >= 1"):
+        kb.simulate(10, n_series=0)
+    for bad in ("1", True):
+        with pytest.raises(InputError, match="must be a finite number > 0 s"):
+            kb.to_state_space(bad)
+    with pytest.raises(InputError, match=r"in \[0, 90\]"):
+        kb.mapping_factor([-5.0, 100.0])

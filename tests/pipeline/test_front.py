@@ -145,3 +145,13 @@ def test_to_json_names_a_folder_and_replaces_a_file(demo_fit, tmp_path):
     target = tmp_path / "r.json"
     target.write_text("old")
     assert psdbound.load(demo_fit.to_json(target)).verdict == demo_fit.verdict
+
+
+def test_library_misuse_is_an_input_error_before_any_work(tmp_path):
+    """fit(config=dict), fit(progress=3), load(None): one clear InputError each."""
+    with pytest.raises(InputError, match="config must be a psdbound.FitConfig"):
+        psdbound.fit(config={"bound": {}})
+    with pytest.raises(InputError, match="progress must be a callable"):
+        psdbound.fit(progress=3)
+    with pytest.raises(InputError, match="give the path of a result.json"):
+        psdbound.load(None)

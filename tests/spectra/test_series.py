@@ -149,3 +149,43 @@ def test_windows_that_do_not_resolve_the_lowest_stated_frequency_are_noted():
     assert not [n for n in again.notes if "windows resolve only from" in n]
     same = psdbound.bound_series([_white(1800, seed) for seed in range(4)], 1.0)
     assert not [n for n in same.notes if "windows resolve only from" in n]
+
+
+@pytest.mark.parametrize(
+    ("series", "options", "words"),
+    [
+        (None, {}, "series must be a 1-D array or a list of 1-D arrays"),
+        (3.0, {}, "series must be a 1-D array or a list of 1-D arrays"),
+        ({"a": np.zeros(100)}, {}, "got dict"),
+        ([1.0, np.zeros(100)], {}, "series mixes numbers and arrays"),
+        ("white", {"confidence_level": "0.9"}, "confidence_level must be a number > 0 and < 1"),
+        ("white", {"coverage": None}, "coverage must be a number"),
+        ("white", {"min_samples": 64.5}, "min_samples must be an integer >= 16"),
+        ("white", {"bands_per_decade": 2.5}, "bands_per_decade must be an integer"),
+        ("white", {"estimator_options": "x"}, "estimator_options must be a dict"),
+        ("white", {"tau_max_s": 0.3}, "tau_max_s 0.3 s is below the shortest time constant"),
+    ],
+)
+def test_bad_containers_and_option_types_are_input_errors(series, options, words):
+    """Issue-27 library entry: every bad input is an InputError that says what is expected."""
+    if isinstance(series, str):
+        series = [_white(512, seed) for seed in range(4)]
+    with pytest.raises(InputError, match=words):
+        psdbound.bound_series(series, 1.0, **options)
+
+
+def test_a_float32_interval_and_a_generator_give_the_same_bound():
+    xs = [_white(512, seed) for seed in range(6)]
+    a = psdbound.bound_series(xs, 1.0)
+    b = psdbound.bound_series(iter(xs), np.float32(1.0))
+    assert (a.bound.sigma_gm_m, a.bound.tau_s) == (b.bound.sigma_gm_m, b.bound.tau_s)
+
+
+def test_a_removed_mean_is_said():
+    """Each stretch's mean is removed before its spectrum: a bias is not bounded, and says so."""
+    xs = [_white(512, seed) for seed in range(6)]
+    plain = psdbound.bound_series(xs, 1.0)
+    biased = psdbound.bound_series([x + 1.0 for x in xs], 1.0)
+    assert biased.bound.sigma_gm_m == pytest.approx(plain.bound.sigma_gm_m, rel=1e-9)
+    assert not any("mean" in n for n in plain.notes)
+    assert any("not that bias" in n for n in biased.notes)

@@ -570,7 +570,6 @@ def test_passes_name_a_missing_system_or_satellite_not_no_pass():
     """'no satellite pass of 60 min' was said for an orbit without the system, or a typo."""
     from types import SimpleNamespace
 
-    from psdbound.errors import InputError
     from psdbound.validation.direct import satellite_passes
 
     rx = np.array([4.0e6, 6.0e5, 4.9e6])
