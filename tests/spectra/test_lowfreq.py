@@ -63,7 +63,7 @@ def test_refuse_policy_and_a_prior_below_the_data():
     res = psdbound.bound_series(xs, DT, low_frequency_policy="refuse")
     assert res.verdict == "not-bounded"
     assert any("policy is 'refuse'" in r for r in res.verdict_reasons)
-    res = psdbound.bound_series(xs, DT, tau_max_s=10.0)  # the data exclude tau <= 10 s
+    res = psdbound.bound_series(xs, DT, tau_max_s=20.0)  # the data exclude tau <= 20 s
     assert res.verdict == "not-bounded"
     assert any("only time constants above the prior" in r for r in res.verdict_reasons)
     with pytest.raises(psdbound.InputError):
@@ -191,3 +191,13 @@ def test_without_a_model_set_the_prior_still_covers_a_slow_truth():
     before = low.before
     extrapolated = gm_psd_sampled(f, before["sigma_gm_m"], before["tau_s"], DT)
     assert extrapolated[0] < truth_below[0]  # the fitted model alone lay under the truth at 0 Hz
+
+
+def test_a_prior_below_half_the_interval_is_refused():
+    """Below dt/2 no time constant is searched: white noise was 'not-bounded' with the false
+    reason that the data admit only longer time constants."""
+    rng = np.random.default_rng(6)
+    white = [rng.normal(0.0, 0.002, 512) for _ in range(8)]
+    with pytest.raises(psdbound.InputError, match="below the shortest time constant"):
+        psdbound.bound_series(white, DT, tau_max_s=0.4 * DT)
+    assert psdbound.bound_series(white, DT, tau_max_s=DT).verdict == "bounded"
