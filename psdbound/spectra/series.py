@@ -194,13 +194,7 @@ def _check_options(
         A value of the wrong type or out of its range (naming the option).
     """
     dt = _positive("sampling interval dt_s", dt_s, "seconds")
-    tau_max = _positive("tau_max_s", tau_max_s, "seconds")
-    if tau_max < dt / 2:
-        raise InputError(
-            f"tau_max_s {tau_max:g} s is below the shortest time constant the bound searches, "
-            f"dt_s / 2 = {dt / 2:g} s: give at least that (a shorter one is white noise at "
-            "this sampling)"
-        )
+    tau_max = _positive("tau_max_s", tau_max_s, "seconds")  # >= dt / 2: fit_stated_bound
     f_min = None if f_min_hz is None else _positive("f_min_hz", f_min_hz, "Hz")
     if low_frequency_policy not in POLICIES:
         raise InputError(

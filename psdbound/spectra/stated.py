@@ -42,6 +42,7 @@ from typing import Any, NamedTuple
 import numpy as np
 from numpy.typing import NDArray
 
+from psdbound.errors import InputError
 from psdbound.spectra.bands import BandSpectra, band_spectra, resolved_from_hz
 from psdbound.spectra.bound import BoundFit, join_floors
 from psdbound.spectra.cells import CellCheck, cover_cells
@@ -146,7 +147,20 @@ def fit_stated_bound(
     Returns
     -------
     StatedBound
+
+    Raises
+    ------
+    InputError
+        ``tau_max_s`` below ``dt_s / 2``, where the model set's time
+        constants start: no model would lie under the prior, and white
+        noise would read as data admitting only longer time constants.
     """
+    if tau_max_s < dt_s / 2:
+        raise InputError(
+            f"tau_max_s {tau_max_s:g} s is below the shortest time constant the bound searches, "
+            f"dt_s / 2 = {dt_s / 2:g} s: give at least that (a shorter one is white noise at "
+            "this sampling)"
+        )
     fit, bands, limits = fit_pooled_bound(
         psds,
         dt_s,

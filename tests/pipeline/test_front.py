@@ -155,3 +155,9 @@ def test_library_misuse_is_an_input_error_before_any_work(tmp_path):
         psdbound.fit(progress=3)
     with pytest.raises(InputError, match="give the path of a result.json"):
         psdbound.load(None)
+
+
+def test_a_prior_below_half_the_interval_is_refused_by_fit_too():
+    """fit shares the bound's code path: tau_max_s below dt/2 (1 s demo) is bad input."""
+    with pytest.raises(InputError, match="below the shortest time constant the bound searches"):
+        psdbound.fit(tau_max_s=0.1)
