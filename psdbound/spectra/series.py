@@ -26,6 +26,8 @@ from psdbound.spectra.intervals import ModelSet
 from psdbound.spectra.lowest import LowestFrequencies
 from psdbound.spectra.lowfreq import POLICIES, TAU_MAX_S, LowFrequency, low_frequency_reasons
 from psdbound.spectra.models import GaussMarkovWhiteNoise
+from psdbound.spectra.names import METHODS
+from psdbound.spectra.options import check_estimator_options
 from psdbound.spectra.ordinates import lowest_ordinates
 from psdbound.spectra.pooled import PooledLimits
 from psdbound.spectra.stated import fit_stated_bound, statement
@@ -207,6 +209,20 @@ def _check_options(
         )
     checked = {k: _NUMBERS[k](k, v) for k, v in numbers.items()}
     return dt, tau_max, f_min, checked
+
+
+def _estimator_options(estimator: str, options: Mapping[str, Any] | None) -> dict[str, Any]:
+    """Return the estimator's options checked by their schema (``'k': 2.5`` is refused).
+
+    Raises
+    ------
+    InputError
+        An unknown estimator, or an option it does not have or of the wrong
+        type or range (:func:`psdbound.spectra.options.check_estimator_options`).
+    """
+    if estimator not in METHODS:
+        raise InputError(f"estimator must be one of {', '.join(METHODS)}, got {estimator!r}")
+    return check_estimator_options(estimator, dict(options or {}))
 
 
 def _mean_note(stretches: Sequence[NDArray[np.float64]]) -> tuple[str, ...]:
@@ -480,7 +496,7 @@ def bound_series(
             f"no stretch of at least {min_samples} finite samples to bound"
             + (f" ({notes[0]})" if notes else "")
         )
-    opts = dict(estimator_options or {})
+    opts = _estimator_options(estimator, estimator_options)
     psds = tuple(estimate_psd(x, dt_s, method=estimator, **opts) for x in stretches)
     given_f_min_hz = f_min_hz
     resolved_hz = [resolved_from_hz(p) for p in psds]

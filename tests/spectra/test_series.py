@@ -164,6 +164,10 @@ def test_windows_that_do_not_resolve_the_lowest_stated_frequency_are_noted():
         ("white", {"bands_per_decade": 2.5}, "bands_per_decade must be an integer"),
         ("white", {"estimator_options": "x"}, "estimator_options must be a dict"),
         ("white", {"tau_max_s": 0.3}, "tau_max_s 0.3 s is below the shortest time constant"),
+        ("white", {"estimator_options": {"k": 2.5}}, "options.k must be an integer"),
+        ("white", {"estimator_options": {"adaptive": "x"}}, "options.adaptive must be true"),
+        ("white", {"estimator_options": {"foo": 1}}, "names of multitaper options"),
+        ("white", {"estimator": "nope"}, "estimator must be one of"),
     ],
 )
 def test_bad_containers_and_option_types_are_input_errors(series, options, words):
