@@ -24,6 +24,7 @@ from __future__ import annotations
 import calendar
 import datetime as _dt
 import os
+import re
 import time
 from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
@@ -295,14 +296,16 @@ def station_cutoffs(
     return res
 
 
+#: A calendar day in a message (``2024-07-27``).
+_DAY = re.compile(r"\d{4}-\d{2}-\d{2}")
+
+
 def _grouped_by_day(reasons: Sequence[str]) -> list[str]:
     """Say each reason once, with the days it holds for (the same sentence per day, once)."""
-    import re
-
     days: dict[str, list[str]] = {}
     for text in dict.fromkeys(reasons):
-        found = re.findall(r"\d{4}-\d{2}-\d{2}", text)
-        key = re.sub(r"\d{4}-\d{2}-\d{2}", "{day}", text) if len(found) == 1 else text
+        found = _DAY.findall(text)
+        key = _DAY.sub("{day}", text) if len(found) == 1 else text
         days.setdefault(key, []).extend(found[:1] if len(found) == 1 else [])
     out = []
     for key, when in days.items():

@@ -348,7 +348,8 @@ def iono_coefficient_ratio(carriers_hz: tuple[float, float]) -> float:
     """Return how much more ionosphere a carrier pair's isolated series holds than GPS L1/L2's.
 
     The dual-frequency series ``(L_a - L_b) / sqrt(2)`` (phases in metres)
-    holds the ionosphere times ``|1/f_b^2 - 1/f_a^2|``; the ratio of that
+    holds the ionosphere times ``|1/f_b^2 - 1/f_a^2|``
+    (:func:`psdbound.ionosphere.slant.delay_factor`); the ratio of that
     coefficient to L1/L2's (1 for GPS L1/L2, 1.23 for E1/E5a or L1/L5).
 
     Parameters
@@ -361,8 +362,9 @@ def iono_coefficient_ratio(carriers_hz: tuple[float, float]) -> float:
     float
         Dimensionless.
     """
-    fa, fb = carriers_hz
-    return abs(1 / fb**2 - 1 / fa**2) / abs(1 / F_L2_HZ**2 - 1 / F_L1_HZ**2)
+    from psdbound.ionosphere.slant import delay_factor
+
+    return delay_factor(*carriers_hz) / delay_factor(F_L1_HZ, F_L2_HZ)
 
 
 def _carrier_warning(carriers_hz: tuple[float, float] | None, source: str) -> list[str]:

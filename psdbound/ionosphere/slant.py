@@ -73,6 +73,7 @@ __all__ = [
     "FREQUENCIES_HZ",
     "METHODS",
     "SlantDelay",
+    "delay_factor",
     "simulate_slant_delay",
     "slant_tec_direct",
 ]
@@ -143,8 +144,27 @@ class SlantDelay:
         return self.t_gps_s[ok], self.delay_m[j, ok]
 
 
-def _delay_factor(frequency_hz: float, second_frequency_hz: float | None) -> float:
-    """Metres of delay per electron/m^2 of slant TEC."""
+def delay_factor(frequency_hz: float, second_frequency_hz: float | None = None) -> float:
+    """Return the metres of delay per electron/m^2 of slant TEC (of the pair's difference).
+
+    Parameters
+    ----------
+    frequency_hz : float
+        Carrier frequency, Hz.
+    second_frequency_hz : float, optional
+        A second carrier, Hz: the factor of the two carriers' difference,
+        ``40.3 |1/f_1^2 - 1/f_2^2|`` (what a dual-frequency series holds).
+
+    Returns
+    -------
+    float
+        m^3 (metres per electron/m^2).
+
+    Raises
+    ------
+    InputError
+        A frequency that is not positive.
+    """
     if frequency_hz <= 0 or (second_frequency_hz is not None and second_frequency_hz <= 0):
         raise InputError("carrier frequencies must be positive (Hz)")
     k = _K_IONO / frequency_hz**2
@@ -427,7 +447,7 @@ def simulate_slant_delay(
     day = parse_date(date)
     _check_options(method, iri_model, f107_sfu, elevation_mask_deg, sampling_s)
     _check_altitudes(alt_range_km)
-    k_delay = _delay_factor(frequency_hz, second_frequency_hz)
+    k_delay = delay_factor(frequency_hz, second_frequency_hz)
     if orbit is None:
         orbit = nominal_constellation("G")
     n_ut = _n_ut(ut_step_h)

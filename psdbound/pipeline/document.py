@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import platform
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -16,7 +17,7 @@ from psdbound.pipeline.products import CodeOverbound
 from psdbound.pipeline.stages import InputData, Isolated, Screened, Validated, Windowed
 from psdbound.pipeline.verdict import (
     VerdictCheck,
-    lowest_elevation,
+    VerdictFacts,
     physical_note,
     verdict_checks,
     verdict_facts,
@@ -45,8 +46,12 @@ def stage_warnings(
     validated: Validated,
     interval_s: float,
     code: CodeOverbound | None = None,
+    verdict_notes: Sequence[str] = (),
 ) -> list[dict[str, Any]]:
     """Return every stage's warnings, grouped by stage, in pipeline order.
+
+    ``verdict_notes`` (what the verdict's facts say beside the rules, e.g.
+    :func:`~psdbound.pipeline.verdict.physical_note`) are the bound's.
 
     Returns
     -------
@@ -61,7 +66,7 @@ def stage_warnings(
             f"no white-noise floor resolved at {interval_s:g} s sampling (Nyquist "
             f"{0.5 / interval_s:.4g} Hz): sigma_WN = 0; the bound says nothing above Nyquist"
         )
-    bound += _bound_notes(bounded)
+    bound += _bound_notes(bounded) + list(verdict_notes)
     groups = [
         ("reading", inputs.warnings),
         ("cutoff", cutoff.warnings if cutoff is not None else ()),
@@ -176,7 +181,9 @@ def _demo_truth(scenario: dict[str, Any], res: BoundResults, interval_s: float) 
     }
 
 
-def _mapping_section(windowed: Windowed, res: BoundResults, screened: Screened) -> dict[str, Any]:
+def _mapping_section(
+    windowed: Windowed, res: BoundResults, screened: Screened, facts: VerdictFacts
+) -> dict[str, Any]:
     """Return the mapping, its uncertainty and the mapped RMS per elevation bin vs the bound."""
     mp = windowed.mapping
     el = screened.series.elevation_deg
@@ -200,9 +207,9 @@ def _mapping_section(windowed: Windowed, res: BoundResults, screened: Screened) 
             }
         )
     out = mp.to_dict()
-    lowest = lowest_elevation(windowed, screened)
-    if lowest is not None:
-        out["lowest_elevation_deg"], out["factor_at_lowest"] = lowest
+    if facts.lowest_elevation_deg is not None:
+        out["lowest_elevation_deg"] = facts.lowest_elevation_deg
+        out["factor_at_lowest"] = facts.mapping_factor_lowest
     ok = np.isfinite(el)
     rms_factor = float(np.sqrt(np.mean(mp.factor(el[ok]) ** 2))) if ok.any() else 1.0
     out["rms_factor_over_data"] = rms_factor
@@ -506,8 +513,26 @@ def build_document(
     """
     interval_s = inputs.interval_s
     figures = _figures(inputs, cutoff, isolated, screened, windowed, bounded, validated)
+    facts = verdict_facts(
+        bounded=bounded,
+        windowed=windowed,
+        screened=screened,
+        isolated=isolated,
+        cutoff=cutoff,
+        interval_s=interval_s,
+    )
+    note = physical_note(facts)
     grouped = stage_warnings(
-        inputs, cutoff, isolated, screened, windowed, bounded, validated, interval_s, code
+        inputs,
+        cutoff,
+        isolated,
+        screened,
+        windowed,
+        bounded,
+        validated,
+        interval_s,
+        code,
+        verdict_notes=(note,) if note else (),
     )
     doc: dict[str, Any] = {
         "schema_version": SCHEMA_VERSION,
@@ -515,7 +540,7 @@ def build_document(
         "bound": _bound_section(bounded),
         "cutoff": _cutoff_section(cutoff),
         "sampling": {"interval_s": interval_s, "nyquist_hz": 0.5 / interval_s},
-        "mapping": _mapping_section(windowed, bounded, screened),
+        "mapping": _mapping_section(windowed, bounded, screened, facts),
         "isolation": isolated.details,
         "screening": _screening_section(screened),
         "data_span": _data_span_section(isolated, screened),
@@ -532,27 +557,4 @@ def build_document(
     if inputs.demo is not None:
         doc["demo"] = _demo_section(inputs, bounded)
     doc = to_jsonable(doc)
-    facts = verdict_facts(
-        bounded=bounded,
-        windowed=windowed,
-        screened=screened,
-        isolated=isolated,
-        cutoff=cutoff,
-        interval_s=interval_s,
-    )
-    note = physical_note(facts)
-    if note:  # a stage warning of the bound, told where every warning is
-        _bound_group(doc["warnings_by_stage"])["warnings"].append(note)
-        doc["warnings"] = [w for g in doc["warnings_by_stage"] for w in g["warnings"]]
     return _verdict_first(doc, verdict_checks(facts, config.verdict))
-
-
-def _bound_group(groups: list[dict[str, Any]]) -> dict[str, Any]:
-    """Return the ``bound`` group of the warnings by stage (added in pipeline order)."""
-    order = ["reading", "cutoff", "isolation", "screening", "windows", "bound"]
-    for g in groups:
-        if g["stage"] == "bound":
-            return g
-    at = sum(1 for g in groups if g["stage"] in order)
-    groups.insert(at, {"stage": "bound", "warnings": []})
-    return groups[at]

@@ -119,6 +119,7 @@ __all__ = [
     "VerdictOptions",
     "judge",
     "judge_pooled",
+    "physical_note",
     "pooled_checks",
     "verdict_checks",
     "verdict_facts",
@@ -284,7 +285,7 @@ def verdict_facts(
     b, w, sc = bounded.bound, windowed.windows, screened.screening
     details = isolated.details or {}
     low = bounded.low_frequency
-    lowest = lowest_elevation(windowed, screened)
+    lowest = _lowest_elevation(windowed, screened)
     return VerdictFacts(
         sigma_gm_m=b.sigma_gm_m,
         tau_s=b.tau_s,
@@ -305,7 +306,7 @@ def verdict_facts(
     )
 
 
-def lowest_elevation(windowed: Windowed, screened: Screened) -> tuple[float, float] | None:
+def _lowest_elevation(windowed: Windowed, screened: Screened) -> tuple[float, float] | None:
     """Return the lowest elevation of the mapped data and the mapping factor there.
 
     The bound is a zenith-scale model: at elevation ``el`` it states a
@@ -522,7 +523,7 @@ def _physical(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
         return []
     sigma = math.hypot(f.sigma_gm_m, f.sigma_wn_m)
     measured = f"sigma {100 * sigma:.2f} cm at zenith"
-    low = mapped_at_lowest(f)
+    low = _mapped_at_lowest(f)
     if low is not None:
         measured += f" ({100 * low[1]:.2f} cm mapped to {low[0]:.1f} deg)"
     return [
@@ -539,7 +540,7 @@ def _physical(f: VerdictFacts, opt: VerdictOptions) -> list[VerdictCheck]:
     ]
 
 
-def mapped_at_lowest(f: VerdictFacts) -> tuple[float, float] | None:
+def _mapped_at_lowest(f: VerdictFacts) -> tuple[float, float] | None:
     """Return the data's lowest elevation, deg, and the bound's sigma mapped there, m.
 
     Parameters
@@ -574,7 +575,7 @@ def physical_note(f: VerdictFacts) -> str | None:
     -------
     str or None
     """
-    low = mapped_at_lowest(f)
+    low = _mapped_at_lowest(f)
     lim = f.multipath_limit_m
     if low is None or not lim or low[1] <= lim:
         return None

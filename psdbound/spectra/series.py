@@ -186,7 +186,6 @@ def _check_options(
     f_min_hz: object,
     low_frequency_policy: str,
     numbers: dict[str, Any],
-    estimator_options: object = None,
 ) -> tuple[float, float, float | None, dict[str, Any]]:
     """Return the sampling interval, tau_max_s, f_min_hz and numeric options, checked.
 
@@ -202,27 +201,40 @@ def _check_options(
         raise InputError(
             f"low_frequency_policy must be one of {POLICIES}, got {low_frequency_policy!r}"
         )
-    if estimator_options is not None and not isinstance(estimator_options, Mapping):
-        raise InputError(
-            f"estimator_options must be a dict of the estimator's options, got "
-            f"{estimator_options!r}"
-        )
     checked = {k: _NUMBERS[k](k, v) for k, v in numbers.items()}
     return dt, tau_max, f_min, checked
 
 
-def _estimator_options(estimator: str, options: Mapping[str, Any] | None) -> dict[str, Any]:
+def _estimator_options(estimator: str, options: object) -> dict[str, Any]:
     """Return the estimator's options checked by their schema (``'k': 2.5`` is refused).
 
     Raises
     ------
     InputError
-        An unknown estimator, or an option it does not have or of the wrong
-        type or range (:func:`psdbound.spectra.options.check_estimator_options`).
+        An unknown estimator, options that are not a dict, or an option it
+        does not have or of the wrong type or range
+        (:func:`psdbound.spectra.options.check_estimator_options`).
     """
     if estimator not in METHODS:
         raise InputError(f"estimator must be one of {', '.join(METHODS)}, got {estimator!r}")
+    if options is not None and not isinstance(options, Mapping):
+        raise InputError(
+            f"estimator_options must be a dict of the estimator's options, got {options!r}"
+        )
     return check_estimator_options(estimator, dict(options or {}))
+
+
+def _stretches(
+    series: ArrayLike | Sequence[ArrayLike], min_samples: int
+) -> tuple[list[NDArray[np.float64]], tuple[str, ...]]:
+    """Return the stretches of :func:`split_stretches`; refuse an input with none."""
+    stretches, notes = split_stretches(series, min_samples=min_samples)
+    if not stretches:
+        raise InputError(
+            f"no stretch of at least {min_samples} finite samples to bound"
+            + (f" ({notes[0]})" if notes else "")
+        )
+    return stretches, notes
 
 
 def _mean_note(stretches: Sequence[NDArray[np.float64]]) -> tuple[str, ...]:
@@ -485,18 +497,19 @@ def bound_series(
     >>> res.verdict
     'bounded'
     """
-    num = {k: v for k, v in locals().items() if k in _NUMBERS}  # the parameters, by name
+    num = {
+        "confidence_level": confidence_level,
+        "coverage": coverage,
+        "shape_alpha": shape_alpha,
+        "bands_per_decade": bands_per_decade,
+        "min_samples": min_samples,
+        "cluster_correlation": cluster_correlation,
+    }
     dt_s, tau_max_s, f_min_hz, num = _check_options(
-        dt_s, tau_max_s, f_min_hz, low_frequency_policy, num, estimator_options
+        dt_s, tau_max_s, f_min_hz, low_frequency_policy, num
     )
-    min_samples = num["min_samples"]
-    stretches, notes = split_stretches(series, min_samples=min_samples)
-    if not stretches:
-        raise InputError(
-            f"no stretch of at least {min_samples} finite samples to bound"
-            + (f" ({notes[0]})" if notes else "")
-        )
     opts = _estimator_options(estimator, estimator_options)
+    stretches, notes = _stretches(series, num["min_samples"])
     psds = tuple(estimate_psd(x, dt_s, method=estimator, **opts) for x in stretches)
     given_f_min_hz = f_min_hz
     resolved_hz = [resolved_from_hz(p) for p in psds]
