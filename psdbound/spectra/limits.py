@@ -245,6 +245,11 @@ class WindowDeviations:
     shape_tests : ndarray, shape (M, 2)
         The two p-values ``shape_p`` combines (:func:`bonferroni_p`), for a
         caller that adds a test of its own.
+    lowest_residual : ndarray, shape (M,)
+        Each window's standardised residual in its lowest band with an
+        estimate (the one the residuals above are made of; NaN for a window
+        with nothing left to test), for a caller that joins it to a test of
+        the frequencies below.
     """
 
     mu: NDArray[np.float64]
@@ -255,6 +260,7 @@ class WindowDeviations:
     coef: NDArray[np.float64] | None = None
     cov: NDArray[np.float64] | None = None
     shape_tests: NDArray[np.float64] | None = None
+    lowest_residual: NDArray[np.float64] | None = None
 
     def at(self, x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Deviations and their standard errors at standardised log frequencies ``x``.
@@ -366,9 +372,12 @@ def window_deviations(
             for t, k, n in zip(above, n_ok, n_par, strict=True)
         ]
     )
-    p_end = np.array([end_excess_p(std[i, ok[i]]) if n_ok[i] > n_par[i] else 1.0 for i in range(m)])
+    testable = n_ok > n_par
+    p_end = np.array([end_excess_p(std[i, ok[i]]) if testable[i] else 1.0 for i in range(m)])
     tests = np.column_stack([p_spread, p_end])
-    return WindowDeviations(mu, dev, se, n_par, bonferroni_p(tests), coef, cov, tests)
+    first = np.argmax(ok, axis=1)  # each window's lowest band with an estimate
+    low = np.where(testable, std[np.arange(m), first], np.nan)
+    return WindowDeviations(mu, dev, se, n_par, bonferroni_p(tests), coef, cov, tests, low)
 
 
 def spread_upper_limit(d: NDArray[np.float64], se: NDArray[np.float64], a: float) -> float:

@@ -14,7 +14,8 @@ resolves it. Two uses:
   (:attr:`LowestOrdinates.j`);
 * :mod:`psdbound.spectra.groups` tests whether a window's estimate at its own lowest
   ordinates (:data:`OWN_J`, all below its own resolution ``5 / T``) exceeds its peers' more
-  than its own level says (:func:`low_excess_p`): a minority of slow strong reflectors,
+  than its own level says (:func:`low_excess_z`, jointly with its residual in its lowest
+  band: :func:`psdbound.spectra.groups.low_end_p`): a minority of slow strong reflectors,
   whose excess lies below the statement's lowest band and which the tests on the bands miss,
   gets its own group. Its peers are the windows of about its length and the longer windows
   cut to its length (:attr:`LowestOrdinates.cut_peers`): without them a short window among
@@ -56,6 +57,7 @@ __all__ = [
     "MAX_ORDINATES",
     "LowestOrdinates",
     "low_excess_p",
+    "low_excess_z",
     "lowest_ordinates",
     "ordinate_dof",
 ]
@@ -254,13 +256,13 @@ def _peers(
     return p[good], e[good], v[good]
 
 
-def low_excess_p(
+def low_excess_z(
     lowest: LowestOrdinates,
     members: NDArray[np.int64],
     level: NDArray[np.float64],
     level_se: NDArray[np.float64],
 ) -> NDArray[np.float64]:
-    """p-value of each member's excess at its lowest ordinates over its peers, level-adjusted.
+    """Standardised excess of each member at its lowest ordinates over its peers, level-adjusted.
 
     Each member's mean estimate over its own ``j / T`` (:data:`OWN_J`) is
     compared with its peers' at the same frequencies: the other members of
@@ -274,8 +276,7 @@ def low_excess_p(
     ln(chi^2_nu_w / nu_w) - ref`` is about normal with variance ``psi'(nu_w /
     2) + (pi / 2) mean psi'(nu_o / 2) / n_o + se_w^2`` (the sample median's
     variance; the upper tail of a log chi-square is lighter than the normal's,
-    so the p-value errs large). One-sided: only a window above its group can
-    be left uncovered by it.
+    so the upper tail errs small).
 
     Parameters
     ----------
@@ -289,12 +290,13 @@ def low_excess_p(
     Returns
     -------
     ndarray, shape (len(members),)
-        1 for a member without a peer.
+        About standard normal under a common shape; NaN for a member without
+        a peer.
     """
     assert lowest.own_m2_hz is not None
     mean = lowest.own_m2_hz[members]
     nu = np.array([ordinate_dof(int(k), OWN_J) for k in lowest.n[members]])
-    out = np.ones(members.size)
+    out = np.full(members.size, np.nan)
     where = {int(r): k for k, r in enumerate(members.tolist())}
     for i in range(members.size):
         pos, est, nu_o = _peers(lowest, members, where, i)
@@ -305,5 +307,20 @@ def low_excess_p(
         excess = np.log(mean[i]) - log_chi2_bias(nu[i]) - ref
         spread = special.polygamma(1, nu_o / 2.0)
         var = special.polygamma(1, nu[i] / 2.0) + 0.5 * np.pi * float(np.mean(spread)) / pos.size
-        out[i] = float(stats.norm.sf(excess / np.sqrt(var + level_se[i] ** 2)))
+        out[i] = float(excess / np.sqrt(var + level_se[i] ** 2))
     return out
+
+
+def low_excess_p(
+    lowest: LowestOrdinates,
+    members: NDArray[np.int64],
+    level: NDArray[np.float64],
+    level_se: NDArray[np.float64],
+) -> NDArray[np.float64]:
+    """One-sided p-value of each member's excess at its lowest ordinates (:func:`low_excess_z`).
+
+    One-sided: only a window above its group can be left uncovered by it.
+    Parameters as :func:`low_excess_z`; 1 for a member without a peer.
+    """
+    z = low_excess_z(lowest, members, level, level_se)
+    return np.where(np.isfinite(z), special.ndtr(-np.nan_to_num(z)), 1.0)

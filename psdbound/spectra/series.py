@@ -443,8 +443,8 @@ def bound_series(
         Family-wise level of the tests that give a window of another spectral
         shape a group of its own: its bands above its group's shape, or its
         narrow estimate at its lowest Fourier frequencies above the other
-        windows' of about its length (a slow strong reflector,
-        :func:`psdbound.spectra.ordinates.low_excess_p`). A significant tilt
+        windows' of about its length, jointly with its lowest band (a slow
+        strong reflector, :func:`psdbound.spectra.groups.low_end_p`). A significant tilt
         also does, at its own family-wise level
         (:data:`psdbound.spectra.groups.TILT_ALPHA`, 0.05). A test that misses
         such a window costs coverage; one that splits a window off by chance
