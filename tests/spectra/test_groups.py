@@ -68,13 +68,14 @@ def test_joint_low_end_p_is_not_small_more_often_than_stated(dt: float, n: int, 
     assert np.mean(p < 0.5) > 0.3  # not degenerate
 
 
-def test_low_end_p_needs_both_parts() -> None:
+def test_low_end_p_joins_both_parts_and_keeps_the_ordinates_alone() -> None:
     z = np.array([3.0, np.nan, 3.0])
     e = np.array([3.0, 3.0, np.nan])
     p = low_end_p(z, e)
     assert p[0] == pytest.approx(stats.norm.sf(6.0 / np.sqrt(2 * (1 + LOW_END_CORRELATION))))
-    assert p[1] == p[2] == 1.0
-    np.testing.assert_array_equal(low_end_p(z, None), np.ones(3))
+    assert p[1] == 1.0  # no peer for the ordinates: nothing below the bands to test
+    assert p[2] == pytest.approx(stats.norm.sf(3.0))  # no residual: the ordinates alone
+    np.testing.assert_allclose(low_end_p(z, None), [stats.norm.sf(3.0), 1.0, stats.norm.sf(3.0)])
 
 
 def test_one_slow_reflector_is_split_off_and_covered() -> None:
