@@ -56,7 +56,6 @@ __all__ = [
     "LOWEST_TAPERS",
     "MAX_ORDINATES",
     "LowestOrdinates",
-    "low_excess_p",
     "low_excess_z",
     "lowest_ordinates",
     "ordinate_dof",
@@ -69,13 +68,13 @@ LOWEST_NW = 1.5
 LOWEST_TAPERS = max(1, int(2.0 * LOWEST_NW) - 1)
 #: Most Fourier frequencies checked per window.
 MAX_ORDINATES = 4
-#: Windows compared by :func:`low_excess_p` differ in length by at most this factor (their
+#: Windows compared by :func:`low_excess_z` differ in length by at most this factor (their
 #: ordinates ``j / T`` then lie within one resolution half-width of each other).
 LENGTH_MATCH = 1.25
 
 
 #: Most longer windows cut to a shorter window's length to be its peers in
-#: :func:`low_excess_p` (its reference is their median: 32 are ample).
+#: :func:`low_excess_z` (its reference is their median: 32 are ample).
 MAX_CUT_PEERS = 32
 #: The Fourier indices of a window's own excess test: its lowest ``j / T``, all below
 #: where the statement's multitaper resolves it (``5 / T``).
@@ -309,18 +308,3 @@ def low_excess_z(
         var = special.polygamma(1, nu[i] / 2.0) + 0.5 * np.pi * float(np.mean(spread)) / pos.size
         out[i] = float(excess / np.sqrt(var + level_se[i] ** 2))
     return out
-
-
-def low_excess_p(
-    lowest: LowestOrdinates,
-    members: NDArray[np.int64],
-    level: NDArray[np.float64],
-    level_se: NDArray[np.float64],
-) -> NDArray[np.float64]:
-    """One-sided p-value of each member's excess at its lowest ordinates (:func:`low_excess_z`).
-
-    One-sided: only a window above its group can be left uncovered by it.
-    Parameters as :func:`low_excess_z`; 1 for a member without a peer.
-    """
-    z = low_excess_z(lowest, members, level, level_se)
-    return np.where(np.isfinite(z), special.ndtr(-np.nan_to_num(z)), 1.0)

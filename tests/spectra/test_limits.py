@@ -91,7 +91,7 @@ def test_bound_series_covers_a_minority_of_slow_strong_reflectors() -> None:
     With a level only per window (no tilt) 6 of these 10 seeds had every window covered,
     with the tests on the bands 7 of 10: the pair's excess lies below the lowest band.
     The shape groups now also test each window's narrow estimate at its lowest Fourier
-    frequencies against the others' (``psdbound.spectra.ordinates.low_excess_p``): 10 of
+    frequencies against the others' (``psdbound.spectra.ordinates.low_excess_z``): 10 of
     10. The test asserts the stated level (9 of 10 allows Monte-Carlo error).
     """
     dt, n, ok = 1.0, 1800, 0

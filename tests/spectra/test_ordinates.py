@@ -4,11 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from scipy import stats
 from scipy.signal import lfilter
 
 from psdbound.spectra.ordinates import (
     LOWEST_TAPERS,
-    low_excess_p,
+    low_excess_z,
     lowest_ordinates,
     ordinate_dof,
 )
@@ -41,6 +42,12 @@ def test_overlapping_ordinates_carry_fewer_than_two_per_taper() -> None:
     assert ordinate_dof(1800, (1, 2, 3, 4)) < 0.5 * nominal
     assert ordinate_dof(1800, (3,)) == pytest.approx(2 * LOWEST_TAPERS, rel=0.05)
     assert ordinate_dof(1800, (1,)) < 2 * LOWEST_TAPERS  # the mean removal empties part of j = 1
+
+
+def low_excess_p(lo, members, level, level_se) -> np.ndarray:
+    """One-sided p-value of the ordinates' excess alone (1 without a peer)."""
+    z = low_excess_z(lo, members, level, level_se)
+    return np.where(np.isfinite(z), stats.norm.sf(np.nan_to_num(z)), 1.0)
 
 
 def _members_p(xs: list[np.ndarray]) -> np.ndarray:
