@@ -92,7 +92,9 @@ def test_bound_series_covers_a_minority_of_slow_strong_reflectors() -> None:
     with the tests on the bands 7 of 10: the pair's excess lies below the lowest band.
     The shape groups now also test each window's narrow estimate at its lowest Fourier
     frequencies against the others' (``psdbound.spectra.ordinates.low_excess_z``): 10 of
-    10. The test asserts the stated level (9 of 10 allows Monte-Carlo error).
+    10 with the ordinates alone, 9 of 10 with the joint test of the ordinates and the
+    lowest band (``psdbound.spectra.groups.low_end_p``; seed 6: docs/method/bound.rst).
+    The test asserts the stated level (9 of 10 allows Monte-Carlo error).
     """
     dt, n, ok = 1.0, 1800, 0
     for seed in range(10):
