@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import math
 import os
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -84,12 +84,30 @@ def number_problems(document: dict[str, Any]) -> list[str]:
     return out
 
 
-#: Fields whose values the schema limits beyond their type: (test, what is allowed).
-_LIMITED: dict[str, tuple[Any, str]] = {
-    "verdict": (lambda v: v in ("bounded", "not-bounded"), "'bounded' or 'not-bounded'"),
-    "bound.sigma_gm_m": (lambda v: v >= 0, ">= 0"),
-    "bound.sigma_wn_m": (lambda v: v >= 0, ">= 0"),
-    "bound.tau_s": (lambda v: v > 0, "> 0"),
+def _spec(dotted: str) -> dict[str, Any]:
+    """Return the schema entry of a dotted field of ``result.json``."""
+    spec: dict[str, Any] = load_schema("result")
+    for key in dotted.split("."):
+        spec = spec["properties"][key]
+    return spec
+
+
+def _limit(spec: dict[str, Any]) -> tuple[Callable[[Any], bool], str]:
+    """Return the test of a schema entry's ``enum`` or lower limit, and what it allows."""
+    if "enum" in spec:
+        allowed = tuple(spec["enum"])
+        return (lambda v: v in allowed), " or ".join(f"'{a}'" for a in allowed)
+    if "exclusiveMinimum" in spec:
+        lo = spec["exclusiveMinimum"]
+        return (lambda v: v > lo), f"> {lo:g}"
+    lo = spec["minimum"]
+    return (lambda v: v >= lo), f">= {lo:g}"
+
+
+#: Fields whose values the reader checks beyond their type: (test, what is allowed), from
+#: their ``enum`` or lower limit in ``result.schema.json`` (its one home).
+_LIMITED: dict[str, tuple[Callable[[Any], bool], str]] = {
+    f: _limit(_spec(f)) for f in ("verdict", "bound.sigma_gm_m", "bound.sigma_wn_m", "bound.tau_s")
 }
 
 
