@@ -33,6 +33,7 @@ from numpy.typing import NDArray
 
 from psdbound.aviation.overbound import OverboundResult
 from psdbound.common.atomic import atomic_write_bytes
+from psdbound.common.compression import compression_of
 from psdbound.common.notices import warn
 from psdbound.errors import InputError
 from psdbound.results import write_json
@@ -48,7 +49,6 @@ _FLAG = "screened"
 #: A new continuous piece starts where the time step exceeds this many median steps.
 _GAP_STEPS = 1.5
 
-_GZIP = b"\x1f\x8b"
 _NPY = b"\x93NUMPY"
 _NETCDF = (b"CDF\x01", b"CDF\x02", b"CDF\x05")
 _HDF5 = b"\x89HDF\r\n\x1a\n"
@@ -169,7 +169,7 @@ def read_sample_file(path: str | Path, *, include_screened: bool = False) -> Sam
 def _read_table(p: Path) -> _Table:
     """Return the columns of a sample file, by lower-case name, in the file's order."""
     raw = p.read_bytes()
-    packed = raw[:2] == _GZIP
+    packed = compression_of(raw[:4]) == "gzip"
     if packed:
         raw = gzip.decompress(raw)
     if raw[:6] == _NPY or (p.suffix == ".npy" and not packed):

@@ -10,15 +10,11 @@ import gzip
 import os
 from pathlib import Path
 
+from psdbound.common.compression import compression_of
 from psdbound.errors import InputError
 from psdbound.io.archive import zip_members
 
 __all__ = ["read_bytes"]
-
-_GZIP_MAGIC = b"\x1f\x8b"
-_Z_MAGIC = b"\x1f\x9d"
-_BZ2_MAGIC = b"BZh"
-_ZIP_MAGIC = (b"PK\x03\x04", b"PK\x05\x06")  # a member's header; an empty archive's end
 
 
 def read_bytes(path: str | os.PathLike[str]) -> bytes:
@@ -71,14 +67,15 @@ def _read_file(p: Path) -> bytes:
 
 def _decompress(p: Path, raw: bytes) -> bytes:
     """Return ``raw`` decompressed (gzip, Z, bz2, zip) when it starts with their magic bytes."""
+    kind = compression_of(raw[:4])
     try:
-        if raw[:2] == _GZIP_MAGIC:
+        if kind == "gzip":
             raw = gzip.decompress(raw)
-        elif raw[:4] in _ZIP_MAGIC:
+        elif kind == "zip":
             raw = _zip_member(p)
-            if raw[:2] in (_GZIP_MAGIC, _Z_MAGIC) or raw[:3] == _BZ2_MAGIC:
+            if compression_of(raw[:4]) in ("gzip", "Z", "bz2"):
                 raw = _decompress(p, raw)  # a compressed file inside the archive
-        elif raw[:2] == _Z_MAGIC or raw[:3] == _BZ2_MAGIC:
+        elif kind in ("Z", "bz2"):
             import hatanaka
 
             raw = hatanaka.decompress(raw)
@@ -105,7 +102,7 @@ def _zip_member(p: Path) -> bytes:
 
 def _one_member(p: Path, raw: bytes) -> None:
     """Refuse a zip archive of several files, listing them (the readers take one file)."""
-    names = zip_members(p) if raw[:4] in _ZIP_MAGIC else []
+    names = zip_members(p) if compression_of(raw[:4]) == "zip" else []
     if len(names) > 1:
         shown = ", ".join(names[:6]) + (f" and {len(names) - 6} more" if len(names) > 6 else "")
         raise InputError(

@@ -15,6 +15,7 @@ import os
 import zipfile
 from pathlib import Path
 
+from psdbound.common.compression import compression_of
 from psdbound.errors import InputError
 
 __all__ = ["zip_members", "extract_zip", "file_kind", "member_label", "relabel"]
@@ -88,15 +89,15 @@ def extract_zip(path: str | os.PathLike[str], dest: str | os.PathLike[str]) -> l
 def _head(path: Path, size: int = 200) -> bytes:
     """Return the first bytes of a file's decompressed content (b'' when unreadable)."""
     with open(path, "rb") as fh:
-        magic = fh.read(3)
-    if magic[:2] == b"\x1f\x9d":  # .Z: no streaming decoder
+        kind = compression_of(fh.read(4))
+    if kind == "Z":  # no streaming decoder
         import hatanaka
 
         try:
             return hatanaka.decompress(path.read_bytes())[:size]
         except Exception:  # a damaged stream: the reader names the problem
             return b""
-    opener = gzip.open if magic[:2] == b"\x1f\x8b" else bz2.open if magic == b"BZh" else open
+    opener = {"gzip": gzip.open, "bz2": bz2.open}.get(kind, open)
     try:
         with opener(path, "rb") as fh:
             return fh.read(size)

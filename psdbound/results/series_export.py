@@ -25,6 +25,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from psdbound.common.atomic import atomic_write_bytes
+from psdbound.common.compression import compression_of
 from psdbound.errors import InputError
 from psdbound.results.series_table import COLUMNS, series_csv
 
@@ -143,7 +144,7 @@ def is_series_file(path: str | os.PathLike[str]) -> bool:
     try:
         with open(path, "rb") as fh:
             head = fh.read(1 << 16)
-        if head[:2] == b"\x1f\x8b":
+        if compression_of(head) == "gzip":
             with gzip.open(path, "rb") as fh:
                 head = fh.read(len(header))
     except (OSError, EOFError, ValueError):
