@@ -27,6 +27,7 @@ __all__ = [
     "MIN_ARC_S",
     "MIN_KEPT_S",
     "MIN_SERIES_SAMPLES",
+    "NOMINAL_SYSTEMS",
     "REFERENCES",
     "THESIS_CHICAGO_2020_HZ",
 ]
@@ -72,5 +73,8 @@ FREQUENCIES_HZ = {
     "E5a": F_L5_HZ,
     "E5b": 1207.14e6,
 }
+#: Systems with a nominal constellation (:func:`psdbound.io.nominal.nominal_elements`),
+#: the geometry of a cutoff run; a fit of another system takes the first (GPS).
+NOMINAL_SYSTEMS = ("G", "E")
 #: Line-of-sight integration methods.
 METHODS = ("line-of-sight", "thin-shell")

@@ -49,6 +49,7 @@ from psdbound.errors import InputError
 from psdbound.ionosphere.names import (
     DEFAULT_MARGIN_DB,
     DEFAULT_MP_SIGMA_M,
+    NOMINAL_SYSTEMS,
     THESIS_CHICAGO_2020_HZ,
 )
 
@@ -314,7 +315,7 @@ def cutoff_computed(
     if f107 is None:
         f107, label = float(annual_f107(2024) or 185.0), f"no F10.7 for {year}: solar maximum"
     fa, fb = carriers_hz or (F_L1_HZ, F_L2_HZ)
-    constellation = system if system in ("G", "E") else "G"
+    constellation = system if system in NOMINAL_SYSTEMS else NOMINAL_SYSTEMS[0]
     settings = dataclasses.replace(
         CutoffSettings(),
         f107_sfu=float(f107),

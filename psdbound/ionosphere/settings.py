@@ -47,6 +47,7 @@ from psdbound.ionosphere.names import (
     MIN_ARC_S,
     MIN_KEPT_S,
     MIN_SERIES_SAMPLES,
+    NOMINAL_SYSTEMS,
     REFERENCES,
 )
 
@@ -319,7 +320,10 @@ class CutoffSettings:
             (self.filter_edge in ("trim", "pad"), f"filter_edge {self.filter_edge!r} not trim/pad"),
             (self.drop_db > 0, f"drop_db = {self.drop_db} must be positive"),
             (self.variance_m2 > 0, f"variance_m2 = {self.variance_m2} must be positive"),
-            (set(self.systems) <= {"G", "E"} and self.systems, "systems must be G, E or GE"),
+            (
+                set(self.systems) <= set(NOMINAL_SYSTEMS) and self.systems,
+                f"systems {self.systems!r}: expected one or more of {', '.join(NOMINAL_SYSTEMS)}",
+            ),
             (self.degree >= 0, f"envelope degree {self.degree} must be non-negative"),
             (0.5 <= self.quantile <= 1.0, f"quantile {self.quantile} must be in [0.5, 1]"),
             (self.min_arc_s >= 0, f"min_arc_s = {self.min_arc_s} must be non-negative"),

@@ -39,7 +39,7 @@ def test_from_mapping_only_given_options_change():
         ({"carrier": "L9"}, "unknown carrier 'L9'"),
         ({"carrier": "L1-E1"}, "same frequency"),
         ({"f107_sfu": 10.0}, "outside the plausible range"),
-        ({"systems": "R"}, "systems must be G, E or GE"),
+        ({"systems": "R"}, "expected one or more of G, E"),
     ],
 )
 def test_from_mapping_bad_options(options, message):
@@ -95,3 +95,14 @@ def test_galileo_alone_defaults_to_its_own_carriers():
     assert both.second_frequency_hz == FREQUENCIES_HZ["L2"]  # mixed: GPS's pair, as given
     given = CutoffSettings.from_mapping({"systems": "E", "carrier": "L1-E5b"})
     assert given.second_frequency_hz == FREQUENCIES_HZ["E5b"]
+
+
+def test_nominal_systems_are_the_nominal_constellations():
+    """NOMINAL_SYSTEMS names exactly the systems psdbound.io.nominal builds."""
+    from psdbound.io.nominal import nominal_elements
+    from psdbound.ionosphere.names import NOMINAL_SYSTEMS
+
+    assert [nominal_elements(s).system for s in NOMINAL_SYSTEMS] == list(NOMINAL_SYSTEMS)
+    for other in "RCJSI":
+        with pytest.raises(ValueError, match="no nominal constellation"):
+            nominal_elements(other)
