@@ -131,9 +131,9 @@ the last line::
     hom1hz_var_ratio=... fmin_T_max=... errors=... not_bounded=... all_classes_pass=...
 
 Speed (measured, one core, 2026-11-27): a run takes 0.25-0.5 s median, 0.9 s at
-most, so the default 200 runs x 22 class-variants take about 30 min; no caps
-on the window counts or lengths were needed. Runs go one after another in
-this process.
+most, so the default 200 runs x 24 class-variants take about 30 min (the 14
+held-out class-variants about 15 min more); no caps on the window counts or
+lengths were needed. Runs go one after another in this process.
 
 ``--join-nan`` passes each run's windows as one series with a NaN between
 windows (the other input form ``bound_series`` documents: NaN gaps split
