@@ -77,6 +77,13 @@ class UnresolvedGroups:
         Whether the bound had to be raised to lie above them.
     before : GaussMarkovWhiteNoise or None
         The bound before (None without such groups).
+    n_short : int
+        Windows that resolve only above ``f_min`` but share a shape group
+        with windows that resolve it: between ``f_min`` and their own
+        resolution the statement covers them through that group's limits,
+        as far as the shape tests tell them from it.
+    n_windows : int
+        All windows.
     """
 
     groups: tuple[int, ...]
@@ -87,23 +94,34 @@ class UnresolvedGroups:
     envelope_m2_hz: NDArray[np.float64]
     raised: bool = False
     before: GaussMarkovWhiteNoise | None = None
+    n_short: int = 0
+    n_windows: int = 0
 
     def floor(self) -> Floor | None:
         """Return the points as constraints (Hz, m^2/Hz) of a refit; None without any."""
         return (self.f_hz, self.envelope_m2_hz) if self.f_hz.size else None
 
     def sentence(self) -> str:
-        """Return this part of the statement, in words (empty without such groups)."""
-        if not self.groups:
-            return ""
-        parts = ", ".join(
-            f"group {g} from {f:.3g} Hz ({how})"
-            for g, f, how in zip(self.groups, self.resolved_from_hz, self.how, strict=True)
-        )
-        return (
-            f"where a group's windows resolve only above {self.f_min_hz:.3g} Hz, the bound lies "
-            f"above the group's admitted models carried down to it: {parts}"
-        )
+        """Return this part of the statement, in words (empty when every window resolves f_min)."""
+        out = []
+        if self.groups:
+            parts = ", ".join(
+                f"group {g} from {f:.3g} Hz ({how})"
+                for g, f, how in zip(self.groups, self.resolved_from_hz, self.how, strict=True)
+            )
+            out.append(
+                f"where a group's windows resolve only above {self.f_min_hz:.3g} Hz, the bound "
+                f"lies above the group's admitted models carried down to it: {parts}"
+            )
+        if self.n_short:
+            verb = "resolves" if self.n_short == 1 else "resolve"
+            out.append(
+                f"{self.n_short} of the {self.n_windows} windows {verb} only above "
+                f"{self.f_min_hz:.3g} Hz (each from its own W + 1/T) in a shape group with "
+                "windows that resolve it: below their own resolution they are covered through "
+                "that group's limits, as far as the shape tests tell them from it"
+            )
+        return "; ".join(out)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready form (``bound.unresolved`` of result.json)."""
@@ -117,6 +135,7 @@ class UnresolvedGroups:
             "before": None
             if b is None
             else {"sigma_gm_m": b.sigma_gm_m, "tau_s": b.tau_s, "sigma_wn_m": b.sigma_wn_m},
+            "short_windows": self.n_short,
             "statement": self.sentence(),
         }
 
@@ -205,6 +224,7 @@ def cover_unresolved(
     """
     f_min = float(bands.edges_hz[0])
     resolved = np.asarray(resolved_hz, dtype=float)
+    short = _short_in_resolved_groups(resolved, limits.groups, f_min)
     groups, froms, hows, fs, envs = [], [], [], [], []
     for g in range(limits.n_groups):
         rows = limits.groups == g
@@ -221,7 +241,10 @@ def cover_unresolved(
         fs.append(f)
         envs.append(env)
     if not groups:
-        return fit, UnresolvedGroups((), (), (), f_min, np.zeros(0), np.zeros(0))
+        empty = np.zeros(0)
+        return fit, UnresolvedGroups(
+            (), (), (), f_min, empty, empty, n_short=short, n_windows=resolved.size
+        )
     f_all, env_all = np.concatenate(fs), np.concatenate(envs)
     before = fit.model
     raised = bool(np.any(fit.psd(f_all) < env_all * (1.0 - 1e-9)))
@@ -235,5 +258,23 @@ def cover_unresolved(
             floor=join_floors(floor, (f_all, env_all)),
         )
     return fit, UnresolvedGroups(
-        tuple(groups), tuple(froms), tuple(hows), f_min, f_all, env_all, raised, before
+        tuple(groups),
+        tuple(froms),
+        tuple(hows),
+        f_min,
+        f_all,
+        env_all,
+        raised,
+        before,
+        n_short=short,
+        n_windows=resolved.size,
     )
+
+
+def _short_in_resolved_groups(
+    resolved_hz: NDArray[np.float64], groups: NDArray[np.int64], f_min_hz: float
+) -> int:
+    """Count the windows resolving only above ``f_min`` whose group has one that resolves it."""
+    short = resolved_hz > f_min_hz * (1.0 + 1e-9)
+    resolving = {int(g) for g in np.unique(groups[~short])}
+    return int(sum(int(g) in resolving for g in groups[short]))

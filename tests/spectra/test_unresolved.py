@@ -154,3 +154,30 @@ def test_two_short_strong_windows_among_long_ones() -> None:
         truth = gm_psd_sampled(f, 2e-2, 900.0, DT) + 2.0 * DT * 1e-6
         covered += bool(np.all(res.bound.sampled_psd(f) >= truth))
     assert covered >= 16
+
+
+def test_short_windows_in_a_resolving_group_are_counted_and_said() -> None:
+    """Homogeneous windows of two lengths share a group: the short ones are counted and named.
+
+    Their PSD between ``f_min`` (from the long windows) and their own resolution is stated
+    through the group; the statement says so, with their number.
+    """
+    rng = np.random.default_rng(11)
+    xs = [_gm(rng, 3600, 3e-3, 30.0) + rng.normal(0.0, 1e-3, 3600) for _ in range(12)]
+    xs += [_gm(rng, 1200, 3e-3, 30.0) + rng.normal(0.0, 1e-3, 1200) for _ in range(5)]
+    sb, psds = _stated(xs)
+    u = sb.unresolved
+    assert u is not None and sb.limits.n_groups == 1
+    f_min = float(sb.bands.edges_hz[0])
+    expected = sum(resolved_from_hz(p) > f_min * (1 + 1e-9) for p in psds)
+    assert expected == 5
+    assert (u.n_short, u.n_windows) == (5, 17)
+    assert "5 of the 17 windows resolve only above" in u.sentence()
+    assert u.to_dict()["short_windows"] == 5
+
+
+def test_equal_windows_have_no_short_window() -> None:
+    rng = np.random.default_rng(3)
+    xs = [_gm(rng, 1800, 3e-3, 30.0) + rng.normal(0.0, 1e-3, 1800) for _ in range(6)]
+    sb, _ = _stated(xs)
+    assert sb.unresolved is not None and sb.unresolved.n_short == 0
