@@ -393,9 +393,7 @@ def _label(t_gps_s: float) -> str:
 
 def _positive(value: float, flag: str, unit: str) -> float:
     """``value`` if finite and > 0, else an error naming ``flag``."""
-    if not (math.isfinite(value) and value > 0):
-        raise InputError(f"{flag} must be > 0 {unit}, got {value:g}")
-    return value
+    return float(Number(lo=0.0, lo_open=True, unit=unit)(flag, value))
 
 
 def _nav_orbit(path: str, systems: str, start: str | None) -> tuple[Any, tuple[float, float]]:

@@ -216,6 +216,8 @@ class Number(Spec):
             return None
         if isinstance(value, bool) or value is None or isinstance(value, str | bytes):
             raise ValueError("")
+        if getattr(getattr(value, "dtype", None), "kind", "") == "b":  # a NumPy boolean
+            raise ValueError("")
         try:
             x = float(value)
         except (TypeError, ValueError, OverflowError):

@@ -76,6 +76,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.linalg import solve_toeplitz
 
+from psdbound.common.options import Number
 from psdbound.errors import InputError
 from psdbound.kalman.bound import GaussMarkovBound
 from psdbound.kalman.covariance import analyze_covariance
@@ -91,12 +92,12 @@ __all__ = [
 ]
 
 
+_POSITIVE = Number(lo=0.0, lo_open=True)
+_NON_NEGATIVE = Number(lo=0.0)
+
+
 def _positive(name: str, v: float, *, zero_ok: bool = False) -> float:
-    x = float(v)
-    if not math.isfinite(x) or x < 0 or (x == 0 and not zero_ok):
-        need = ">= 0" if zero_ok else "> 0"
-        raise InputError(f"{name} must be a finite number {need}, got {v!r}")
-    return x
+    return float((_NON_NEGATIVE if zero_ok else _POSITIVE)(name, v))
 
 
 class UncertainGMStateSpace(NamedTuple):

@@ -62,9 +62,11 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from psdbound.common.options import Number
 from psdbound.errors import InputError
 
 __all__ = [
+    "INTERVAL_S",
     "WHITE_NOISE_MODES",
     "GaussMarkovWhiteNoise",
     "gm_psd_continuous",
@@ -177,13 +179,12 @@ def _check_mode(white_noise: str) -> None:
         )
 
 
+#: A sampling or filter interval: a finite number > 0 s.
+INTERVAL_S = Number(lo=0.0, lo_open=True, unit="s")
+
+
 def _check_dt(dt_s: float, what: str = "filter interval dt_s") -> float:
-    number = isinstance(dt_s, int | float | np.integer | np.floating) and not isinstance(
-        dt_s, bool | np.bool_
-    )
-    if not (number and math.isfinite(float(dt_s)) and float(dt_s) > 0):
-        raise InputError(f"{what} must be a finite number > 0 s, got {dt_s!r}")
-    return float(dt_s)
+    return float(INTERVAL_S(what, dt_s))
 
 
 @dataclass(frozen=True)

@@ -25,7 +25,7 @@ from psdbound.spectra.estimators import MIN_SAMPLES, PSDEstimate, estimate_psd, 
 from psdbound.spectra.intervals import ModelSet
 from psdbound.spectra.lowest import LowestFrequencies
 from psdbound.spectra.lowfreq import POLICIES, TAU_MAX_S, LowFrequency, low_frequency_reasons
-from psdbound.spectra.models import GaussMarkovWhiteNoise
+from psdbound.spectra.models import INTERVAL_S, GaussMarkovWhiteNoise
 from psdbound.spectra.names import METHODS
 from psdbound.spectra.options import check_estimator_options
 from psdbound.spectra.ordinates import lowest_ordinates
@@ -159,16 +159,8 @@ class SeriesBound:
         return out
 
 
-def _positive(name: str, value: object, unit: str) -> float:
-    """Return ``value`` as a Python float; :class:`InputError` unless positive, finite, real."""
-    number = isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
-        value, bool
-    )
-    if not (number and np.isfinite(value) and value > 0):  # type: ignore[operator, arg-type]
-        raise InputError(f"{name} must be a positive, finite number of {unit}, got {value!r}")
-    return float(value)  # type: ignore[arg-type]  # a float32 1.0 is the float 1.0
-
-
+#: A frequency: a finite number > 0 Hz.
+_FREQUENCY_HZ = Number(lo=0.0, lo_open=True, unit="Hz")
 #: The numeric options of :func:`bound_series` and what each allows.
 _NUMBERS = {
     "confidence_level": Number(lo=0.0, hi=1.0, lo_open=True, hi_open=True),
@@ -194,9 +186,9 @@ def _check_options(
     InputError
         A value of the wrong type or out of its range (naming the option).
     """
-    dt = _positive("sampling interval dt_s", dt_s, "seconds")
-    tau_max = _positive("tau_max_s", tau_max_s, "seconds")  # >= dt / 2: fit_stated_bound
-    f_min = None if f_min_hz is None else _positive("f_min_hz", f_min_hz, "Hz")
+    dt = float(INTERVAL_S("sampling interval dt_s", dt_s))
+    tau_max = float(INTERVAL_S("tau_max_s", tau_max_s))  # >= dt / 2: fit_stated_bound
+    f_min = None if f_min_hz is None else float(_FREQUENCY_HZ("f_min_hz", f_min_hz))
     if low_frequency_policy not in POLICIES:
         raise InputError(
             f"low_frequency_policy must be one of {POLICIES}, got {low_frequency_policy!r}"

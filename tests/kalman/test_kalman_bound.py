@@ -281,7 +281,7 @@ def test_library_entries_refuse_what_they_cannot_use():
     with pytest.raises(InputError, match="n_series must be an integer >= 1"):
         kb.simulate(10, n_series=0)
     for bad in ("1", True):
-        with pytest.raises(InputError, match="must be a finite number > 0 s"):
+        with pytest.raises(InputError, match="filter interval dt_s must be a number > 0 s"):
             kb.to_state_space(bad)
     with pytest.raises(InputError, match=r"in \[0, 90\]"):
         kb.mapping_factor([-5.0, 100.0])
