@@ -31,6 +31,13 @@ in ``f``, so for any sum of them ``S(f) <= S(f_g) (f_g / f)^2`` below
 ``r`` (at its lower edge such a sum is at most ``r`` times its band mean, for
 the same reason), is carried down along ``f^-2``. It holds for any such truth
 and may be loose where the truth is flat.
+
+**Said, not raised.** A short window in a group with windows that resolve
+``f_min`` is covered between ``f_min`` and its own resolution through that
+group's limits, as far as the shape tests tell it from the group: a slow
+reflector in a short window that no test sees is the known weak point
+(``docs/method/bound.rst``). :attr:`UnresolvedGroups.n_short` counts such
+windows, and the statement names their number.
 """
 
 from __future__ import annotations
