@@ -71,10 +71,10 @@ class BudgetOptions:
     position: str | None = None
     systems: str | None = option(None, Choice(_SYSTEMS, optional=True, noun="systems"))
     start: str | None = None
-    hours: float = option(24.0, Number(unit="h"))
-    step_s: float = option(300.0, Number(unit="s"))
+    hours: float = option(24.0, Number(lo=0.0, lo_open=True, unit="h"))
+    step_s: float = option(300.0, Number(lo=0.0, lo_open=True, unit="s"))
     mask_deg: float = option(5.0, Number(unit="deg"))
-    val_m: float | None = option(None, Number(unit="m", optional=True))
+    val_m: float | None = option(None, Number(lo=0.0, lo_open=True, unit="m", optional=True))
 
     def __post_init__(self) -> None:
         check_fields(self)
@@ -391,11 +391,6 @@ def _label(t_gps_s: float) -> str:
     return str(gps_s_to_datetime64(t_gps_s).astype("datetime64[s]")).replace("T", " ")
 
 
-def _positive(value: float, flag: str, unit: str) -> float:
-    """``value`` if finite and > 0, else an error naming ``flag``."""
-    return float(Number(lo=0.0, lo_open=True, unit=unit)(flag, value))
-
-
 def _nav_orbit(path: str, systems: str, start: str | None) -> tuple[Any, tuple[float, float]]:
     """Read ``--nav``, check the systems and the start; return the orbit, (start, span end)."""
     from psdbound.io import PreciseOrbit, read_orbit
@@ -439,13 +434,9 @@ def _nav_orbit(path: str, systems: str, start: str | None) -> tuple[Any, tuple[f
 
 
 def _epochs(opts: BudgetOptions) -> int:
-    """Check ``--hours``, ``--step-s``, ``--mask-deg``, ``--val-m``; return the number of epochs."""
-    _positive(opts.hours, "--hours", "h")
-    _positive(opts.step_s, "--step-s", "s")
+    """Check ``--mask-deg``; return the number of epochs (``--hours``, ``--step-s`` > 0: schema)."""
     if not 0.0 <= opts.mask_deg < 90.0:
         raise InputError(f"--mask-deg must be in [0, 90) deg, got {opts.mask_deg:g}")
-    if opts.val_m is not None:
-        _positive(opts.val_m, "--val-m", "m")
     n_epochs = math.ceil(opts.hours * 3600.0 / opts.step_s)
     if n_epochs > MAX_EPOCHS:
         raise InputError(

@@ -283,5 +283,4 @@ def _short_in_resolved_groups(
 ) -> int:
     """Count the windows resolving only above ``f_min`` whose group has one that resolves it."""
     short = resolved_hz > f_min_hz * (1.0 + 1e-9)
-    resolving = {int(g) for g in np.unique(groups[~short])}
-    return int(sum(int(g) in resolving for g in groups[short]))
+    return int(np.isin(groups[short], groups[~short]).sum())
