@@ -6,8 +6,9 @@ parameters, where it comes from and what a filter needs of it:
 ``gauss_markov``
     The PSD bound's first-order Gauss-Markov part (``sigma_gm_m``, ``tau_s``;
     elevation-mapped). Below the bound's lowest band it lies above every
-    Gauss-Markov + white model the data admit (``bound.low_frequency``;
-    :mod:`psdbound.spectra.lowfreq`).
+    Gauss-Markov + white model the main shape group's pooled spectrum admits
+    (``bound.low_frequency``; :mod:`psdbound.spectra.lowfreq`): a statement on
+    that group's models, not on a window of another shape.
 ``slow``
     The multipath the high-pass removed below the cutoff, which the bound
     cannot see: the least-variance first-order Gauss-Markov process above

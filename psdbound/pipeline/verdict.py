@@ -88,7 +88,7 @@ cutoff validation (no longer a rule)
     reported (``validation.verdict``), not used.
 low frequencies
     Below the lowest band the bound lies above every Gauss-Markov + white
-    model the data admit (``bound.low_frequency``,
+    model the main shape group's pooled spectrum admits (``bound.low_frequency``,
     :mod:`psdbound.spectra.lowfreq`). Where the data do not bound the time
     constant above, that statement rests on the prior ``tau <= tau_max_s``:
     with ``low_frequency = "refuse"`` (default ``"prior"``) such a bound is

@@ -45,6 +45,9 @@ def test_bound_covers_a_gm_truth_at_every_frequency(tau_s, seed):
         assert "prior 900 s" in res.covers
     if tau_s <= 30.0:  # the plateau is resolved: nothing is raised
         assert low.status == "covered" and np.isfinite(low.tau_upper_s)
+    # the clause is on the main shape group's models, and says what it leaves out
+    assert "the main shape group's pooled spectrum admits" in low.sentence()
+    assert low.sentence().endswith("is not covered by this clause")
 
 
 def test_tightest_bound_over_the_bands_alone_under_bounds_a_slow_truth():
