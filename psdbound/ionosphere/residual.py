@@ -115,22 +115,6 @@ def split_arcs(t_s: ArrayLike, y_m: ArrayLike, dt_s: float) -> list[NDArray[np.f
     return np.split(y, breaks)
 
 
-def _zero_phase(
-    x: NDArray[np.float64], sos: NDArray[np.float64], zi: NDArray[np.float64], pad: int
-) -> NDArray[np.float64]:
-    """``scipy.signal.sosfiltfilt(sos, x, padtype="odd", padlen=pad)`` with ``zi`` precomputed."""
-    from scipy.signal import sosfilt
-
-    if pad > 0:
-        ext = np.concatenate([2 * x[0] - x[pad:0:-1], x, 2 * x[-1] - x[-2 : -pad - 2 : -1]])
-    else:
-        ext = x
-    y, _ = sosfilt(sos, ext, zi=zi * ext[0])
-    y, _ = sosfilt(sos, y[::-1], zi=zi * y[-1])
-    y = y[::-1]
-    return y[pad : y.size - pad] if pad > 0 else y
-
-
 def highpass_arcs(
     arcs: list[NDArray[np.float64]],
     dt_s: float,
@@ -138,14 +122,13 @@ def highpass_arcs(
     *,
     highpass: HighPass | None = None,
 ) -> list[tuple[NDArray[np.float64], NDArray[np.bool_]]]:
-    """Apply the fit's high-pass to each arc, as :meth:`HighPass.apply` does.
+    """Apply the fit's high-pass to each arc with :meth:`~psdbound.isolation.HighPass.apply`.
 
-    For the IIR designs the second-order sections and the initial state are
-    computed once for all arcs and each arc is filtered exactly as
-    :meth:`~psdbound.isolation.HighPass.apply` filters it (odd reflection
-    over ``min(n - 1, ceil(3 / (f_c dt)))`` samples, ``sosfiltfilt``,
+    Each arc is filtered as the isolation filters it (odd reflection over
+    ``min(n - 1, ceil(3 / (f_c dt)))`` samples, forward-backward,
     ``ceil(1 / (f_c dt))`` samples trimmed at each end for ``edge="trim"``);
-    the tests check the equality. The FIR design calls ``apply`` itself.
+    the design and its initial state are computed once per options,
+    sampling and cutoff.
 
     Parameters
     ----------
@@ -164,25 +147,7 @@ def highpass_arcs(
         Filtered arc and the samples kept, per arc.
     """
     hp = HighPass() if highpass is None else highpass
-    hp.check_cutoff(f_c_hz, dt_s)
-    if hp.kind == "fir":
-        return [hp.apply(x, dt_s, f_c_hz) for x in arcs]
-    from scipy.signal import sosfilt_zi
-
-    sos = hp.sos(dt_s, f_c_hz)
-    zi = sosfilt_zi(sos)
-    k_pad = int(np.ceil(3.0 / (f_c_hz * dt_s)))
-    k_trim = int(np.ceil(1.0 / (f_c_hz * dt_s)))
-    out = []
-    for x in arcs:
-        n = x.size
-        y = _zero_phase(np.asarray(x, dtype=np.float64), sos, zi[:, :], min(n - 1, k_pad))
-        keep = np.ones(n, dtype=bool)
-        if hp.edge == "trim":
-            keep[:k_trim] = False
-            keep[max(n - k_trim, 0) :] = False
-        out.append((y, keep))
-    return out
+    return [hp.apply(np.asarray(x, dtype=np.float64), dt_s, f_c_hz) for x in arcs]
 
 
 def _zero_phase_sumsq(
@@ -207,10 +172,10 @@ def _zero_phase_sumsq(
         for i, (y, keep) in enumerate(highpass_arcs(arcs, dt_s, f_c_hz, highpass=hp)):
             ss[i] = float(np.sum(y[keep] ** 2))
         return ss, np.maximum(n - 2 * k_trim, 0)
-    from scipy.signal import sosfilt, sosfilt_zi
+    from scipy.signal import sosfilt
 
     sos = hp.sos(dt_s, f_c_hz)
-    zi = sosfilt_zi(sos)[:, None, :]
+    zi = hp.initial_state(dt_s, f_c_hz)[:, None, :]
     pad = np.minimum(n - 1, int(np.ceil(3.0 / (f_c_hz * dt_s))))
     length = n + 2 * pad
     width = int(length.max())

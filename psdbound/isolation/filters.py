@@ -104,16 +104,15 @@ class HighPass:
             Samples to keep (all True for ``edge="pad"``; False on the
             trimmed ends for ``edge="trim"``).
         """
-        from scipy import signal  # deferred: the options class is imported by every --help
-
         self.check_cutoff(cutoff_hz, interval_s)
         n = x.size
         pad = int(min(n - 1, np.ceil(3.0 / (cutoff_hz * interval_s))))
         if self.kind == "fir":
             y = self._fir(x, interval_s, cutoff_hz, pad)
         else:
-            sos = self.sos(interval_s, cutoff_hz)
-            y = signal.sosfiltfilt(sos, x, padtype="odd", padlen=pad)
+            key = (self.kind, self.order, self.stopband_db, interval_s, cutoff_hz)
+            sos = _iir_design(*key).copy()  # sosfilt needs a writable array
+            y = _zero_phase(np.asarray(x, dtype=np.float64), sos, _iir_state(*key), pad)
         keep = np.ones(n, dtype=bool)
         if self.edge == "trim":
             k = int(np.ceil(1.0 / (cutoff_hz * interval_s)))
@@ -126,6 +125,12 @@ class HighPass:
         if self.kind not in ("butter", "cheby2"):
             raise InputError("the FIR design has no second-order sections")
         return _iir_design(self.kind, self.order, self.stopband_db, interval_s, cutoff_hz).copy()
+
+    def initial_state(self, interval_s: float, cutoff_hz: float) -> NDArray[np.float64]:
+        """Step-response initial state of :meth:`sos` (``scipy.signal.sosfilt_zi``; a copy)."""
+        if self.kind not in ("butter", "cheby2"):
+            raise InputError("the FIR design has no second-order sections")
+        return _iir_state(self.kind, self.order, self.stopband_db, interval_s, cutoff_hz).copy()
 
     @staticmethod
     def _numtaps(interval_s: float, cutoff_hz: float) -> int:
@@ -230,6 +235,40 @@ def _iir_design(
         sos = signal.cheby2(order, stopband_db, cutoff_hz, btype="highpass", fs=fs, output="sos")
     sos.setflags(write=False)
     return np.asarray(sos, dtype=np.float64)
+
+
+@lru_cache(maxsize=64)
+def _iir_state(
+    kind: str, order: int, stopband_db: float, interval_s: float, cutoff_hz: float
+) -> NDArray[np.float64]:
+    """``sosfilt_zi`` of :func:`_iir_design` (read-only): a linear solve per section."""
+    from scipy.signal import sosfilt_zi
+
+    zi = sosfilt_zi(_iir_design(kind, order, stopband_db, interval_s, cutoff_hz))
+    zi.setflags(write=False)
+    return np.asarray(zi, dtype=np.float64)
+
+
+def _zero_phase(
+    x: NDArray[np.float64], sos: NDArray[np.float64], zi: NDArray[np.float64], pad: int
+) -> NDArray[np.float64]:
+    """``scipy.signal.sosfiltfilt(sos, x, padtype="odd", padlen=pad)``, ``zi`` given.
+
+    The same arithmetic as scipy's (odd extension, forward pass started at
+    ``zi x[0]``, backward pass at ``zi y[-1]``), without recomputing
+    ``sosfilt_zi(sos)`` for every arc; ``tests/isolation`` checks the
+    equality.
+    """
+    from scipy.signal import sosfilt
+
+    if pad > 0:
+        ext = np.concatenate([2 * x[0] - x[pad:0:-1], x, 2 * x[-1] - x[-2 : -pad - 2 : -1]])
+    else:
+        ext = x
+    y, _ = sosfilt(sos, ext, zi=zi * ext[0])
+    y, _ = sosfilt(sos, y[::-1], zi=zi * y[-1])
+    y = y[::-1]
+    return y[pad : y.size - pad] if pad > 0 else y
 
 
 @lru_cache(maxsize=16)
