@@ -110,9 +110,8 @@ class HighPass:
         if self.kind == "fir":
             y = self._fir(x, interval_s, cutoff_hz, pad)
         else:
-            key = (self.kind, self.order, self.stopband_db, interval_s, cutoff_hz)
-            sos = _iir_design(*key).copy()  # sosfilt needs a writable array
-            y = _zero_phase(np.asarray(x, dtype=np.float64), sos, _iir_state(*key), pad)
+            sos, zi = self.sos(interval_s, cutoff_hz), self.initial_state(interval_s, cutoff_hz)
+            y = _zero_phase(np.asarray(x, dtype=np.float64), sos, zi, pad)
         keep = np.ones(n, dtype=bool)
         if self.edge == "trim":
             k = int(np.ceil(1.0 / (cutoff_hz * interval_s)))
@@ -122,15 +121,17 @@ class HighPass:
 
     def sos(self, interval_s: float, cutoff_hz: float) -> NDArray[np.float64]:
         """Second-order sections of the single-pass IIR design (a copy of the cached design)."""
-        if self.kind not in ("butter", "cheby2"):
-            raise InputError("the FIR design has no second-order sections")
-        return _iir_design(self.kind, self.order, self.stopband_db, interval_s, cutoff_hz).copy()
+        return _iir_design(*self._iir_key(interval_s, cutoff_hz)).copy()
 
     def initial_state(self, interval_s: float, cutoff_hz: float) -> NDArray[np.float64]:
         """Step-response initial state of :meth:`sos` (``scipy.signal.sosfilt_zi``; a copy)."""
+        return _iir_state(*self._iir_key(interval_s, cutoff_hz)).copy()
+
+    def _iir_key(self, interval_s: float, cutoff_hz: float) -> tuple[str, int, float, float, float]:
+        """Return the cached IIR design's key; refuse the FIR design, which has none."""
         if self.kind not in ("butter", "cheby2"):
             raise InputError("the FIR design has no second-order sections")
-        return _iir_state(self.kind, self.order, self.stopband_db, interval_s, cutoff_hz).copy()
+        return self.kind, self.order, self.stopband_db, interval_s, cutoff_hz
 
     @staticmethod
     def _numtaps(interval_s: float, cutoff_hz: float) -> int:
@@ -256,8 +257,8 @@ def _zero_phase(
 
     The same arithmetic as scipy's (odd extension, forward pass started at
     ``zi x[0]``, backward pass at ``zi y[-1]``), without recomputing
-    ``sosfilt_zi(sos)`` for every arc; ``tests/isolation`` checks the
-    equality.
+    ``sosfilt_zi(sos)`` for every arc;
+    ``tests/ionosphere/test_iono_residual.py`` checks the equality to the bit.
     """
     from scipy.signal import sosfilt
 
